@@ -1,0 +1,1 @@
+//! invlight-ilp (to be written).

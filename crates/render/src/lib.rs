@@ -1,0 +1,1 @@
+//! invlight-render (to be written).

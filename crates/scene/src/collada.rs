@@ -1,0 +1,10 @@
+//! collada loader (to be written).
+
+use crate::error::LoadError;
+use crate::model::Scene;
+use std::path::Path;
+
+/// Reads a collada file.
+pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
+    Err(LoadError::new(path, "the collada loader is not written yet"))
+}

@@ -1,0 +1,45 @@
+//! The scene model of invlight: named triangle meshes with world transforms, materials,
+//! lights and cameras, in photometric units, and the loaders that build it from glTF 2.0,
+//! COLLADA and Wavefront OBJ files.
+//!
+//! The core types:
+//! - [`Scene`]: everything that is traced: [`Mesh`]es in object space placed by
+//!   [`Instance`]s, [`Material`]s, punctual and directional [`Light`]s, [`Camera`]s, the
+//!   named [`Surface`]s a user addresses, and the [`Placement`] rectangles of problem files.
+//! - [`load`]: reads a scene file, choosing the format from its extension.
+//!
+//! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
+//! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
+//! RGB whose Rec.709 luminance ([`luminance`]) is the photometric quantity, so a white
+//! light gives lux.
+//!
+//! ```
+//! use invlight_scene::{Scene, Mesh, Instance, Material, Mat4, Vec3};
+//! let mut scene = Scene::default();
+//! let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+//! let quad = scene.add_mesh(Mesh::quad(
+//!     [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
+//!     grey,
+//! ));
+//! scene.add_instance("Floor", quad, Mat4::IDENTITY);
+//! assert_eq!(scene.surface_area(scene.surface("Floor").unwrap()), 1.0);
+//! ```
+#![deny(missing_docs)]
+
+mod collada;
+mod error;
+mod gltf;
+mod light;
+mod load;
+mod material;
+mod mesh;
+mod model;
+mod obj;
+
+pub use error::LoadError;
+pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
+pub use light::{Camera, Light, LightKind, luminance};
+pub use load::{LoadOptions, UpAxis, load};
+pub use material::{Material, Rgb, Texture};
+pub use mesh::Mesh;
+pub use model::{Instance, InstanceId, MaterialId, MeshId, Placement, Scene, Surface, SurfaceId};

@@ -1,0 +1,165 @@
+//! Punctual and directional lights in photometric units (glTF KHR_lights_punctual), and
+//! cameras. Area lights are not here: they are the emissive triangles of the meshes.
+
+use crate::material::Rgb;
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Rec.709 luminance of a linear RGB value: the photometric scalar of a colour
+/// (DESIGN.md §1).
+pub fn luminance(c: Rgb) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// A named light.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Light {
+    /// Node or light name, as a problem file's `lightInSurface`/`directionalLight` `id`.
+    pub name: String,
+    /// What kind of light, with its placement and strength.
+    pub kind: LightKind,
+}
+
+/// The kinds of non-area light.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LightKind {
+    /// Isotropic point light of intensity `intensity` cd (per channel).
+    Point {
+        /// World position, m.
+        position: Vec3,
+        /// Luminous intensity, cd.
+        intensity: Rgb,
+    },
+    /// Spot light: intensity `intensity` cd on its axis, full inside `inner` (half-angle,
+    /// radians), falling smoothly to zero at `outer` as glTF recommends.
+    Spot {
+        /// World position, m.
+        position: Vec3,
+        /// Unit axis the light shines along.
+        direction: Vec3,
+        /// Luminous intensity on the axis, cd.
+        intensity: Rgb,
+        /// Inner cone half-angle, radians.
+        inner: f32,
+        /// Outer cone half-angle, radians.
+        outer: f32,
+    },
+    /// Sun: parallel light travelling along `direction` with illuminance `illuminance` lx
+    /// on a plane perpendicular to it.
+    Directional {
+        /// Unit vector the light travels along.
+        direction: Vec3,
+        /// Illuminance on a perpendicular plane, lx.
+        illuminance: Rgb,
+    },
+}
+
+impl LightKind {
+    /// Position of a point or spot light.
+    pub fn position(&self) -> Option<Vec3> {
+        match self {
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                Some(*position)
+            }
+            LightKind::Directional { .. } => None,
+        }
+    }
+
+    /// Direction of a spot or directional light.
+    pub fn direction(&self) -> Option<Vec3> {
+        match self {
+            LightKind::Spot { direction, .. } | LightKind::Directional { direction, .. } => {
+                Some(*direction)
+            }
+            LightKind::Point { .. } => None,
+        }
+    }
+
+    /// `point`, `spot` or `directional`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            LightKind::Point { .. } => "point",
+            LightKind::Spot { .. } => "spot",
+            LightKind::Directional { .. } => "directional",
+        }
+    }
+
+    /// Fraction of the axis intensity a spot light sends at `cos_theta` from its axis
+    /// (glTF's recommended smooth falloff: linear in cos between the cones, squared).
+    pub fn spot_falloff(cos_theta: f32, inner: f32, outer: f32) -> f32 {
+        let (ci, co) = (inner.cos(), outer.cos());
+        if cos_theta >= ci {
+            1.0
+        } else if cos_theta <= co {
+            0.0
+        } else {
+            let t = (cos_theta - co) / (ci - co).max(1e-12);
+            t * t
+        }
+    }
+
+    /// Emitted luminous flux in lm for point and spot lights (RGB). A directional light
+    /// has no flux of its own; it is `illuminance × area` of whatever it falls on, so this
+    /// returns its illuminance.
+    ///
+    /// Spot: ∫ I·f(θ) dω = 2π·I·(1 − cos outer) for the flat part and the falloff ring
+    /// integrated in closed form: with c = cos θ, t = (c − c_o)/(c_i − c_o),
+    /// ∫_{c_o}^{c_i} t² dc = (c_i − c_o)/3.
+    pub fn flux(&self) -> Rgb {
+        match self {
+            LightKind::Point { intensity, .. } => *intensity * (4.0 * PI),
+            LightKind::Spot {
+                intensity,
+                inner,
+                outer,
+                ..
+            } => {
+                let (ci, co) = (inner.cos(), outer.cos().min(inner.cos()));
+                *intensity * (2.0 * PI * ((1.0 - ci) + (ci - co) / 3.0))
+            }
+            LightKind::Directional { illuminance, .. } => *illuminance,
+        }
+    }
+}
+
+/// A perspective camera.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Camera {
+    /// Node or camera name.
+    pub name: String,
+    /// Eye position, m.
+    pub position: Vec3,
+    /// Unit viewing direction.
+    pub forward: Vec3,
+    /// Unit up vector, perpendicular to `forward`.
+    pub up: Vec3,
+    /// Vertical field of view, radians.
+    pub yfov: f32,
+    /// Width / height, when the file sets it.
+    pub aspect: Option<f32>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spot_flux_matches_numeric_integral() {
+        let (inner, outer) = (0.3f32, 0.7f32);
+        let kind = LightKind::Spot {
+            position: Vec3::ZERO,
+            direction: Vec3::Z,
+            intensity: Vec3::ONE,
+            inner,
+            outer,
+        };
+        let n = 200_000;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            let c = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+            sum += LightKind::spot_falloff(c as f32, inner, outer) as f64 * 2.0 / n as f64;
+        }
+        let numeric = 2.0 * std::f64::consts::PI * sum;
+        assert!((kind.flux().x as f64 - numeric).abs() < 1e-4 * numeric);
+    }
+}

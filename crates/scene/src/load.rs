@@ -1,0 +1,101 @@
+//! Loading a scene file: the format is chosen by extension, then the units are applied.
+
+use crate::error::LoadError;
+use crate::light::LightKind;
+use crate::model::Scene;
+use glam::{Mat4, Vec3};
+use std::path::Path;
+
+/// The up axis a file was authored with, when the file does not say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UpAxis {
+    /// +Y up (glTF, most OBJ exports).
+    Y,
+    /// +Z up (Blender, most architectural tools).
+    Z,
+}
+
+impl UpAxis {
+    /// The axis as a unit vector.
+    pub fn vector(self) -> Vec3 {
+        match self {
+            UpAxis::Y => Vec3::Y,
+            UpAxis::Z => Vec3::Z,
+        }
+    }
+}
+
+/// How to read a file authored in other units or axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadOptions {
+    /// Metres per file unit, applied after the file's own unit (COLLADA `<unit meter>`).
+    pub scale: f32,
+    /// Up axis, overriding what the file says (glTF: Y; COLLADA: `<up_axis>`; OBJ: Y).
+    pub up: Option<UpAxis>,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        LoadOptions {
+            scale: 1.0,
+            up: None,
+        }
+    }
+}
+
+/// Reads a glTF (`.gltf`, `.glb`), COLLADA (`.dae`) or Wavefront (`.obj`) scene.
+pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    if !path.is_file() {
+        return Err(LoadError::new(path, "no such file")
+            .with_hint("check the path; relative paths are taken from the current directory"));
+    }
+    let mut scene = match ext.as_str() {
+        "gltf" | "glb" => crate::gltf::load(path)?,
+        "dae" => crate::collada::load(path)?,
+        "obj" => crate::obj::load(path)?,
+        _ => {
+            return Err(LoadError::new(
+                path,
+                format!("unknown scene format '.{ext}'"),
+            )
+            .with_hint("invlight reads glTF 2.0 (.gltf, .glb), COLLADA (.dae) and Wavefront OBJ (.obj)"));
+        }
+    };
+    if let Some(up) = options.up {
+        scene.up = up.vector();
+    }
+    if options.scale != 1.0 {
+        scale_scene(&mut scene, options.scale);
+    }
+    Ok(scene)
+}
+
+/// Scales the whole scene about the origin: positions and lengths by `s`; point and
+/// spot intensities are kept (a lamp stays the same lamp in another unit system).
+pub(crate) fn scale_scene(scene: &mut Scene, s: f32) {
+    let m = Mat4::from_scale(Vec3::splat(s));
+    for inst in &mut scene.instances {
+        inst.transform = m * inst.transform;
+    }
+    for light in &mut scene.lights {
+        match &mut light.kind {
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                *position *= s
+            }
+            LightKind::Directional { .. } => {}
+        }
+    }
+    for cam in &mut scene.cameras {
+        cam.position *= s;
+    }
+    for p in &mut scene.placements {
+        for v in &mut p.vertices {
+            *v *= s;
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! invlight-trace (to be written).
