@@ -29,6 +29,7 @@
 mod collada;
 mod error;
 mod gltf;
+mod image_file;
 mod light;
 mod load;
 mod material;
