@@ -1,10 +1,135 @@
-//! gltf loader (to be written).
+//! The glTF 2.0 loader: `.gltf` with embedded (`data:` URI) or external buffers, and
+//! `.glb`.
+//!
+//! What is read (DESIGN.md §1): triangle meshes named by node (else mesh) name, a name
+//! covering its node's descendants; world transforms from TRS or matrix hierarchies;
+//! metallic-roughness materials as diffuse, mirror, glass, emitter or hole
+//! ([`material`]); KHR_lights_punctual lights in cd and lx; perspective cameras; and
+//! `*__Geometry` placement rectangles. Positions are kept as written, +Y up.
+//!
+//! The JSON schema is `gltf-json`, the document model of the `gltf` crate, but not that
+//! crate's importer: its validation indexes `accessors[POSITION]` unchecked, its GLB
+//! reader and accessor iterators can panic on truncated or inconsistent files, and its
+//! errors do not name the file. So the document is only deserialised (with the JSON path
+//! of a bad value), and every index, range and count is checked here as it is used,
+//! each failure a [`LoadError`] that names the place (`meshes[2].primitives[0]`).
+
+mod accessor;
+mod buffers;
+mod glb;
+mod material;
+mod mesh;
+mod nodes;
 
 use crate::error::LoadError;
-use crate::model::Scene;
+use crate::model::{MaterialId, MeshId, Scene};
+use gltf_json as json;
+use std::borrow::Cow;
+use std::collections::HashMap;
 use std::path::Path;
 
-/// Reads a gltf file.
+/// The general hint of a file that breaks the glTF rules.
+const VALIDATOR_HINT: &str = "the file breaks the glTF 2.0 rules: check it with the Khronos glTF Validator or export it again";
+
+/// Extensions whose absence of support would change what is loaded, that invlight
+/// reads; a file that *requires* any other extension is refused rather than misread.
+const SUPPORTED_REQUIRED: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_mesh_quantization",
+];
+
+/// Reads a glTF 2.0 scene (`.gltf` or `.glb`; the container is told by its magic bytes).
 pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
-    Err(LoadError::new(path, "the gltf loader is not written yet"))
+    let bytes = std::fs::read(path)
+        .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
+    let (json_bytes, bin) = if bytes.starts_with(glb::MAGIC) {
+        let g = glb::split(path, &bytes)?;
+        (g.json, g.bin)
+    } else {
+        (&bytes[..], None)
+    };
+    let root = parse(path, json_bytes)?;
+    let buffers = buffers::load_buffers(path, &root, bin)?;
+    let mut builder = Builder {
+        path,
+        root: &root,
+        buffers,
+        scene: Scene::default(),
+        meshes: HashMap::new(),
+        materials: HashMap::new(),
+        default_material: None,
+        images: HashMap::new(),
+    };
+    builder.place_nodes()?;
+    Ok(builder.scene)
+}
+
+/// Deserialises the JSON document and checks its version and required extensions.
+fn parse(path: &Path, bytes: &[u8]) -> Result<json::Root, LoadError> {
+    let de = &mut serde_json::Deserializer::from_slice(bytes);
+    let root: json::Root = serde_path_to_error::deserialize(de).map_err(|e| {
+        let at = e.path().to_string();
+        let inner = e.into_inner();
+        let message = if inner.is_syntax() || inner.is_eof() {
+            format!("malformed JSON: {inner}")
+        } else {
+            format!("unexpected value: {inner}")
+        };
+        LoadError::at(path, if at == "." { String::new() } else { at }, message)
+            .with_hint(VALIDATOR_HINT)
+    })?;
+    let version = &root.asset.version;
+    if version.split('.').next() != Some("2") {
+        return Err(LoadError::at(
+            path,
+            "asset.version",
+            format!("glTF version {version}, 2.x expected"),
+        )
+        .with_hint("invlight reads glTF 2.0; convert older files with an exporter"));
+    }
+    if let Some(ext) = root
+        .extensions_required
+        .iter()
+        .find(|e| !SUPPORTED_REQUIRED.contains(&e.as_str()))
+    {
+        return Err(LoadError::at(
+            path,
+            "extensionsRequired",
+            format!("the file requires {ext}, which invlight does not read"),
+        )
+        .with_hint("export again without that extension (e.g. without mesh compression)"));
+    }
+    Ok(root)
+}
+
+/// The scene under construction, with the document it comes from and what has already
+/// been converted (glTF index → scene id), so shared meshes, materials and images are
+/// converted once.
+struct Builder<'a> {
+    /// The file, for errors.
+    path: &'a Path,
+    /// The parsed document.
+    root: &'a json::Root,
+    /// `buffers[i]`'s bytes.
+    buffers: Vec<Cow<'a, [u8]>>,
+    /// The result.
+    scene: Scene,
+    /// glTF mesh → scene mesh (`None`: no triangles).
+    meshes: HashMap<usize, Option<MeshId>>,
+    /// glTF material → scene material.
+    materials: HashMap<usize, MaterialId>,
+    /// glTF's default material, made when a primitive has none.
+    default_material: Option<MaterialId>,
+    /// glTF image → scene texture.
+    images: HashMap<usize, u32>,
+}
+
+impl Builder<'_> {
+    /// An error at `location` in this file, with the validator hint.
+    fn err(&self, location: &str, message: impl Into<String>) -> LoadError {
+        LoadError::at(self.path, location, message).with_hint(VALIDATOR_HINT)
+    }
 }

@@ -1,0 +1,254 @@
+//! Accessors (glTF 2.0 spec §3.6): typed arrays laid over buffer views, with byte
+//! strides, normalised integers (also KHR_mesh_quantization's) and sparse substitution.
+//!
+//! Every element is copied into a dense array after checking its whole byte range
+//! against the view, so a bad offset, stride, count or sparse index is a [`LoadError`]
+//! naming the accessor, never a panic (the `gltf` crate's reader `debug_assert`s and
+//! computes `count - 1` unchecked, hence this reader).
+
+use super::Builder;
+use crate::error::LoadError;
+use gltf_json as json;
+use json::accessor::{ComponentType, GenericComponentType, IndexComponentType, Type};
+use json::validation::Checked;
+
+/// The largest dense copy of an accessor, bytes: a sparse accessor without a buffer view
+/// is zero-filled to `count` elements, and a hostile `count` must not exhaust memory.
+const MAX_DENSE_BYTES: u64 = 1 << 31;
+
+/// An accessor's elements packed without stride, and how to read their components.
+struct Dense {
+    bytes: Vec<u8>,
+    component: ComponentType,
+    normalized: bool,
+}
+
+fn component_size(c: ComponentType) -> usize {
+    match c {
+        ComponentType::I8 | ComponentType::U8 => 1,
+        ComponentType::I16 | ComponentType::U16 => 2,
+        ComponentType::U32 | ComponentType::F32 => 4,
+    }
+}
+
+fn type_name(t: Type) -> &'static str {
+    match t {
+        Type::Scalar => "SCALAR",
+        Type::Vec2 => "VEC2",
+        Type::Vec3 => "VEC3",
+        Type::Vec4 => "VEC4",
+        Type::Mat2 => "MAT2",
+        Type::Mat3 => "MAT3",
+        Type::Mat4 => "MAT4",
+    }
+}
+
+/// One component as a float; normalised integers map to [0, 1] or [−1, 1] (spec §3.11,
+/// "Animations" table of normalisation).
+fn to_f32(c: &[u8], component: ComponentType, normalized: bool) -> f32 {
+    let (v, scale) = match component {
+        ComponentType::U8 => (c[0] as f32, 255.0),
+        ComponentType::I8 => (c[0] as i8 as f32, 127.0),
+        ComponentType::U16 => (u16::from_le_bytes([c[0], c[1]]) as f32, 65535.0),
+        ComponentType::I16 => (i16::from_le_bytes([c[0], c[1]]) as f32, 32767.0),
+        ComponentType::U32 => (
+            u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32,
+            u32::MAX as f32,
+        ),
+        ComponentType::F32 => return f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
+    };
+    if normalized { (v / scale).max(-1.0) } else { v }
+}
+
+/// One unsigned index component.
+fn to_u32(c: &[u8], component: ComponentType) -> u32 {
+    match component {
+        ComponentType::U16 => u16::from_le_bytes([c[0], c[1]]) as u32,
+        ComponentType::U32 => u32::from_le_bytes([c[0], c[1], c[2], c[3]]),
+        _ => c[0] as u32,
+    }
+}
+
+impl Builder<'_> {
+    /// The accessor `index`, which must be of type `want`, as floats (`count × n`
+    /// components, element-major). `loc` names the referrer, e.g.
+    /// `meshes[0].primitives[1].attributes.POSITION`.
+    pub(super) fn read_floats(
+        &self,
+        index: json::Index<json::Accessor>,
+        want: Type,
+        loc: &str,
+    ) -> Result<Vec<f32>, LoadError> {
+        let dense = self.dense(index, want, loc)?;
+        let size = component_size(dense.component);
+        Ok(dense
+            .bytes
+            .chunks_exact(size)
+            .map(|c| to_f32(c, dense.component, dense.normalized))
+            .collect())
+    }
+
+    /// The index accessor `index`: SCALAR of unsigned byte, short or int.
+    pub(super) fn read_indices(
+        &self,
+        index: json::Index<json::Accessor>,
+        loc: &str,
+    ) -> Result<Vec<u32>, LoadError> {
+        let dense = self.dense(index, Type::Scalar, loc)?;
+        if !matches!(
+            dense.component,
+            ComponentType::U8 | ComponentType::U16 | ComponentType::U32
+        ) {
+            return Err(self.err(
+                &format!("accessors[{}] (from {loc})", index.value()),
+                "indices must be unsigned byte, short or int (componentType 5121, 5123, 5125)",
+            ));
+        }
+        let size = component_size(dense.component);
+        Ok(dense
+            .bytes
+            .chunks_exact(size)
+            .map(|c| to_u32(c, dense.component))
+            .collect())
+    }
+
+    /// Copies the accessor's elements densely, applying its sparse substitution.
+    fn dense(
+        &self,
+        index: json::Index<json::Accessor>,
+        want: Type,
+        loc: &str,
+    ) -> Result<Dense, LoadError> {
+        let i = index.value();
+        let here = format!("accessors[{i}] (from {loc})");
+        let acc = self.root.accessors.get(i).ok_or_else(|| {
+            self.err(
+                loc,
+                format!(
+                    "accessor {i} does not exist ({} in the file)",
+                    self.root.accessors.len()
+                ),
+            )
+        })?;
+        let Checked::Valid(GenericComponentType(component)) = acc.component_type else {
+            return Err(self.err(&here, "componentType is not a glTF component type"));
+        };
+        let Checked::Valid(ty) = acc.type_ else {
+            return Err(self.err(&here, "type is not a glTF accessor type"));
+        };
+        if ty != want {
+            return Err(self.err(
+                &here,
+                format!(
+                    "type {} where {} is expected",
+                    type_name(ty),
+                    type_name(want)
+                ),
+            ));
+        }
+        let element = (ty.multiplicity() * component_size(component)) as u64;
+        let count = acc.count.0;
+        let total = count
+            .checked_mul(element)
+            .filter(|&t| t <= MAX_DENSE_BYTES)
+            .ok_or_else(|| self.err(&here, format!("count {count} is too large")))?;
+        let mut bytes = vec![0u8; total as usize];
+        if let Some(view) = acc.buffer_view {
+            let (data, stride) = self.view(view, &here)?;
+            let stride = stride.map_or(element, |s| s as u64);
+            if stride < element {
+                return Err(self.err(
+                    &here,
+                    format!("byteStride {stride} is less than the {element}-byte element"),
+                ));
+            }
+            let offset = acc.byte_offset.map_or(0, |o| o.0);
+            if count > 0 {
+                let end = (count - 1)
+                    .checked_mul(stride)
+                    .and_then(|x| x.checked_add(offset))
+                    .and_then(|x| x.checked_add(element))
+                    .filter(|&e| e <= data.len() as u64);
+                if end.is_none() {
+                    return Err(self.err(
+                        &here,
+                        format!(
+                            "{count} elements of {element} bytes every {stride} from byte {offset} overrun its {}-byte buffer view",
+                            data.len()
+                        ),
+                    ));
+                }
+            }
+            let (offset, stride, element) = (offset as usize, stride as usize, element as usize);
+            for (k, out) in bytes.chunks_exact_mut(element).enumerate() {
+                let at = offset + k * stride;
+                out.copy_from_slice(&data[at..at + element]);
+            }
+        }
+        if let Some(sparse) = &acc.sparse {
+            self.substitute(sparse, &mut bytes, element as usize, count, &here)?;
+        }
+        Ok(Dense {
+            bytes,
+            component,
+            normalized: acc.normalized,
+        })
+    }
+
+    /// Replaces the elements a sparse accessor lists (spec §3.6.2.3).
+    fn substitute(
+        &self,
+        sparse: &json::accessor::sparse::Sparse,
+        bytes: &mut [u8],
+        element: usize,
+        count: u64,
+        here: &str,
+    ) -> Result<(), LoadError> {
+        let n = sparse.count.0;
+        let Checked::Valid(IndexComponentType(component)) = sparse.indices.component_type else {
+            return Err(self.err(
+                here,
+                "sparse.indices.componentType is not unsigned byte, short or int",
+            ));
+        };
+        let isize = component_size(component) as u64;
+        let slice = |view, offset: u64, size: u64, what: &str| -> Result<&[u8], LoadError> {
+            let (data, _) = self.view(view, &format!("{here}.sparse.{what}"))?;
+            let end = n.checked_mul(size).and_then(|x| x.checked_add(offset));
+            match end.filter(|&e| e <= data.len() as u64) {
+                Some(end) => Ok(&data[offset as usize..end as usize]),
+                None => Err(self.err(
+                    here,
+                    format!(
+                        "sparse.{what}: {n} entries overrun their {}-byte buffer view",
+                        data.len()
+                    ),
+                )),
+            }
+        };
+        let indices = slice(
+            sparse.indices.buffer_view,
+            sparse.indices.byte_offset.0,
+            isize,
+            "indices",
+        )?;
+        let values = slice(
+            sparse.values.buffer_view,
+            sparse.values.byte_offset.0,
+            element as u64,
+            "values",
+        )?;
+        for (k, value) in values.chunks_exact(element).enumerate() {
+            let target = to_u32(&indices[k * isize as usize..], component) as u64;
+            if target >= count {
+                return Err(self.err(
+                    here,
+                    format!("sparse.indices[{k}] = {target} is not below count {count}"),
+                ));
+            }
+            let at = target as usize * element;
+            bytes[at..at + element].copy_from_slice(value);
+        }
+        Ok(())
+    }
+}
