@@ -1,0 +1,218 @@
+//! The ISOC, *Indistinguishable Set of Optimum Configurations* (thesis §3.3.4), and its
+//! SIISOC, the intersection of its members' intervals (§4.6).
+//!
+//! Every member is indistinguishable from every other (eq. 3.7) and better than every
+//! configuration left out. A candidate whose interval lies entirely below the SIISOC is
+//! worse than some member and stays out (case A). Otherwise (case B) it joins and the
+//! members it beats leave. The thesis writes the new ISOC as x′ ∪ {x ∈ ISOC : x = x′},
+//! which would also drop members that beat x′; here such a candidate is refused
+//! instead (as ILPSolver's code does), so the members stay pairwise indistinguishable.
+//! Pairwise indistinguishable estimates have pairwise overlapping intervals
+//! (z·sqrt(σx² + σy²) ≤ z·(σx + σy)), and overlapping intervals on a line have a common
+//! point (Helly's theorem in one dimension): the SIISOC is always a real interval.
+
+use crate::compare::{Comparison, Interval, compare};
+use crate::space::{Cell, Configuration};
+use invlight_photon::Estimate;
+
+/// A member of the ISOC.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Member {
+    /// The configuration (a cell's reference point).
+    pub config: Configuration,
+    /// Its cell.
+    pub cell: Cell,
+    /// Its estimate.
+    pub estimate: Estimate,
+}
+
+/// What happened to a candidate offered to the ISOC.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Admission {
+    /// Case A: its interval lies entirely below the SIISOC.
+    Below,
+    /// It reaches the SIISOC but some member is better by eq. 3.7.
+    Beaten,
+    /// It joined; `removed` members it beats left. `was_empty` when it is the first.
+    Joined {
+        /// Members that left.
+        removed: usize,
+        /// Whether the ISOC was empty before.
+        was_empty: bool,
+    },
+}
+
+/// The ISOC with its SIISOC.
+#[derive(Debug, Clone)]
+pub struct Isoc {
+    members: Vec<Member>,
+    siisoc: Option<Interval>,
+    z: f64,
+}
+
+impl Isoc {
+    /// An empty ISOC comparing at z (e.g. 1.96 for 95 %).
+    pub fn new(z: f64) -> Isoc {
+        Isoc {
+            members: Vec::new(),
+            siisoc: None,
+            z,
+        }
+    }
+
+    /// The members, oldest first.
+    pub fn members(&self) -> &[Member] {
+        &self.members
+    }
+
+    /// The SIISOC, `None` while the ISOC is empty.
+    pub fn siisoc(&self) -> Option<Interval> {
+        self.siisoc
+    }
+
+    /// The z of its intervals and comparisons.
+    pub fn z(&self) -> f64 {
+        self.z
+    }
+
+    /// Whether an estimate is not in case A: its interval reaches the SIISOC (or lies
+    /// above it), so it may belong to the ISOC (§4.6, §4.7).
+    pub fn reaches(&self, e: &Estimate) -> bool {
+        match self.siisoc {
+            None => true,
+            Some(s) => !Interval::of(e, self.z).below(&s),
+        }
+    }
+
+    /// Offers a candidate (§4.6, cases A and B).
+    pub fn admit(&mut self, candidate: Member) -> Admission {
+        if !self.reaches(&candidate.estimate) {
+            return Admission::Below;
+        }
+        let z = self.z;
+        if self
+            .members
+            .iter()
+            .any(|m| compare(&candidate.estimate, &m.estimate, z) == Comparison::Worse)
+        {
+            return Admission::Beaten;
+        }
+        let was_empty = self.members.is_empty();
+        let before = self.members.len();
+        self.members
+            .retain(|m| compare(&candidate.estimate, &m.estimate, z) != Comparison::Better);
+        let removed = before - self.members.len();
+        self.members.push(candidate);
+        self.siisoc = self.intersection();
+        Admission::Joined { removed, was_empty }
+    }
+
+    /// The intersection of all members' intervals (see the module doc for why it is
+    /// never empty while there are members).
+    fn intersection(&self) -> Option<Interval> {
+        let mut it = self
+            .members
+            .iter()
+            .map(|m| Interval::of(&m.estimate, self.z));
+        let first = it.next()?;
+        let low = it.clone().fold(first.low, |l, i| l.max(i.low));
+        let high = it.fold(first.high, |h, i| h.min(i.high));
+        debug_assert!(low <= high, "pairwise indistinguishable members overlap");
+        Some(Interval {
+            low: low.min(high),
+            high,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn member(k: u32, mean: f64, std_error: f64) -> Member {
+        Member {
+            config: Configuration {
+                coords: vec![k as f64],
+            },
+            cell: Cell(vec![k]),
+            estimate: Estimate {
+                mean,
+                std_error,
+                photons: 1000,
+            },
+        }
+    }
+
+    #[test]
+    fn cases_a_and_b() {
+        let mut isoc = Isoc::new(2.0);
+        assert_eq!(
+            isoc.admit(member(0, 10.0, 1.0)),
+            Admission::Joined {
+                removed: 0,
+                was_empty: true
+            }
+        );
+        assert_eq!(
+            isoc.siisoc(),
+            Some(Interval {
+                low: 8.0,
+                high: 12.0
+            })
+        );
+        // Indistinguishable: joins, SIISOC shrinks to [9, 12].
+        assert_eq!(
+            isoc.admit(member(1, 11.0, 1.0)),
+            Admission::Joined {
+                removed: 0,
+                was_empty: false
+            }
+        );
+        assert_eq!(
+            isoc.siisoc(),
+            Some(Interval {
+                low: 9.0,
+                high: 12.0
+            })
+        );
+        // Case A: [5, 7] is below the SIISOC.
+        assert_eq!(isoc.admit(member(2, 6.0, 0.5)), Admission::Below);
+        // Case B: [11.9, 13.9] beats 10 ± 1 (|Δ| = 2.9 > 2·√1.25 ≈ 2.24) but not 11 ± 1.
+        assert_eq!(
+            isoc.admit(member(3, 12.9, 0.5)),
+            Admission::Joined {
+                removed: 1,
+                was_empty: false
+            }
+        );
+        let cells: Vec<u32> = isoc.members().iter().map(|m| m.cell.0[0]).collect();
+        assert_eq!(cells, vec![1, 3]);
+        assert_eq!(
+            isoc.siisoc(),
+            Some(Interval {
+                low: 11.9,
+                high: 13.0
+            })
+        );
+    }
+
+    #[test]
+    fn candidate_beaten_by_a_member_is_refused() {
+        let mut isoc = Isoc::new(2.0);
+        isoc.admit(member(0, 10.0, 3.0));
+        isoc.admit(member(1, 14.0, 0.1));
+        // SIISOC = [13.8, 14.2]; a wide candidate 11 ± 2 reaches it ([7, 15]) and no
+        // member beats it (vs 14 ± 0.1: |Δ| = 3 < 2·√4.01 ≈ 4.005): it joins.
+        assert!(matches!(
+            isoc.admit(member(2, 11.0, 2.0)),
+            Admission::Joined { .. }
+        ));
+        // A narrow candidate at 13.2 ± 0.2: interval [12.8, 13.6] is below [13.8, 14.2].
+        assert_eq!(isoc.admit(member(3, 13.2, 0.2)), Admission::Below);
+        // 13.0 ± 0.45 reaches the SIISOC ([12.1, 13.9] vs [13.8, 14.2]) but 14 ± 0.1
+        // beats it: |Δ| = 1 > 2·√(0.2125) ≈ 0.92.
+        assert_eq!(isoc.admit(member(4, 13.0, 0.45)), Admission::Beaten);
+        assert_eq!(isoc.members().len(), 3);
+        assert!(isoc.siisoc().is_some());
+    }
+}

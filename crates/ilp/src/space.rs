@@ -1,0 +1,499 @@
+//! The space of configurations (thesis §3.1.1, §4.4, §4.8; DESIGN.md §3): each variable's
+//! domain, its neighbourhoods N(x, r) and its cells.
+//!
+//! A [`Configuration`] holds every variable's coordinates *normalised* to [0, 1]:
+//! - a position on a placement rectangle A + s·(B−A) + t·(D−A): (s, t);
+//! - a direction the light comes from, in spherical coordinates about the scene's up
+//!   axis: (φ/2π, θ/(π/2)), azimuth φ and zenith angle θ ≤ π/2 (a sun shines downward,
+//!   so only the upper hemisphere is searched — the thesis searched the whole sphere and
+//!   suggested this restriction, §5.3.5);
+//! - a colour's HSV value V ∈ [min, max]: (V − min)/(max − min).
+//!
+//! Normalised coordinates make the cells of §4.8 uniform: every dimension is split into
+//! C equal parts, C taken in turn from the `meshSize` list (`"20x6"`: the first
+//! dimension of each variable in 20, the second in 6, a third again in 20 — ILPSolver's
+//! `meshSize[dimension % len]`), and a configuration is evaluated at its cell's
+//! reference point, the cell centre.
+
+use crate::rng::SplitMix64;
+use glam::DVec3;
+use std::f64::consts::{FRAC_PI_2, TAU};
+use std::fmt;
+
+/// A placement parallelogram: P(s, t) = A + s·e1 + t·e2, (s, t) ∈ [0,1]² (thesis §4.4.1).
+///
+/// Its neighbourhood of radius r is the disc of radius r·diagonal around the current
+/// point in the plane's metric coordinates (u along e1, v ⟂ u in the plane), clipped to
+/// the parallelogram, so N(x, 1) covers it from any point (§3.2's property (c)).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rectangle {
+    /// Vertex A, the reference point of the placed object at (0, 0).
+    pub a: DVec3,
+    /// Edge from A to its first neighbour (B).
+    pub e1: DVec3,
+    /// Edge from A to its other neighbour.
+    pub e2: DVec3,
+    /// (s, t) → metric plane coordinates (x, y): x = s·m[0] + t·m[1], y = t·m[2].
+    metric: [f64; 3],
+    /// The longer diagonal, the neighbourhood's unit of length.
+    diagonal: f64,
+}
+
+/// Why four points do not make a placement parallelogram.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RectangleError {
+    /// Two edges from A are parallel or of zero length.
+    Degenerate,
+    /// The vertex opposite A is off the parallelogram spanned by its neighbours by this
+    /// distance (relative to the diagonal): the quad is not planar or not a parallelogram.
+    NotParallelogram(f64),
+}
+
+impl fmt::Display for RectangleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RectangleError::Degenerate => write!(f, "its vertices are collinear or repeated"),
+            RectangleError::NotParallelogram(d) => write!(
+                f,
+                "it is not a planar parallelogram (the vertex opposite A is {:.1} % of the diagonal away from where it should be)",
+                100.0 * d
+            ),
+        }
+    }
+}
+
+impl Rectangle {
+    /// The parallelogram of corners `a` (reference vertex) and `others` (B, C, D in any
+    /// order: the one farthest from A is taken as opposite, so both ILPSolver's labelling
+    /// (D opposite) and A-B-C-D around the quad (C opposite) work). e1 points to the first
+    /// of the others that is a neighbour of A.
+    pub fn from_corners(a: DVec3, others: [DVec3; 3]) -> Result<Rectangle, RectangleError> {
+        let far = (0..3)
+            .max_by(|&i, &j| {
+                a.distance_squared(others[i])
+                    .total_cmp(&a.distance_squared(others[j]))
+            })
+            .unwrap_or(2);
+        let mut near = (0..3).filter(|&i| i != far).map(|i| others[i]);
+        let (n1, n2) = match (near.next(), near.next()) {
+            (Some(n1), Some(n2)) => (n1, n2),
+            _ => return Err(RectangleError::Degenerate),
+        };
+        let (e1, e2) = (n1 - a, n2 - a);
+        let l1 = e1.length();
+        let area = e1.cross(e2).length();
+        if l1 == 0.0 || e2.length() == 0.0 || area <= 1e-9 * l1 * e2.length() {
+            return Err(RectangleError::Degenerate);
+        }
+        let diagonal = (e1 + e2).length().max((e1 - e2).length());
+        let off = (others[far] - (a + e1 + e2)).length() / diagonal;
+        if off > 1e-3 {
+            return Err(RectangleError::NotParallelogram(off));
+        }
+        let u = e1 / l1;
+        let metric = [l1, e2.dot(u), area / l1];
+        Ok(Rectangle {
+            a,
+            e1,
+            e2,
+            metric,
+            diagonal,
+        })
+    }
+
+    /// The world point at (s, t).
+    pub fn point(&self, s: f64, t: f64) -> DVec3 {
+        self.a + s * self.e1 + t * self.e2
+    }
+
+    /// The (s, t) of the point of the plane nearest `p`.
+    pub fn coords(&self, p: DVec3) -> (f64, f64) {
+        let u = self.e1 / self.metric[0];
+        let n = self.e1.cross(self.e2);
+        let v = n.cross(self.e1).normalize();
+        let d = p - self.a;
+        self.metric_to_st(d.dot(u), d.dot(v))
+    }
+
+    /// Lengths of the two edges from A, m.
+    pub fn sides(&self) -> (f64, f64) {
+        (self.e1.length(), self.e2.length())
+    }
+
+    fn st_to_metric(&self, s: f64, t: f64) -> (f64, f64) {
+        (s * self.metric[0] + t * self.metric[1], t * self.metric[2])
+    }
+
+    fn metric_to_st(&self, x: f64, y: f64) -> (f64, f64) {
+        let t = y / self.metric[2];
+        ((x - t * self.metric[1]) / self.metric[0], t)
+    }
+
+    /// A uniform point of the disc of radius r·diagonal around (s, t) within the
+    /// parallelogram: rejection from the disc's bounding box clipped to the
+    /// parallelogram's, which accepts at least about a fifth of the draws; after 64
+    /// misses (a sliver-thin parallelogram) the centre is returned.
+    fn neighbour(&self, s: f64, t: f64, r: f64, rng: &mut SplitMix64) -> (f64, f64) {
+        let radius = r * self.diagonal;
+        let (cx, cy) = self.st_to_metric(s, t);
+        let xs = [
+            0.0,
+            self.metric[0],
+            self.metric[1],
+            self.metric[0] + self.metric[1],
+        ];
+        let (bx0, bx1) = (
+            xs.iter().copied().fold(f64::INFINITY, f64::min),
+            xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let (x0, x1) = ((cx - radius).max(bx0), (cx + radius).min(bx1));
+        let (y0, y1) = ((cy - radius).max(0.0), (cy + radius).min(self.metric[2]));
+        for _ in 0..64 {
+            let (x, y) = (rng.uniform(x0, x1), rng.uniform(y0, y1));
+            if (x - cx).powi(2) + (y - cy).powi(2) <= radius * radius {
+                let (s2, t2) = self.metric_to_st(x, y);
+                if (0.0..=1.0).contains(&s2) && (0.0..=1.0).contains(&t2) {
+                    return (s2, t2);
+                }
+            }
+        }
+        (s, t)
+    }
+}
+
+/// Directions in the hemisphere about `up`, in spherical coordinates (thesis §4.4.2):
+/// zenith angle θ ∈ [0, π/2] from `up`, azimuth φ ∈ [0, 2π) measured from `east`
+/// counter-clockwise about `up`. The coordinates are of the direction the light comes
+/// *from*; the light travels along the opposite vector.
+///
+/// Neighbourhood of radius r: θ within ±r·π/2 (clipped), φ within ±r·π (wrapping), so
+/// N(x, 1) covers the hemisphere (the thesis' square of side π·r covered its whole
+/// sphere only at r = 2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hemisphere {
+    /// Zenith (the scene's up axis), unit.
+    pub up: DVec3,
+    /// φ = 0 axis, unit, ⟂ up: the world axis least aligned with up, orthogonalised.
+    pub east: DVec3,
+    /// up × east.
+    pub north: DVec3,
+}
+
+impl Hemisphere {
+    /// The hemisphere about `up` (need not be normalised).
+    pub fn new(up: DVec3) -> Hemisphere {
+        let up = up.normalize();
+        let axis = [DVec3::X, DVec3::Y, DVec3::Z]
+            .into_iter()
+            .min_by(|a, b| a.dot(up).abs().total_cmp(&b.dot(up).abs()))
+            .unwrap_or(DVec3::X);
+        let east = (axis - axis.dot(up) * up).normalize();
+        Hemisphere {
+            up,
+            east,
+            north: up.cross(east),
+        }
+    }
+
+    /// The unit vector light travels along for normalised (φ/2π, θ/(π/2)).
+    pub fn direction(&self, phi01: f64, theta01: f64) -> DVec3 {
+        let (phi, theta) = (phi01 * TAU, theta01 * FRAC_PI_2);
+        -(theta.sin() * (phi.cos() * self.east + phi.sin() * self.north) + theta.cos() * self.up)
+    }
+
+    /// Normalised (φ/2π, θ/(π/2)) of a travel direction; a direction pointing upward is
+    /// clamped to the horizon.
+    pub fn coords(&self, travel: DVec3) -> (f64, f64) {
+        let from = -travel.normalize();
+        let theta = from.dot(self.up).clamp(-1.0, 1.0).acos().min(FRAC_PI_2);
+        let phi = from
+            .dot(self.north)
+            .atan2(from.dot(self.east))
+            .rem_euclid(TAU);
+        ((phi / TAU).rem_euclid(1.0), theta / FRAC_PI_2)
+    }
+}
+
+/// A variable's domain.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Domain {
+    /// A position on a placement parallelogram (2 dimensions: s, t).
+    Rectangle(Rectangle),
+    /// A direction in a hemisphere (2 dimensions: φ, θ).
+    Hemisphere(Hemisphere),
+    /// A scalar in [min, max] (1 dimension).
+    Segment {
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+    },
+}
+
+impl Domain {
+    /// Number of normalised coordinates.
+    pub fn dimensions(&self) -> usize {
+        match self {
+            Domain::Rectangle(_) | Domain::Hemisphere(_) => 2,
+            Domain::Segment { .. } => 1,
+        }
+    }
+
+    /// Writes a neighbour of `x` (this variable's coordinates) at radius r into `out`.
+    fn neighbour(&self, x: &[f64], r: f64, rng: &mut SplitMix64, out: &mut [f64]) {
+        match self {
+            Domain::Rectangle(rect) => {
+                let (s, t) = rect.neighbour(x[0], x[1], r, rng);
+                out[0] = s;
+                out[1] = t;
+            }
+            Domain::Hemisphere(_) => {
+                out[0] = (x[0] + rng.uniform(-0.5 * r, 0.5 * r)).rem_euclid(1.0);
+                out[1] = rng.uniform((x[1] - r).max(0.0), (x[1] + r).min(1.0));
+            }
+            Domain::Segment { .. } => {
+                out[0] = rng.uniform((x[0] - r).max(0.0), (x[0] + r).min(1.0));
+            }
+        }
+    }
+}
+
+/// A free variable of the problem: its name (the problem file's `id`) and domain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variable {
+    /// The problem file's `id`.
+    pub id: String,
+    /// Where it may range.
+    pub domain: Domain,
+}
+
+/// A point of the space: every variable's normalised coordinates, in variable order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Configuration {
+    /// Normalised coordinates, each in [0, 1].
+    pub coords: Vec<f64>,
+}
+
+/// A cell of §4.8: one index per dimension.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Cell(pub Vec<u32>);
+
+/// The variables, their cells and neighbourhoods.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Space {
+    variables: Vec<Variable>,
+    /// Cells per dimension, one per coordinate of a configuration.
+    cells: Vec<u32>,
+    /// First coordinate of each variable.
+    offsets: Vec<usize>,
+}
+
+impl Space {
+    /// The space of `variables` with `mesh` cells per dimension taken in turn (ILPSolver:
+    /// the d-th dimension of every variable uses `mesh[d % mesh.len()]`). Empty or zero
+    /// mesh sizes count as 1.
+    pub fn new(variables: Vec<Variable>, mesh: &[u32]) -> Space {
+        let mesh = if mesh.is_empty() { &[1][..] } else { mesh };
+        let mut cells = Vec::new();
+        let mut offsets = Vec::new();
+        for v in &variables {
+            offsets.push(cells.len());
+            for d in 0..v.domain.dimensions() {
+                cells.push(mesh[d % mesh.len()].max(1));
+            }
+        }
+        Space {
+            variables,
+            cells,
+            offsets,
+        }
+    }
+
+    /// The variables, in order.
+    pub fn variables(&self) -> &[Variable] {
+        &self.variables
+    }
+
+    /// Number of normalised coordinates of a configuration.
+    pub fn dimensions(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Cells per dimension.
+    pub fn cells_per_dimension(&self) -> &[u32] {
+        &self.cells
+    }
+
+    /// Total number of cells (as f64: it can exceed any integer type).
+    pub fn cell_count(&self) -> f64 {
+        self.cells.iter().map(|&c| c as f64).product()
+    }
+
+    /// The coordinates of variable `i` within a configuration.
+    pub fn slice<'c>(&self, config: &'c Configuration, i: usize) -> &'c [f64] {
+        let o = self.offsets[i];
+        &config.coords[o..o + self.variables[i].domain.dimensions()]
+    }
+
+    /// The cell a configuration lies in.
+    pub fn cell(&self, config: &Configuration) -> Cell {
+        Cell(
+            config
+                .coords
+                .iter()
+                .zip(&self.cells)
+                .map(|(&x, &c)| ((x * c as f64).floor().max(0.0) as u32).min(c - 1))
+                .collect(),
+        )
+    }
+
+    /// The reference point (centre) of a cell.
+    pub fn cell_centre(&self, cell: &Cell) -> Configuration {
+        Configuration {
+            coords: cell
+                .0
+                .iter()
+                .zip(&self.cells)
+                .map(|(&k, &c)| (k as f64 + 0.5) / c as f64)
+                .collect(),
+        }
+    }
+
+    /// The configuration a candidate is evaluated as: its cell's reference point.
+    pub fn snap(&self, config: &Configuration) -> Configuration {
+        self.cell_centre(&self.cell(config))
+    }
+
+    /// A random neighbour in N(x, r) = N₁(x₁, r) × … × Nₙ(xₙ, r) (thesis §3.2): every
+    /// variable moves within its own neighbourhood of radius r.
+    pub fn neighbour(&self, x: &Configuration, r: f64, rng: &mut SplitMix64) -> Configuration {
+        let mut out = x.clone();
+        for (i, v) in self.variables.iter().enumerate() {
+            let o = self.offsets[i];
+            let n = v.domain.dimensions();
+            v.domain
+                .neighbour(&x.coords[o..o + n], r, rng, &mut out.coords[o..o + n]);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(side: f64) -> Rectangle {
+        Rectangle::from_corners(
+            DVec3::ZERO,
+            [
+                DVec3::new(side, 0.0, 0.0),
+                DVec3::new(side, side, 0.0),
+                DVec3::new(0.0, side, 0.0),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn opposite_vertex_is_found_in_either_labelling() {
+        let a = DVec3::new(1.0, 2.0, 3.0);
+        let (b, c, d) = (
+            a + DVec3::X * 2.0,
+            a + DVec3::new(2.0, 0.0, 1.0),
+            a + DVec3::Z,
+        );
+        let around = Rectangle::from_corners(a, [b, c, d]).unwrap();
+        let ilpsolver = Rectangle::from_corners(a, [b, d, c]).unwrap();
+        assert_eq!(around.e1, b - a);
+        assert_eq!(around.e2, d - a);
+        assert_eq!(ilpsolver, around);
+        assert_eq!(around.point(1.0, 1.0), c);
+        let (s, t) = around.coords(a + 0.25 * (b - a) + 0.5 * (d - a) + DVec3::Y * 7.0);
+        assert!((s - 0.25).abs() < 1e-12 && (t - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn non_planar_quad_is_rejected() {
+        let err =
+            Rectangle::from_corners(DVec3::ZERO, [DVec3::X, DVec3::new(1.0, 0.3, 1.0), DVec3::Z]);
+        assert!(matches!(err, Err(RectangleError::NotParallelogram(_))));
+        let err = Rectangle::from_corners(DVec3::ZERO, [DVec3::X, DVec3::X * 2.0, DVec3::X * 3.0]);
+        assert_eq!(err, Err(RectangleError::Degenerate));
+    }
+
+    #[test]
+    fn rectangle_neighbours_lie_in_disc_and_rectangle() {
+        let rect = Rectangle::from_corners(
+            DVec3::ZERO,
+            [
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(4.0, 0.0, 1.0),
+                DVec3::new(0.0, 0.0, 1.0),
+            ],
+        )
+        .unwrap();
+        let diag = 17f64.sqrt();
+        let mut rng = SplitMix64::new(3);
+        for &r in &[0.05, 0.3, 1.0] {
+            for _ in 0..500 {
+                let (s, t) = rect.neighbour(0.9, 0.1, r, &mut rng);
+                assert!((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
+                let d = rect.point(s, t).distance(rect.point(0.9, 0.1));
+                assert!(d <= r * diag + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn radius_one_reaches_the_far_corner() {
+        let rect = square(1.0);
+        let mut rng = SplitMix64::new(5);
+        let far = (0..2000)
+            .map(|_| rect.neighbour(0.0, 0.0, 1.0, &mut rng))
+            .any(|(s, t)| s > 0.95 && t > 0.95);
+        assert!(far);
+    }
+
+    #[test]
+    fn hemisphere_round_trip_and_downward() {
+        let h = Hemisphere::new(DVec3::Z);
+        for &(p, t) in &[(0.1, 0.3), (0.7, 0.9), (0.45, 0.01)] {
+            let d = h.direction(p, t);
+            assert!((d.length() - 1.0).abs() < 1e-12);
+            assert!(d.dot(DVec3::Z) <= 0.0, "light travels downward");
+            let (p2, t2) = h.coords(d);
+            assert!((p2 - p).abs() < 1e-9 && (t2 - t).abs() < 1e-9);
+        }
+        assert!((h.direction(0.3, 0.0) + DVec3::Z).length() < 1e-12);
+    }
+
+    #[test]
+    fn cells_cycle_mesh_sizes_per_variable() {
+        let space = Space::new(
+            vec![
+                Variable {
+                    id: "a".into(),
+                    domain: Domain::Rectangle(square(1.0)),
+                },
+                Variable {
+                    id: "c".into(),
+                    domain: Domain::Segment { min: 0.0, max: 1.0 },
+                },
+                Variable {
+                    id: "sun".into(),
+                    domain: Domain::Hemisphere(Hemisphere::new(DVec3::Y)),
+                },
+            ],
+            &[20, 6],
+        );
+        assert_eq!(space.cells_per_dimension(), &[20, 6, 20, 20, 6]);
+        let x = Configuration {
+            coords: vec![0.0, 1.0, 0.51, 0.999, 0.3],
+        };
+        assert_eq!(space.cell(&x), Cell(vec![0, 5, 10, 19, 1]));
+        let c = space.snap(&x);
+        assert_eq!(c.coords, vec![0.025, 11.0 / 12.0, 0.525, 0.975, 1.5 / 6.0]);
+        assert_eq!(space.cell(&c), space.cell(&x));
+        assert_eq!(space.cell_count(), 20.0 * 6.0 * 20.0 * 20.0 * 6.0);
+    }
+}

@@ -1,0 +1,589 @@
+//! The adapted Variable Neighbourhood Search of thesis Algorithms 3.1 and 3.2, made aware
+//! of noisy estimates by the ISOC (§3.3.4, §4.6), discretised into cells with a tabu
+//! cache (§4.8, §4.9.1), and evaluating in two stages (§4.7).
+//!
+//! The search knows nothing of photons: it calls an [`Evaluate`] for an estimate of the
+//! objective at a configuration with a given sample count, and reports every evaluation
+//! to an [`Observer`] (the CSV writer, a progress bar).
+//!
+//! Steps (Algorithm 3.1 with Algorithm 3.2 inlined):
+//! 1. evaluate the initial configuration (the scene as authored, snapped to its cell);
+//! 2. r = 0.05; while r < 1: up to I times pick a centre x (a random ISOC member — they
+//!    are indistinguishable, so any is "the current solution"), draw x′ ∈ N(x, r), snap
+//!    it to its cell; a cell already in the cache costs an iteration but no tracing;
+//!    otherwise evaluate it; if it joined the ISOC and beat a member, it is an
+//!    improvement: r = 0.05 again; after I tries without one, r += 0.05;
+//! 3. repeat step 2 until `max_iterations` candidates were drawn (cache hits included,
+//!    as in ILPSolver), every cell was evaluated, or the caller asked to stop;
+//! 4. with `REFINE_ISOC_ON_END`, re-evaluate the ISOC with N samples and rebuild it.
+
+use crate::cache::{Cache, Entry};
+use crate::compare::Interval;
+use crate::isoc::{Admission, Isoc, Member};
+use crate::rng::{SplitMix64, mix};
+use crate::space::{Cell, Configuration, Space};
+use invlight_photon::{Estimate, z_two_sided};
+use std::fmt;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// When candidates are evaluated with the full sample count N (ILPSolver's strategies).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Strategy {
+    /// Thesis §4.7: every candidate first with n = q·N; when that interval reaches the
+    /// SIISOC, again with N before deciding. The initial configuration uses N.
+    RefineOnIntersection,
+    /// Everything with n; at the end the ISOC members are re-evaluated with N and the
+    /// ISOC rebuilt from those estimates.
+    RefineOnEnd,
+    /// Everything with n, never refined.
+    NoRefine,
+}
+
+impl Strategy {
+    /// The problem-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::RefineOnIntersection => "REFINE_ISOC_ON_INTERSECTION",
+            Strategy::RefineOnEnd => "REFINE_ISOC_ON_END",
+            Strategy::NoRefine => "NO_REFINE_ISOC",
+        }
+    }
+
+    /// Parses the problem-file spelling.
+    pub fn parse(s: &str) -> Option<Strategy> {
+        [
+            Strategy::RefineOnIntersection,
+            Strategy::RefineOnEnd,
+            Strategy::NoRefine,
+        ]
+        .into_iter()
+        .find(|k| k.name() == s)
+    }
+}
+
+/// What the search decided about an evaluation (the CSV's `verdict` column).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// The initial configuration, valid.
+    Initial,
+    /// Joined the ISOC and beat at least one member (or was the first valid one).
+    Better,
+    /// Joined the ISOC, indistinguishable from every member.
+    Probable,
+    /// Case A: its interval lies below the SIISOC.
+    Bad,
+    /// Reaches the SIISOC but a member is better by eq. 3.7.
+    Beaten,
+    /// Its interval lies entirely above the objective's cap.
+    Invalid,
+    /// A fast estimate that reached the SIISOC: the next row re-evaluates it with N.
+    Refine,
+    /// `REFINE_ISOC_ON_END`: an ISOC member re-evaluated with N; the final ISOC is
+    /// rebuilt from these rows.
+    Final,
+}
+
+impl Verdict {
+    const ALL: [Verdict; 8] = [
+        Verdict::Initial,
+        Verdict::Better,
+        Verdict::Probable,
+        Verdict::Bad,
+        Verdict::Beaten,
+        Verdict::Invalid,
+        Verdict::Refine,
+        Verdict::Final,
+    ];
+
+    /// The CSV spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Initial => "initial",
+            Verdict::Better => "better",
+            Verdict::Probable => "probable",
+            Verdict::Bad => "bad",
+            Verdict::Beaten => "beaten",
+            Verdict::Invalid => "invalid",
+            Verdict::Refine => "refine",
+            Verdict::Final => "final",
+        }
+    }
+
+    /// Parses the CSV spelling.
+    pub fn parse(s: &str) -> Option<Verdict> {
+        Verdict::ALL.into_iter().find(|v| v.name() == s)
+    }
+}
+
+/// Search parameters (problem file `<objectives>` plus invlight's additions).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Candidates drawn before stopping (`maxIterations`), the initial one included.
+    pub max_iterations: u64,
+    /// N, samples (photons) of a full evaluation.
+    pub photons: u64,
+    /// q of §4.7 (`fastEvaluationQuality`): a fast evaluation uses n = q·N samples.
+    pub fast_quality: f64,
+    /// When to use N.
+    pub strategy: Strategy,
+    /// Confidence 1 − α of intervals and comparisons (the thesis fixed 95 %).
+    pub confidence: f64,
+    /// `maxRadiosity`: a configuration whose interval lies entirely above it is invalid.
+    pub cap: Option<f64>,
+    /// Seed of the search's own random numbers.
+    pub seed: u64,
+    /// I of Algorithm 3.2, tries per radius; `None`: 4 per dimension, at least 8.
+    pub tries_per_radius: Option<u32>,
+}
+
+impl Settings {
+    /// n, the samples of a fast evaluation: q·N rounded up, at least 256 (the thesis'
+    /// floor of 16²), at most N.
+    pub fn fast_photons(&self) -> u64 {
+        ((self.fast_quality * self.photons as f64).ceil() as u64)
+            .max(256)
+            .min(self.photons)
+    }
+
+    /// I for a space of `dimensions` coordinates.
+    pub fn tries(&self, dimensions: usize) -> u32 {
+        self.tries_per_radius
+            .unwrap_or((4 * dimensions as u32).max(8))
+            .max(1)
+    }
+}
+
+/// An objective estimate for a configuration with a given number of samples.
+pub trait Evaluate {
+    /// Why an evaluation failed.
+    type Error;
+    /// Estimates the objective at `config` from `photons` samples. Evaluations with the
+    /// same sample count should share random numbers (common random numbers).
+    fn evaluate(&mut self, config: &Configuration, photons: u64) -> Result<Estimate, Self::Error>;
+}
+
+/// One evaluation, as reported and written to `solutions.csv`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    /// Iteration (candidate number) that made it; the initial configuration is 0.
+    pub iteration: u64,
+    /// The configuration evaluated (a cell's reference point).
+    pub config: Configuration,
+    /// The estimate.
+    pub estimate: Estimate,
+    /// Wall time of the evaluation, s.
+    pub seconds: f64,
+    /// What the search decided.
+    pub verdict: Verdict,
+}
+
+/// Receives the search's progress.
+pub trait Observer {
+    /// After every evaluation, with the ISOC as it is now; `isoc_changed` when this
+    /// evaluation changed it.
+    fn evaluated(
+        &mut self,
+        record: &Record,
+        isoc: &Isoc,
+        isoc_changed: bool,
+    ) -> std::io::Result<()>;
+    /// After every candidate drawn (cache hits included).
+    fn iteration(&mut self, _iteration: u64) {}
+}
+
+/// Why a search stopped early.
+#[derive(Debug)]
+pub enum SearchError<E> {
+    /// The evaluation function failed.
+    Evaluate(E),
+    /// The observer could not write.
+    Output(std::io::Error),
+}
+
+impl<E: fmt::Display> fmt::Display for SearchError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SearchError::Evaluate(e) => write!(f, "evaluation failed: {e}"),
+            SearchError::Output(e) => write!(f, "cannot write the results: {e}"),
+        }
+    }
+}
+
+impl<E: fmt::Debug + fmt::Display> std::error::Error for SearchError<E> {}
+
+/// How a search ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// `max_iterations` reached.
+    Finished,
+    /// Every cell was evaluated.
+    Exhausted,
+    /// The stop flag was raised; the ISOC is as it was (not refined).
+    Interrupted,
+}
+
+/// A search in progress.
+pub struct Search<'s> {
+    space: &'s Space,
+    settings: Settings,
+    isoc: Isoc,
+    cache: Cache,
+    rng: SplitMix64,
+    /// Centre of the neighbourhoods while the ISOC is empty.
+    start: Configuration,
+    /// Next candidate's number.
+    iteration: u64,
+    evaluations: u64,
+    started: bool,
+}
+
+impl<'s> Search<'s> {
+    /// A search of `space` from `initial` (snapped to its cell).
+    pub fn new(space: &'s Space, settings: Settings, initial: &Configuration) -> Search<'s> {
+        let z = z_two_sided(settings.confidence);
+        let rng = SplitMix64::new(mix(settings.seed ^ 0x5EA5_C4F0_0D15_EA5E));
+        Search {
+            space,
+            isoc: Isoc::new(z),
+            cache: Cache::default(),
+            rng,
+            start: space.snap(initial),
+            iteration: 0,
+            evaluations: 0,
+            started: false,
+            settings,
+        }
+    }
+
+    /// The ISOC so far.
+    pub fn isoc(&self) -> &Isoc {
+        &self.isoc
+    }
+
+    /// Candidates drawn so far.
+    pub fn iteration(&self) -> u64 {
+        self.iteration
+    }
+
+    /// Evaluations made so far (replayed ones included).
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Continues a stopped run from its records (`solutions.csv`): every evaluated cell
+    /// goes back into the cache and the ISOC is rebuilt by offering it the rows that
+    /// joined it, in order — the same decisions on the same estimates. The search then
+    /// goes on from the next iteration with random numbers derived from it.
+    pub fn replay(&mut self, records: &[Record]) {
+        let mut rebuilt: Option<Isoc> = None;
+        for rec in records {
+            let cell = self.space.cell(&rec.config);
+            let member = Member {
+                config: rec.config.clone(),
+                cell: cell.clone(),
+                estimate: rec.estimate,
+            };
+            if rec.verdict == Verdict::Final {
+                let fresh = rebuilt.get_or_insert_with(|| Isoc::new(self.isoc.z()));
+                if !self.invalid(&rec.estimate) {
+                    fresh.admit(member);
+                }
+            } else {
+                if let Some(done) = rebuilt.take() {
+                    self.isoc = done;
+                }
+                if matches!(
+                    rec.verdict,
+                    Verdict::Initial | Verdict::Better | Verdict::Probable
+                ) {
+                    self.isoc.admit(member);
+                }
+            }
+            if rec.iteration == 0 {
+                self.start = rec.config.clone();
+            }
+            self.cache.insert(
+                cell,
+                Entry {
+                    estimate: rec.estimate,
+                    verdict: rec.verdict,
+                },
+            );
+            self.evaluations += 1;
+            self.iteration = self.iteration.max(rec.iteration + 1);
+            self.started = true;
+        }
+        if let Some(done) = rebuilt {
+            self.isoc = done;
+        }
+        self.rng = SplitMix64::new(mix(self.settings.seed ^ mix(self.iteration)));
+    }
+
+    /// Runs (or continues) the search until `max_iterations`, exhaustion or `stop`.
+    pub fn run<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+        stop: &AtomicBool,
+    ) -> Result<Outcome, SearchError<E::Error>> {
+        if !self.started {
+            self.initial(eval, observer)?;
+        }
+        let max = self.settings.max_iterations;
+        let tries = self.settings.tries(self.space.dimensions());
+        'vns: while self.iteration < max {
+            // Radius r = k·0.05 for k = 1…19 (Algorithm 3.1), counted in integers.
+            let mut k = 1u32;
+            while k < 20 {
+                if stop.load(Ordering::Relaxed) {
+                    return Ok(Outcome::Interrupted);
+                }
+                if self.exhausted() {
+                    break 'vns;
+                }
+                if self.iteration >= max {
+                    break 'vns;
+                }
+                let improved =
+                    self.first_improvement(k as f64 * 0.05, tries, eval, observer, stop)?;
+                k = if improved { 1 } else { k + 1 };
+            }
+        }
+        if stop.load(Ordering::Relaxed) {
+            return Ok(Outcome::Interrupted);
+        }
+        let outcome = if self.exhausted() && self.iteration < max {
+            Outcome::Exhausted
+        } else {
+            Outcome::Finished
+        };
+        if self.settings.strategy == Strategy::RefineOnEnd {
+            self.refine_on_end(eval, observer)?;
+        }
+        Ok(outcome)
+    }
+
+    fn exhausted(&self) -> bool {
+        self.cache.len() as f64 >= self.space.cell_count()
+    }
+
+    fn invalid(&self, e: &Estimate) -> bool {
+        self.settings
+            .cap
+            .is_some_and(|cap| Interval::of(e, self.isoc.z()).low > cap)
+    }
+
+    /// Step 1: the initial configuration, with N samples under
+    /// `REFINE_ISOC_ON_INTERSECTION` (so the first SIISOC is precise), n otherwise.
+    fn initial<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<(), SearchError<E::Error>> {
+        let photons = match self.settings.strategy {
+            Strategy::RefineOnIntersection => self.settings.photons,
+            _ => self.settings.fast_photons(),
+        };
+        let config = self.start.clone();
+        let cell = self.space.cell(&config);
+        let (estimate, seconds) = self.evaluate(eval, &config, photons)?;
+        let verdict = if self.invalid(&estimate) {
+            Verdict::Invalid
+        } else {
+            self.isoc.admit(Member {
+                config: config.clone(),
+                cell: cell.clone(),
+                estimate,
+            });
+            Verdict::Initial
+        };
+        self.started = true;
+        self.iteration = 1;
+        self.report(observer, 0, config, cell, estimate, seconds, verdict)
+    }
+
+    /// Algorithm 3.2: up to `tries` candidates in N(x, r); true on the first improvement.
+    fn first_improvement<E: Evaluate, O: Observer>(
+        &mut self,
+        r: f64,
+        tries: u32,
+        eval: &mut E,
+        observer: &mut O,
+        stop: &AtomicBool,
+    ) -> Result<bool, SearchError<E::Error>> {
+        for _ in 0..tries {
+            if self.iteration >= self.settings.max_iterations
+                || stop.load(Ordering::Relaxed)
+                || self.exhausted()
+            {
+                return Ok(false);
+            }
+            let members = self.isoc.members();
+            let centre = if members.is_empty() {
+                self.start.clone()
+            } else {
+                members[self.rng.below(members.len())].config.clone()
+            };
+            let candidate = self
+                .space
+                .snap(&self.space.neighbour(&centre, r, &mut self.rng));
+            let cell = self.space.cell(&candidate);
+            let iteration = self.iteration;
+            self.iteration += 1;
+            observer.iteration(self.iteration);
+            if self.cache.get(&cell).is_some() {
+                continue;
+            }
+            if self.candidate(iteration, candidate, cell, eval, observer)? == Verdict::Better {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
+    /// Evaluates a new cell, in two stages under `REFINE_ISOC_ON_INTERSECTION` (§4.7).
+    fn candidate<E: Evaluate, O: Observer>(
+        &mut self,
+        iteration: u64,
+        config: Configuration,
+        cell: Cell,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<Verdict, SearchError<E::Error>> {
+        let (n, full) = (self.settings.fast_photons(), self.settings.photons);
+        if self.settings.strategy == Strategy::RefineOnIntersection && n < full {
+            let (fast, seconds) = self.evaluate(eval, &config, n)?;
+            let verdict = if self.invalid(&fast) {
+                Some(Verdict::Invalid)
+            } else if !self.isoc.reaches(&fast) {
+                Some(Verdict::Bad)
+            } else {
+                None
+            };
+            let shown = verdict.unwrap_or(Verdict::Refine);
+            self.report(
+                observer,
+                iteration,
+                config.clone(),
+                cell.clone(),
+                fast,
+                seconds,
+                shown,
+            )?;
+            if let Some(v) = verdict {
+                return Ok(v);
+            }
+        }
+        let photons = match self.settings.strategy {
+            Strategy::RefineOnIntersection => full,
+            _ => n,
+        };
+        let (estimate, seconds) = self.evaluate(eval, &config, photons)?;
+        let verdict = if self.invalid(&estimate) {
+            Verdict::Invalid
+        } else {
+            let member = Member {
+                config: config.clone(),
+                cell: cell.clone(),
+                estimate,
+            };
+            match self.isoc.admit(member) {
+                Admission::Below => Verdict::Bad,
+                Admission::Beaten => Verdict::Beaten,
+                Admission::Joined { removed, was_empty } => {
+                    if removed > 0 || was_empty {
+                        Verdict::Better
+                    } else {
+                        Verdict::Probable
+                    }
+                }
+            }
+        };
+        self.report(
+            observer, iteration, config, cell, estimate, seconds, verdict,
+        )?;
+        Ok(verdict)
+    }
+
+    /// Step 4 (`REFINE_ISOC_ON_END`): re-evaluates every member with N and rebuilds the
+    /// ISOC from the new estimates, oldest member first.
+    fn refine_on_end<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<(), SearchError<E::Error>> {
+        if self.settings.fast_photons() >= self.settings.photons {
+            return Ok(());
+        }
+        let members = self.isoc.members().to_vec();
+        self.isoc = Isoc::new(self.isoc.z());
+        for m in members {
+            let (estimate, seconds) = self.evaluate(eval, &m.config, self.settings.photons)?;
+            if !self.invalid(&estimate) {
+                self.isoc.admit(Member {
+                    estimate,
+                    ..m.clone()
+                });
+            }
+            let iteration = self.iteration;
+            self.report(
+                observer,
+                iteration,
+                m.config,
+                m.cell,
+                estimate,
+                seconds,
+                Verdict::Final,
+            )?;
+        }
+        Ok(())
+    }
+
+    fn evaluate<E: Evaluate>(
+        &mut self,
+        eval: &mut E,
+        config: &Configuration,
+        photons: u64,
+    ) -> Result<(Estimate, f64), SearchError<E::Error>> {
+        let t = Instant::now();
+        let e = eval
+            .evaluate(config, photons)
+            .map_err(SearchError::Evaluate)?;
+        self.evaluations += 1;
+        Ok((e, t.elapsed().as_secs_f64()))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn report<O: Observer, X>(
+        &mut self,
+        observer: &mut O,
+        iteration: u64,
+        config: Configuration,
+        cell: Cell,
+        estimate: Estimate,
+        seconds: f64,
+        verdict: Verdict,
+    ) -> Result<(), SearchError<X>> {
+        self.cache.insert(cell, Entry { estimate, verdict });
+        let changed = matches!(
+            verdict,
+            Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final
+        );
+        let record = Record {
+            iteration,
+            config,
+            estimate,
+            seconds,
+            verdict,
+        };
+        observer
+            .evaluated(&record, &self.isoc, changed)
+            .map_err(SearchError::Output)
+    }
+}
