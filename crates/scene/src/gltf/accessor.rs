@@ -152,22 +152,25 @@ impl Builder<'_> {
             .checked_mul(element)
             .filter(|&t| t <= MAX_DENSE_BYTES)
             .ok_or_else(|| self.err(&here, format!("count {count} is too large")))?;
-        let mut bytes = vec![0u8; total as usize];
-        if let Some(view) = acc.buffer_view {
-            let (data, stride) = self.view(view, &here)?;
-            let stride = stride.map_or(element, |s| s as u64);
-            if stride < element {
-                return Err(self.err(
-                    &here,
-                    format!("byteStride {stride} is less than the {element}-byte element"),
-                ));
-            }
-            let offset = acc.byte_offset.map_or(0, |o| o.0);
-            if count > 0 {
-                let end = (count - 1)
-                    .checked_mul(stride)
-                    .and_then(|x| x.checked_add(offset))
-                    .and_then(|x| x.checked_add(element))
+        // The strided source, checked whole before anything is allocated.
+        let source = match acc.buffer_view {
+            Some(view) => {
+                let (data, stride) = self.view(view, &here)?;
+                let stride = stride.map_or(element, |s| s as u64);
+                if stride < element {
+                    return Err(self.err(
+                        &here,
+                        format!("byteStride {stride} is less than the {element}-byte element"),
+                    ));
+                }
+                let offset = acc.byte_offset.map_or(0, |o| o.0);
+                let end = count
+                    .checked_sub(1)
+                    .map_or(Some(0), |last| {
+                        last.checked_mul(stride)
+                            .and_then(|x| x.checked_add(offset))
+                            .and_then(|x| x.checked_add(element))
+                    })
                     .filter(|&e| e <= data.len() as u64);
                 if end.is_none() {
                     return Err(self.err(
@@ -178,8 +181,13 @@ impl Builder<'_> {
                         ),
                     ));
                 }
+                Some((data, offset as usize, stride as usize))
             }
-            let (offset, stride, element) = (offset as usize, stride as usize, element as usize);
+            None => None,
+        };
+        let mut bytes = vec![0u8; total as usize];
+        if let Some((data, offset, stride)) = source {
+            let element = element as usize;
             for (k, out) in bytes.chunks_exact_mut(element).enumerate() {
                 let at = offset + k * stride;
                 out.copy_from_slice(&data[at..at + element]);
@@ -250,5 +258,142 @@ impl Builder<'_> {
             bytes[at..at + element].copy_from_slice(value);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::from_bytes;
+    use crate::error::LoadError;
+    use crate::model::Scene;
+    use base64::Engine;
+    use glam::{Vec2, Vec3};
+    use std::path::Path;
+
+    /// Three vertices interleaved (f32 position + normalised u16 uv, stride 16), a
+    /// sparse substitution of vertex 2, and u8 positions (KHR_mesh_quantization).
+    fn buffer() -> Vec<u8> {
+        let mut b = Vec::new();
+        let uv: [[u16; 2]; 3] = [[0, 65535], [65535, 65535], [32768, 0]];
+        for (k, p) in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+            .iter()
+            .enumerate()
+        {
+            p.iter().for_each(|x| b.extend(x.to_le_bytes()));
+            uv[k].iter().for_each(|x| b.extend(x.to_le_bytes()));
+        }
+        b.extend([2, 0, 0, 0]); // sparse index (u8) at 48, padded
+        [5.0f32, 5.0, 5.0]
+            .iter()
+            .for_each(|x| b.extend(x.to_le_bytes())); // at 52
+        for p in [[1u8, 2, 3], [4, 5, 6], [7, 8, 9]] {
+            b.extend(p);
+            b.push(0); // each element 4-byte aligned, stride 4
+        }
+        b
+    }
+
+    fn document(edit: impl Fn(&str) -> String) -> Result<Scene, LoadError> {
+        let data = base64::engine::general_purpose::STANDARD.encode(buffer());
+        let json = format!(
+            r#"{{"asset": {{"version": "2.0"}},
+            "buffers": [{{"byteLength": 76, "uri": "data:application/octet-stream;base64,{data}"}}],
+            "bufferViews": [
+                {{"buffer": 0, "byteOffset": 0, "byteLength": 48, "byteStride": 16}},
+                {{"buffer": 0, "byteOffset": 48, "byteLength": 1}},
+                {{"buffer": 0, "byteOffset": 52, "byteLength": 12}},
+                {{"buffer": 0, "byteOffset": 64, "byteLength": 12, "byteStride": 4}}],
+            "accessors": [
+                {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
+                {{"bufferView": 0, "byteOffset": 12, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC2"}},
+                {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [5,5,5],
+                  "sparse": {{"count": 1, "indices": {{"bufferView": 1, "componentType": 5121}}, "values": {{"bufferView": 2}}}}}},
+                {{"bufferView": 3, "componentType": 5121, "count": 3, "type": "VEC3", "min": [1,2,3], "max": [7,8,9]}}],
+            "meshes": [{{"primitives": [
+                {{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}}},
+                {{"attributes": {{"POSITION": 2}}}},
+                {{"attributes": {{"POSITION": 3}}}}]}}],
+            "nodes": [{{"name": "A", "mesh": 0}}],
+            "scenes": [{{"nodes": [0]}}]}}"#
+        );
+        from_bytes(Path::new("t.gltf"), edit(&json).as_bytes())
+    }
+
+    #[test]
+    fn strides_normalisation_sparse_and_quantisation() {
+        let s = document(|j| j.to_string()).unwrap();
+        let m = &s.meshes[0];
+        let v = |x, y, z| Vec3::new(x, y, z);
+        assert_eq!(
+            m.positions,
+            [
+                v(0.0, 0.0, 0.0),
+                v(1.0, 0.0, 0.0),
+                v(0.0, 1.0, 0.0),
+                v(0.0, 0.0, 0.0),
+                v(1.0, 0.0, 0.0),
+                v(5.0, 5.0, 5.0),
+                v(1.0, 2.0, 3.0),
+                v(4.0, 5.0, 6.0),
+                v(7.0, 8.0, 9.0),
+            ]
+        );
+        // u16 normalised: c / 65535; vertices of primitives without uvs get (0, 0).
+        let mut uvs = vec![
+            Vec2::new(0.0, 1.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(32768.0 / 65535.0, 0.0),
+        ];
+        uvs.resize(9, Vec2::ZERO);
+        assert_eq!(m.uvs, uvs);
+        assert_eq!(m.triangles, [[0, 1, 2], [3, 4, 5], [6, 7, 8]]);
+    }
+
+    #[test]
+    fn inconsistent_accessors_are_located_errors() {
+        let cases = [
+            (
+                r#""byteStride": 16}"#,
+                r#""byteStride": 8}"#,
+                "byteStride 8 is less than the 12-byte element",
+            ),
+            (
+                r#""count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]"#,
+                r#""count": 4, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]"#,
+                "overrun",
+            ),
+            (
+                r#""count": 1, "indices""#,
+                r#""count": 2, "indices""#,
+                "sparse.indices: 2 entries overrun",
+            ),
+            (
+                r#""count": 3, "type": "VEC3", "min": [0,0,0], "max": [5,5,5]"#,
+                r#""count": 2, "type": "VEC3", "min": [0,0,0], "max": [5,5,5]"#,
+                "sparse.indices[0] = 2 is not below count 2",
+            ),
+            (
+                r#""byteOffset": 64, "byteLength": 12"#,
+                r#""byteOffset": 68, "byteLength": 12"#,
+                "lie outside buffers[0]",
+            ),
+            (
+                r#""POSITION": 3}"#,
+                r#""POSITION": 1}"#,
+                "type VEC2 where VEC3 is expected",
+            ),
+        ];
+        for (from, to, expected) in cases {
+            let e = document(|j| {
+                assert!(j.contains(from), "{from}");
+                j.replacen(from, to, 1)
+            })
+            .unwrap_err();
+            assert!(
+                e.location.starts_with("accessors[") || e.location.starts_with("bufferViews["),
+                "{e}"
+            );
+            assert!(e.message.contains(expected), "{e}");
+        }
     }
 }
