@@ -132,8 +132,8 @@ struct Builder<'a> {
     buffers: Vec<Cow<'a, [u8]>>,
     /// The result.
     scene: Scene,
-    /// glTF mesh → scene mesh (`None`: no triangles).
-    meshes: HashMap<usize, Option<MeshId>>,
+    /// (glTF mesh, mirrored) → scene mesh (`None`: no triangles).
+    meshes: HashMap<(usize, bool), Option<MeshId>>,
     /// glTF material → scene material.
     materials: HashMap<usize, MaterialId>,
     /// glTF's default material, made when a primitive has none.

@@ -76,8 +76,9 @@ fn names_cover_descendants_and_meshes_are_shared() {
     // placement meshes make none; the orphan node is not placed.
     let mesh = |n: &str| s.instances.iter().find(|i| i.name == n).unwrap().mesh;
     assert_eq!(mesh("Table"), mesh("Cup"));
-    assert_eq!(s.meshes.len(), 4);
-    assert_eq!(s.instances.len(), 5);
+    // The mirrored node gets its own, rewound copy of the quad.
+    assert_eq!(s.meshes.len(), 5);
+    assert_eq!(s.instances.len(), 6);
     for gone in ["Wire", "Orphan", "Desk__Geometry"] {
         assert!(s.surface(gone).is_none(), "{gone}");
     }
@@ -102,6 +103,21 @@ fn strips_fans_lines_and_unindexed_primitives() {
         }
     }
     assert_eq!(s.surface_triangles(s.surface("TriMesh").unwrap()), 1);
+}
+
+#[test]
+fn mirrored_node_keeps_its_front_face() {
+    let s = scene("hierarchy.gltf");
+    // glTF: under a transform of negative determinant the clockwise side is the front, so
+    // the quad mirrored in x still faces +Z; the scene mesh is rewound to say so.
+    for name in ["Mirrored", "Strip"] {
+        let inst = s.instances.iter().find(|i| i.name == name).unwrap();
+        let mesh = &s.meshes[inst.mesh as usize];
+        for t in 0..mesh.triangles.len() {
+            let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
+            assert!((b - a).cross(c - a).z > 0.0, "{name} triangle {t}");
+        }
+    }
 }
 
 #[test]

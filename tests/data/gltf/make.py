@@ -180,10 +180,11 @@ def hierarchy():
         {"name": "DefaultCone", "extensions": {"KHR_lights_punctual": {"light": 3}}},
         # Not in the scene: never placed.
         {"name": "Orphan", "mesh": 0},
+        # 14: mirrored in x (determinant < 0): glTF's front face stays +Z.
+        {"name": "Mirrored", "mesh": 0, "scale": [-1, 1, 1]},
     ]
     g["scene"] = 0
-    g["scenes"] = [{"nodes": list(range(13)), "name": "Main"}]
-    g["scenes"][0]["nodes"] = [0, 4, 5, 6, 7, 8, 9, 10, 11, 12]
+    g["scenes"] = [{"nodes": [0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 14], "name": "Main"}]
     d.write("hierarchy.gltf", "embedded")
     d.write("hierarchy.glb", "glb")
     with open(os.path.join(HERE, "hierarchy.glb"), "rb") as f:

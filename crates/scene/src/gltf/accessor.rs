@@ -43,8 +43,8 @@ fn type_name(t: Type) -> &'static str {
     }
 }
 
-/// One component as a float; normalised integers map to [0, 1] or [−1, 1] (spec §3.11,
-/// "Animations" table of normalisation).
+/// One component as a float; normalised integers map to [0, 1] or [−1, 1] by the
+/// spec's equations (`f = max(c / 127, −1)` for signed bytes and so on).
 fn to_f32(c: &[u8], component: ComponentType, normalized: bool) -> f32 {
     let (v, scale) = match component {
         ComponentType::U8 => (c[0] as f32, 255.0),

@@ -21,11 +21,11 @@ fn triangulate(mode: Mode, indices: &[u32]) -> Option<Vec<[u32; 3]>> {
             .chunks_exact(3)
             .map(|t| [t[0], t[1], t[2]])
             .collect(),
-        // Spec §3.7.2.1: p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2−i%2)}} keeps one winding.
+        // Spec §3.7.2: p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2−i%2)}} keeps one winding.
         Mode::TriangleStrip => (0..n.saturating_sub(2))
             .map(|i| [v(i), v(i + 1 + i % 2), v(i + 2 - i % 2)])
             .collect(),
-        // Spec §3.7.2.1: p_i = {v_{i+1}, v_{i+2}, v_0}.
+        // Spec §3.7.2: p_i = {v_{i+1}, v_{i+2}, v_0}.
         Mode::TriangleFan => (0..n.saturating_sub(2))
             .map(|i| [v(i + 1), v(i + 2), v(0)])
             .collect(),
@@ -42,13 +42,18 @@ fn triangulate(mode: Mode, indices: &[u32]) -> Option<Vec<[u32; 3]>> {
 impl Builder<'_> {
     /// The scene mesh of glTF `meshes[index]`, built on first use and shared by every
     /// node that instances it; `None` when it has no triangles.
+    ///
+    /// `mirrored` (a world transform of negative determinant) gives a copy wound the
+    /// other way: glTF takes a mirrored node's clockwise faces as front (spec §3.7.2),
+    /// while a scene mesh's front is counter-clockwise after any transform.
     pub(super) fn mesh(
         &mut self,
         index: json::Index<json::Mesh>,
+        mirrored: bool,
         loc: &str,
     ) -> Result<Option<MeshId>, LoadError> {
         let m = index.value();
-        if let Some(&id) = self.meshes.get(&m) {
+        if let Some(&id) = self.meshes.get(&(m, mirrored)) {
             return Ok(id);
         }
         let gltf_mesh = self.root.meshes.get(m).ok_or_else(|| {
@@ -122,8 +127,11 @@ impl Builder<'_> {
             mesh.triangles
                 .extend(triangles.iter().map(|t| t.map(|i| i + base)));
         }
+        if mirrored {
+            mesh.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        }
         let id = (!mesh.triangles.is_empty()).then(|| self.scene.add_mesh(mesh));
-        self.meshes.insert(m, id);
+        self.meshes.insert((m, mirrored), id);
         Ok(id)
     }
 

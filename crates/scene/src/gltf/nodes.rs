@@ -54,7 +54,7 @@ impl Builder<'_> {
     /// Without any scene, every node that is nobody's child is a root.
     pub(super) fn place_nodes(&mut self) -> Result<(), LoadError> {
         let root = self.root;
-        let roots: Vec<usize> = match (root.scene, root.scenes.is_empty()) {
+        let (roots_at, roots): (String, Vec<usize>) = match (root.scene, root.scenes.is_empty()) {
             (None, true) => {
                 let mut child = vec![false; root.nodes.len()];
                 for c in root.nodes.iter().flat_map(|n| n.children.iter().flatten()) {
@@ -62,7 +62,8 @@ impl Builder<'_> {
                         *slot = true;
                     }
                 }
-                (0..root.nodes.len()).filter(|&i| !child[i]).collect()
+                let roots = (0..root.nodes.len()).filter(|&i| !child[i]).collect();
+                ("nodes".to_string(), roots)
             }
             (index, _) => {
                 let s = index.map_or(0, |i| i.value());
@@ -75,7 +76,8 @@ impl Builder<'_> {
                         ),
                     )
                 })?;
-                scene.nodes.iter().map(|n| n.value()).collect()
+                let roots = scene.nodes.iter().map(|n| n.value()).collect();
+                (format!("scenes[{s}].nodes"), roots)
             }
         };
         let mut seen = vec![false; root.nodes.len()];
@@ -92,7 +94,7 @@ impl Builder<'_> {
         };
         for (k, &n) in roots.iter().enumerate().rev() {
             claim(n).map_err(|m| {
-                self.err(&format!("scenes.nodes[{k}]"), m)
+                self.err(&format!("{roots_at}[{k}]"), m)
                     .with_hint(TREE_HINT)
             })?;
             stack.push(Pending {
@@ -164,7 +166,8 @@ impl Builder<'_> {
         world: Mat4,
         ancestors: &[String],
     ) -> Result<(), LoadError> {
-        let Some(id) = self.mesh(mesh, &format!("nodes[{i}].mesh"))? else {
+        let Some(id) = self.mesh(mesh, world.determinant() < 0.0, &format!("nodes[{i}].mesh"))?
+        else {
             return Ok(());
         };
         let node = &self.root.nodes[i];
