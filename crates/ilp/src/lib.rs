@@ -44,6 +44,7 @@
 mod cache;
 mod compare;
 mod isoc;
+mod problem;
 mod rng;
 mod space;
 mod vns;
@@ -52,6 +53,7 @@ pub use cache::{Cache, Entry};
 pub use compare::{Comparison, Interval, compare};
 pub use invlight_photon::Estimate;
 pub use isoc::{Admission, Isoc, Member};
+pub use problem::{Objective, Problem, ProblemError, VariableKind, VariableSpec};
 pub use rng::{SplitMix64, mix};
 pub use space::{
     Cell, Configuration, Domain, Hemisphere, Rectangle, RectangleError, Space, Variable,
