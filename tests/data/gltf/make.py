@@ -146,7 +146,8 @@ def hierarchy():
     ]
     g["extensionsUsed"] = ["KHR_lights_punctual"]
     g["extensions"] = {"KHR_lights_punctual": {"lights": [
-        {"name": "BulbLight", "type": "point", "color": [1, 0.5, 0.25], "intensity": 100},
+        {"name": "BulbLight", "type": "point", "color": [1, 0.5, 0.25], "intensity": 100,
+         "extensions": {"EXT_unknown": {"a": 1}}, "extras": {"note": "ignored"}},
         {"name": "SpotLight", "type": "spot", "intensity": 50,
          "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
         {"name": "Sun", "type": "directional", "intensity": 1000, "range": 3},
@@ -169,7 +170,7 @@ def hierarchy():
         {"name": "Fan", "mesh": 3, "translation": [0, 0, -5]},
         {"name": "Wire", "mesh": 4},
         {"name": "Desk__Geometry", "mesh": 5, "translation": [0, 1, 0]},
-        {"name": "Bulb", "translation": [1, 2, 3],
+        {"name": "Bulb", "translation": [1, 2, 3], "extras": {"blender": {"prop": [1, 2]}},
          "extensions": {"KHR_lights_punctual": {"light": 0}}},
         # Spot: R_x(−90°) turns −Z to −Y (down).
         {"name": "Spot", "translation": [0, 3, 0], "rotation": [-half, 0, 0, half],
