@@ -41,6 +41,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod apply;
 mod cache;
 mod compare;
 mod isoc;
@@ -49,6 +50,7 @@ mod rng;
 mod space;
 mod vns;
 
+pub use apply::{Binding, Value, hsv_to_rgb};
 pub use cache::{Cache, Entry};
 pub use compare::{Comparison, Interval, compare};
 pub use invlight_photon::Estimate;
