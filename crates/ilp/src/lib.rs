@@ -45,6 +45,7 @@ mod apply;
 mod cache;
 mod compare;
 mod isoc;
+mod output;
 mod problem;
 mod rng;
 mod space;
@@ -55,6 +56,7 @@ pub use cache::{Cache, Entry};
 pub use compare::{Comparison, Interval, compare};
 pub use invlight_photon::Estimate;
 pub use isoc::{Admission, Isoc, Member};
+pub use output::{ObjectiveInfo, Output, csv_header, read_solutions};
 pub use problem::{Objective, Problem, ProblemError, VariableKind, VariableSpec};
 pub use rng::{SplitMix64, mix};
 pub use space::{

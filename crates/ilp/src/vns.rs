@@ -284,8 +284,9 @@ impl<'s> Search<'s> {
         let mut rebuilt: Option<Isoc> = None;
         for rec in records {
             let cell = self.space.cell(&rec.config);
+            let config = self.space.cell_centre(&cell);
             let member = Member {
-                config: rec.config.clone(),
+                config: config.clone(),
                 cell: cell.clone(),
                 estimate: rec.estimate,
             };
@@ -306,7 +307,7 @@ impl<'s> Search<'s> {
                 }
             }
             if rec.iteration == 0 {
-                self.start = rec.config.clone();
+                self.start = config;
             }
             self.cache.insert(
                 cell,
