@@ -1,0 +1,230 @@
+//! MTL material libraries, mapped to the photon tracer's materials (thesis Algorithm
+//! 2.2: diffuse K_d, mirror K_s, refraction, emission).
+//!
+//! The mapping:
+//! - `Kd` (+ `map_Kd`, which multiplies it): diffuse reflectance.
+//! - `Ke`: emitted luminance in cd/m² (Lambertian, front face): the faces become an
+//!   area light.
+//! - `Ks` is a mirror only when `illum` asks for ray-traced reflection (3, 5 or 8); under
+//!   `illum 2` it is a Phong highlight, which a photon tracer has no use for.
+//! - Glass when `illum` asks for refraction (4, 6, 7 or 9): transmission from `Tf`
+//!   (mean of its channels) when given, else `1 − d`, else 1; index of refraction `Ni`,
+//!   or 1.5 when `Ni` is missing or below 1 (exporters write `Ni 0` as a placeholder).
+//!   A dissolve `d` < 1 under any other `illum` is a straight-through transparency
+//!   (transmission `1 − d`, index 1).
+//!
+//! Reflectances are then scaled so that K_d + K_s + transmission ≤ 1 per channel, which
+//! Russian roulette needs to be a probability split ([`energy_conserving`]).
+
+use super::{lines, parse_f32, parse_floats, show, tokens};
+use crate::error::LoadError;
+use crate::image_file::read_texture;
+use crate::material::{Material, Rgb, Texture};
+use glam::Vec3;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// One `newmtl` block as written.
+struct Record {
+    name: String,
+    kd: Rgb,
+    ks: Rgb,
+    ke: Rgb,
+    tf: Option<Rgb>,
+    d: Option<f32>,
+    ni: Option<f32>,
+    illum: u32,
+    map_kd: Option<String>,
+}
+
+impl Record {
+    fn new(name: String) -> Self {
+        Record {
+            name,
+            kd: Vec3::splat(super::DEFAULT_REFLECTANCE),
+            ks: Vec3::ZERO,
+            ke: Vec3::ZERO,
+            tf: None,
+            d: None,
+            ni: None,
+            illum: 1,
+            map_kd: None,
+        }
+    }
+}
+
+/// Parses an MTL file (`path` names it in errors and anchors texture paths); decoded
+/// textures are appended to `textures`.
+pub(super) fn parse(
+    bytes: &[u8],
+    path: &Path,
+    textures: &mut Vec<Texture>,
+) -> Result<Vec<Material>, LoadError> {
+    let mut records: Vec<Record> = Vec::new();
+    for (number, line) in lines(bytes) {
+        let at = |e: String| LoadError::at(path, format!("line {number}"), e);
+        let mut it = tokens(line);
+        let Some(keyword) = it.next() else { continue };
+        if keyword == b"newmtl" {
+            let name = it.map(show).collect::<Vec<_>>().join(" ");
+            records.push(Record::new(name));
+            continue;
+        }
+        let Some(record) = records.last_mut() else {
+            continue;
+        };
+        match keyword {
+            b"Kd" => record.kd = rgb(&mut it, "Kd").map_err(at)?,
+            b"Ks" => record.ks = rgb(&mut it, "Ks").map_err(at)?,
+            b"Ke" => record.ke = rgb(&mut it, "Ke").map_err(at)?,
+            b"Tf" => record.tf = Some(rgb(&mut it, "Tf").map_err(at)?),
+            b"d" => record.d = Some(scalar(&mut it, "d").map_err(at)?),
+            b"Tr" => record.d = Some(1.0 - scalar(&mut it, "Tr").map_err(at)?),
+            b"Ni" => record.ni = Some(scalar(&mut it, "Ni").map_err(at)?),
+            b"illum" => {
+                let value = scalar(&mut it, "illum").map_err(at)?;
+                record.illum = value as u32;
+            }
+            b"map_Kd" => {
+                // Options (`-s 1 1 1`, `-bm 2` …) come first; the file name is last.
+                record.map_kd = it.last().map(show);
+            }
+            _ => {}
+        }
+    }
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let mut decoded: HashMap<String, Option<u32>> = HashMap::new();
+    Ok(records
+        .into_iter()
+        .map(|r| {
+            let texture = r.map_kd.as_ref().and_then(|file| {
+                *decoded.entry(file.clone()).or_insert_with(|| {
+                    match read_texture(&dir.join(file.replace('\\', "/"))) {
+                        Ok(t) => {
+                            textures.push(t);
+                            Some((textures.len() - 1) as u32)
+                        }
+                        Err(e) => {
+                            eprintln!("warning: {e}; material '{}' keeps its Kd colour", r.name);
+                            None
+                        }
+                    }
+                })
+            });
+            material(r, texture)
+        })
+        .collect())
+}
+
+/// The tracer's material for one record.
+fn material(r: Record, texture: Option<u32>) -> Material {
+    let mirror = matches!(r.illum, 3 | 5 | 8);
+    let glass = matches!(r.illum, 4 | 6 | 7 | 9);
+    let dissolve = r.d.map(|d| (1.0 - d).clamp(0.0, 1.0));
+    let (transmission, ior) = if glass {
+        let t = match (r.tf, dissolve) {
+            (Some(tf), _) => (tf.x + tf.y + tf.z) / 3.0,
+            (None, Some(t)) => t,
+            (None, None) => 1.0,
+        };
+        let ior = r.ni.filter(|&n| n >= 1.0).unwrap_or(1.5);
+        (t.clamp(0.0, 1.0), ior)
+    } else {
+        (dissolve.unwrap_or(0.0), 1.0)
+    };
+    let specular = if mirror { r.ks } else { Vec3::ZERO };
+    let (diffuse, specular) = energy_conserving(r.kd, specular, transmission);
+    Material {
+        name: r.name,
+        diffuse,
+        texture,
+        specular,
+        transmission,
+        ior,
+        emission: r.ke.max(Vec3::ZERO),
+        hole: false,
+    }
+}
+
+/// Scales K_d and K_s (clamped to be non-negative) so that K_d + K_s + transmission ≤ 1
+/// per channel, as Russian roulette needs (thesis Algorithm 2.2: the probabilities of
+/// the events must not sum past 1). Reflectances within the bound are left unchanged.
+pub(crate) fn energy_conserving(kd: Rgb, ks: Rgb, transmission: f32) -> (Rgb, Rgb) {
+    let (kd, ks) = (kd.max(Vec3::ZERO), ks.max(Vec3::ZERO));
+    let room = (1.0 - transmission).max(0.0);
+    let sum = (kd + ks).max_element();
+    if sum > room {
+        let s = room / sum;
+        (kd * s, ks * s)
+    } else {
+        (kd, ks)
+    }
+}
+
+fn rgb<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<Rgb, String> {
+    let mut it = it.peekable();
+    if it.peek() == Some(&&b"spectral"[..]) || it.peek() == Some(&&b"xyz"[..]) {
+        return Err(format!(
+            "'{what} {}' colours are not supported; give r g b",
+            show(it.next().unwrap_or_default())
+        ));
+    }
+    let first = parse_f32(
+        it.next()
+            .ok_or_else(|| format!("'{what}' needs a colour"))?,
+    )?;
+    // A single value is a grey, as the MTL specification allows.
+    let rest: Result<Vec<f32>, String> = it.take(2).map(parse_f32).collect();
+    match rest?.as_slice() {
+        [] => Ok(Vec3::splat(first)),
+        [g, b] => Ok(Vec3::new(first, *g, *b)),
+        _ => Err(format!("'{what}' needs 1 or 3 numbers")),
+    }
+}
+
+fn scalar<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<f32, String> {
+    let [v] = parse_floats(it, what)?;
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one(text: &str) -> Material {
+        let mut textures = Vec::new();
+        let mut m = parse(text.as_bytes(), Path::new("t.mtl"), &mut textures).unwrap();
+        assert_eq!(m.len(), 1);
+        m.remove(0)
+    }
+
+    #[test]
+    fn illum_decides_mirror_and_glass() {
+        let m = one("newmtl a\nKd 0.2 0.2 0.2\nKs 0.7 0.7 0.7\nillum 2\n");
+        assert_eq!(m.kind_name(), "diffuse");
+        let m = one("newmtl a\nKd 0.2 0.2 0.2\nKs 0.7 0.7 0.7\nillum 3\n");
+        assert_eq!((m.kind_name(), m.specular), ("mirror", Vec3::splat(0.7)));
+        let m = one("newmtl a\nKd 0 0 0\nNi 1.33\nTf 0.9 0.9 0.9\nillum 7\n");
+        assert_eq!((m.kind_name(), m.ior), ("glass", 1.33));
+        assert!((m.transmission - 0.9).abs() < 1e-6);
+        let m = one("newmtl a\nKd 0.5 0.5 0.5\nd 0.25\nNi 0\nillum 4\n");
+        assert_eq!((m.ior, m.transmission), (1.5, 0.75));
+        // K_d is scaled so that K_d + transmission ≤ 1.
+        assert!((m.diffuse.x - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn emission_and_single_value_colours() {
+        let m = one("newmtl light\nKd 0.78\nKe 17 12 4\n");
+        assert_eq!(m.emission, Vec3::new(17.0, 12.0, 4.0));
+        assert_eq!(m.diffuse, Vec3::splat(0.78));
+        assert!(m.is_emissive());
+    }
+
+    #[test]
+    fn bad_numbers_name_the_line() {
+        let mut textures = Vec::new();
+        let e = parse(b"newmtl a\n\nKd 1 x 1\n", Path::new("t.mtl"), &mut textures).unwrap_err();
+        assert_eq!(e.to_string(), "t.mtl: line 3: expected a number, found 'x'");
+    }
+}
