@@ -18,6 +18,8 @@
 
 mod mtl;
 
+pub(crate) use mtl::energy_conserving;
+
 use crate::error::LoadError;
 use crate::material::Material;
 use crate::mesh::Mesh;
@@ -26,7 +28,6 @@ use glam::{Mat4, Vec2, Vec3};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::path::Path;
-
 
 /// Reflectance of faces with no material (before any `usemtl`, or naming a material no
 /// MTL file defines): the usual 80 % grey of modelling tools.

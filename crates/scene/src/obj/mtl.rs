@@ -85,10 +85,7 @@ pub(super) fn parse(
                 let value = scalar(&mut it, "illum").map_err(at)?;
                 record.illum = value as u32;
             }
-            b"map_Kd" => {
-                // Options (`-s 1 1 1`, `-bm 2` …) come first; the file name is last.
-                record.map_kd = it.last().map(show);
-            }
+            b"map_Kd" => record.map_kd = texture_file(line),
             _ => {}
         }
     }
@@ -161,6 +158,43 @@ pub(crate) fn energy_conserving(kd: Rgb, ks: Rgb, transmission: f32) -> (Rgb, Rg
     }
 }
 
+/// The file name of a texture statement (`map_Kd -s 1 1 1 -clamp on tex/a b.png`):
+/// options and their arguments (numbers, `on`/`off`) are skipped, and the rest of the
+/// line is the name, which may contain spaces.
+fn texture_file(line: &[u8]) -> Option<String> {
+    let end = line.iter().position(|&b| b == b'#').unwrap_or(line.len());
+    let line = &line[..end];
+    let mut rest = line.trim_ascii_start();
+    // Skip the keyword.
+    let skip_token = |s: &[u8]| -> usize {
+        s.iter()
+            .position(u8::is_ascii_whitespace)
+            .unwrap_or(s.len())
+    };
+    rest = rest[skip_token(rest)..].trim_ascii_start();
+    let mut in_option = false;
+    while !rest.is_empty() {
+        let n = skip_token(rest);
+        let token = &rest[..n];
+        let is_argument = parse_f32(token).is_ok() || token == b"on" || token == b"off";
+        if token == b"-imfchan" || token == b"-type" {
+            // Options whose one argument is a word (`-imfchan l`, `-type sphere`).
+            rest = rest[n..].trim_ascii_start();
+            rest = rest[skip_token(rest)..].trim_ascii_start();
+            in_option = false;
+            continue;
+        }
+        if token.starts_with(b"-") && !is_argument {
+            in_option = true;
+        } else if !(in_option && is_argument) {
+            break;
+        }
+        rest = rest[n..].trim_ascii_start();
+    }
+    let name = show(rest.trim_ascii_end());
+    (!name.is_empty()).then_some(name)
+}
+
 fn rgb<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<Rgb, String> {
     let mut it = it.peekable();
     if it.peek() == Some(&&b"spectral"[..]) || it.peek() == Some(&&b"xyz"[..]) {
@@ -219,6 +253,21 @@ mod tests {
         assert_eq!(m.emission, Vec3::new(17.0, 12.0, 4.0));
         assert_eq!(m.diffuse, Vec3::splat(0.78));
         assert!(m.is_emissive());
+    }
+
+    #[test]
+    fn texture_names_follow_their_options() {
+        let name = |l: &str| texture_file(l.as_bytes());
+        assert_eq!(name("map_Kd tex.png"), Some("tex.png".into()));
+        assert_eq!(
+            name("map_Kd -s 1 1 1 -clamp on my tex.png # c"),
+            Some("my tex.png".into())
+        );
+        assert_eq!(
+            name("map_Kd -bm 0.5 -imfchan l bump.png"),
+            Some("bump.png".into())
+        );
+        assert_eq!(name("map_Kd"), None);
     }
 
     #[test]

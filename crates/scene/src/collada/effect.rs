@@ -1,0 +1,318 @@
+//! `<material>` → `<effect>` (profile_COMMON: `phong`, `lambert`, `blinn`, `constant`)
+//! mapped to the photon tracer's materials, following ILPSolver's reading of Blender's
+//! exports so that its scenes work unchanged (its `Scene::loadSceneMaterials`):
+//!
+//! 1. `emission` not black → an **emitter**: the colour is the luminance in cd/m²
+//!    (DESIGN.md §1). ILPSolver's scenes have no units: `16 16 16` in its Cornell box
+//!    is kept as 16 cd/m², so its results scale with that arbitrary number. The diffuse
+//!    colour is kept too (ILPSolver's emitters reflect).
+//! 2. `index_of_refraction` < 1 → a **hole** (aperture).
+//! 3. `index_of_refraction` > 1 → **glass** of that index. Its transmission is
+//!    `1 − opacity` when `transparent`/`transparency` make it see-through, else 1: in
+//!    ILPSolver the index alone makes clear glass, and Blender writes an index other
+//!    than 1 only for ray-traced transparency.
+//! 4. `reflective` × `reflectivity` (1 when absent) → a **mirror** reflectance K_s.
+//! 5. `diffuse` colour, or a texture (`sampler2D` → `surface` → `image` `init_from`,
+//!    decoded as sRGB) that multiplies white → diffuse K_d.
+//!
+//! Opacity follows COLLADA 1.4.1 §7 (profile_COMMON transparency): `A_ONE` (default):
+//! `transparent.a × transparency`; `RGB_ZERO`: `1 − Y(transparent.rgb) × transparency`;
+//! `A_ZERO`: `1 − transparent.a × transparency`; `RGB_ONE`: `Y(transparent.rgb) ×
+//! transparency`. A see-through material with index 1 lets light straight through
+//! (transmission `1 − opacity`, no refraction). K_d and K_s are scaled so that
+//! K_d + K_s + transmission ≤ 1 per channel.
+
+use super::xml::{Ctx, child, children, path};
+use crate::error::LoadError;
+use crate::image_file::read_texture;
+use crate::light::luminance;
+use crate::material::{Material, Texture};
+use crate::obj::energy_conserving;
+use glam::{Vec3, Vec4};
+use roxmltree::Node;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Reflectance of surfaces whose material is missing or whose texture cannot be read.
+pub(super) const DEFAULT_REFLECTANCE: f32 = 0.8;
+
+/// Decoded texture images by file, `None` for those that failed (warned once).
+pub(super) type TextureCache = HashMap<PathBuf, Option<u32>>;
+
+/// A `<color>`, or a `<texture>` resolved to an image file.
+enum Value {
+    Color(Vec4),
+    Image(PathBuf),
+}
+
+/// Reads a `<material>`.
+pub(super) fn read(
+    ctx: &Ctx,
+    material: Node,
+    textures: &mut Vec<Texture>,
+    cache: &mut TextureCache,
+) -> Result<Material, LoadError> {
+    let name = material
+        .attribute("name")
+        .or(material.attribute("id"))
+        .unwrap_or("material");
+    let instance = child(material, "instance_effect")
+        .ok_or_else(|| ctx.error(material, "a <material> needs an <instance_effect>"))?;
+    let url = instance
+        .attribute("url")
+        .ok_or_else(|| ctx.error(instance, "<instance_effect> needs a url"))?;
+    let effect = ctx.resolve(url, "effect", instance)?;
+    let Some(profile) = child(effect, "profile_COMMON") else {
+        ctx.warn(effect, "only profile_COMMON effects are read; using grey");
+        return Ok(Material::diffuse(name, Vec3::splat(DEFAULT_REFLECTANCE)));
+    };
+    let Some(shading) = child(profile, "technique").and_then(|t| {
+        t.children().find(|c| {
+            c.is_element()
+                && matches!(
+                    c.tag_name().name(),
+                    "phong" | "lambert" | "blinn" | "constant"
+                )
+        })
+    }) else {
+        ctx.warn(
+            profile,
+            "no phong/lambert/blinn/constant technique; using grey",
+        );
+        return Ok(Material::diffuse(name, Vec3::splat(DEFAULT_REFLECTANCE)));
+    };
+    let params: HashMap<&str, Node> = children(profile, "newparam")
+        .chain(
+            child(profile, "technique")
+                .into_iter()
+                .flat_map(|t| children(t, "newparam")),
+        )
+        .filter_map(|p| p.attribute("sid").map(|sid| (sid, p)))
+        .collect();
+    let value = |tag: &str| -> Result<Option<Value>, LoadError> {
+        match child(shading, tag) {
+            Some(n) => color_or_texture(ctx, n, &params),
+            None => Ok(None),
+        }
+    };
+    let float = |tag: &str| -> Result<Option<f32>, LoadError> {
+        match child(shading, tag).and_then(|n| child(n, "float")) {
+            Some(f) => Ok(Some(ctx.floats_n::<1>(f)?[0])),
+            None => Ok(None),
+        }
+    };
+
+    let mut m = Material::diffuse(name, Vec3::ZERO);
+    match value("diffuse")? {
+        Some(Value::Color(c)) => m.diffuse = c.truncate(),
+        Some(Value::Image(file)) => {
+            m.texture = texture(&file, name, textures, cache);
+            m.diffuse = Vec3::splat(if m.texture.is_some() {
+                1.0
+            } else {
+                DEFAULT_REFLECTANCE
+            });
+        }
+        None => {}
+    }
+    if let Some(Value::Color(c)) = value("emission")? {
+        m.emission = c.truncate().max(Vec3::ZERO);
+    }
+    if let Some(Value::Color(c)) = value("reflective")? {
+        m.specular = c.truncate() * float("reflectivity")?.unwrap_or(1.0);
+    }
+    let ior = float("index_of_refraction")?.unwrap_or(1.0);
+    let opacity = opacity(ctx, shading, &params)?;
+    if ior < 1.0 && !m.is_emissive() {
+        return Ok(Material::hole(name));
+    }
+    if ior > 1.0 && !m.is_emissive() {
+        m.ior = ior;
+        m.transmission = if opacity < 1.0 { 1.0 - opacity } else { 1.0 };
+        m.specular = Vec3::ZERO;
+    } else if opacity < 1.0 {
+        m.transmission = 1.0 - opacity;
+    }
+    (m.diffuse, m.specular) = energy_conserving(m.diffuse, m.specular, m.transmission);
+    Ok(m)
+}
+
+/// The opacity of `transparent`/`transparency` (1 when neither is given).
+fn opacity(ctx: &Ctx, shading: Node, params: &HashMap<&str, Node>) -> Result<f32, LoadError> {
+    let transparent = child(shading, "transparent");
+    let transparency = match child(shading, "transparency").and_then(|n| child(n, "float")) {
+        Some(f) => Some(ctx.floats_n::<1>(f)?[0]),
+        None => None,
+    };
+    let Some(t) = transparent else {
+        // `transparency` alone scales the default A_ONE white: it is the opacity.
+        return Ok(transparency.unwrap_or(1.0).clamp(0.0, 1.0));
+    };
+    let colour = match color_or_texture(ctx, t, params)? {
+        Some(Value::Color(c)) => c,
+        // A transparency texture (cut-outs) is beyond a photon tracer's materials.
+        _ => return Ok(1.0),
+    };
+    let f = transparency.unwrap_or(1.0);
+    let opacity = match t.attribute("opaque").unwrap_or("A_ONE") {
+        "RGB_ZERO" => 1.0 - luminance(colour.truncate()) * f,
+        "A_ZERO" => 1.0 - colour.w * f,
+        "RGB_ONE" => luminance(colour.truncate()) * f,
+        _ => colour.w * f,
+    };
+    Ok(opacity.clamp(0.0, 1.0))
+}
+
+/// A `<color>`, `<texture>` or `<param ref>` inside a shading parameter.
+fn color_or_texture(
+    ctx: &Ctx,
+    node: Node,
+    params: &HashMap<&str, Node>,
+) -> Result<Option<Value>, LoadError> {
+    if let Some(c) = child(node, "color") {
+        let v = ctx.floats(c)?;
+        return match v.as_slice() {
+            [r, g, b] => Ok(Some(Value::Color(Vec4::new(*r, *g, *b, 1.0)))),
+            [r, g, b, a] => Ok(Some(Value::Color(Vec4::new(*r, *g, *b, *a)))),
+            _ => Err(ctx.error(c, format!("expected 3 or 4 numbers, found {}", v.len()))),
+        };
+    }
+    if let Some(t) = child(node, "texture") {
+        let sampler = t.attribute("texture").unwrap_or("");
+        return Ok(image_of_sampler(ctx, sampler, params).map(Value::Image));
+    }
+    if let Some(p) = child(node, "param")
+        && let Some(np) = p.attribute("ref").and_then(|r| params.get(r))
+        && let Some(v) = np
+            .children()
+            .find(|c| c.is_element() && c.tag_name().name().starts_with("float"))
+    {
+        let v = ctx.floats(v)?;
+        if let [r, g, b, rest @ ..] = v.as_slice() {
+            return Ok(Some(Value::Color(Vec4::new(
+                *r,
+                *g,
+                *b,
+                rest.first().copied().unwrap_or(1.0),
+            ))));
+        }
+    }
+    Ok(None)
+}
+
+/// The image file a `<texture texture="…">` reaches: sampler2D → surface → image
+/// (COLLADA 1.4), sampler2D → instance_image (1.5), or an image id directly (some
+/// exporters). `None` (with a warning) when the chain is broken.
+fn image_of_sampler(ctx: &Ctx, sampler: &str, params: &HashMap<&str, Node>) -> Option<PathBuf> {
+    let mut image_id = sampler.to_string();
+    if let Some(s2d) = params.get(sampler).and_then(|p| child(*p, "sampler2D")) {
+        if let Some(url) = child(s2d, "instance_image").and_then(|i| i.attribute("url")) {
+            image_id = url.to_string();
+        } else if let Some(surface_sid) = child(s2d, "source").and_then(|s| s.text()) {
+            let init = params
+                .get(surface_sid.trim())
+                .and_then(|p| path(*p, &["surface", "init_from"]))
+                .and_then(|i| i.text());
+            match init {
+                Some(id) => image_id = id.trim().to_string(),
+                None => {
+                    ctx.warn(
+                        s2d,
+                        &format!("surface '{surface_sid}' has no init_from; no texture"),
+                    );
+                    return None;
+                }
+            }
+        }
+    }
+    let image = ctx
+        .by_id(&image_id)
+        .filter(|n| n.tag_name().name() == "image");
+    let Some(image) = image else {
+        eprintln!(
+            "warning: {}: texture '{sampler}' reaches no <image> ('{image_id}'); no texture",
+            ctx.path.display()
+        );
+        return None;
+    };
+    let init = child(image, "init_from")?;
+    let uri = child(init, "ref")
+        .and_then(|r| r.text())
+        .or(init.text())?
+        .trim();
+    let dir = ctx.path.parent().unwrap_or(Path::new(""));
+    Some(dir.join(uri_to_path(uri)))
+}
+
+/// A file URI or relative reference as a path: `file://` dropped, `%XX` decoded.
+fn uri_to_path(uri: &str) -> PathBuf {
+    let uri = uri
+        .strip_prefix("file:///")
+        .map(|rest| {
+            // `file:///C:/x` is a Windows drive path; `file:///x` an absolute Unix one.
+            if rest.as_bytes().get(1) == Some(&b':') {
+                rest.to_string()
+            } else {
+                format!("/{rest}")
+            }
+        })
+        .or_else(|| uri.strip_prefix("file://").map(str::to_string))
+        .unwrap_or_else(|| uri.to_string());
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = |b: u8| (b as char).to_digit(16);
+        if bytes[i] == b'%'
+            && let (Some(h), Some(l)) = (
+                bytes.get(i + 1).and_then(|&b| hex(b)),
+                bytes.get(i + 2).and_then(|&b| hex(b)),
+            )
+        {
+            out.push((h * 16 + l) as u8);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    PathBuf::from(String::from_utf8_lossy(&out).replace('\\', "/"))
+}
+
+/// The texture index of an image file, decoding it on first use.
+fn texture(
+    file: &Path,
+    material: &str,
+    textures: &mut Vec<Texture>,
+    cache: &mut TextureCache,
+) -> Option<u32> {
+    *cache
+        .entry(file.to_path_buf())
+        .or_insert_with(|| match read_texture(file) {
+            Ok(t) => {
+                textures.push(t);
+                Some((textures.len() - 1) as u32)
+            }
+            Err(e) => {
+                eprintln!("warning: {e}; material '{material}' is grey instead");
+                None
+            }
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uris_become_paths() {
+        assert_eq!(uri_to_path("tex/a%20b.png"), PathBuf::from("tex/a b.png"));
+        assert_eq!(
+            uri_to_path("file:///home/x.png"),
+            PathBuf::from("/home/x.png")
+        );
+        assert_eq!(uri_to_path("file:///C:/x.png"), PathBuf::from("C:/x.png"));
+        assert_eq!(uri_to_path("..\\t.jpg"), PathBuf::from("../t.jpg"));
+        assert_eq!(uri_to_path("100%.png"), PathBuf::from("100%.png"));
+    }
+}
