@@ -262,6 +262,15 @@ fn texture_is_decoded_to_linear() {
         mesh.uvs,
         [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)].map(|(u, v)| Vec2::new(u, v))
     );
+    // The second uv set when the texture names it; the image is decoded once.
+    let set1 = s
+        .instances
+        .iter()
+        .find(|i| i.name == "CheckerSet1")
+        .unwrap();
+    let set1 = &s.meshes[set1.mesh as usize];
+    assert_eq!(set1.uvs, mesh.uvs);
+    assert_eq!(s.materials[set1.materials[0] as usize].texture, mat.texture);
     assert_eq!(s.textures.len(), 1);
 }
 

@@ -64,12 +64,14 @@ class Doc:
         return len(self.gltf["accessors"]) - 1
 
     def primitive(self, positions, indices=None, index_type=U16, mode=TRIANGLES,
-                  material=None, uvs=None):
+                  material=None, uvs=None, uvs1=None):
         p = {"attributes": {"POSITION": self.accessor("VEC3", FLOAT, positions)}}
         if indices is not None:
             p["indices"] = self.accessor("SCALAR", index_type, indices)
         if uvs is not None:
             p["attributes"]["TEXCOORD_0"] = self.accessor("VEC2", FLOAT, uvs)
+        if uvs1 is not None:
+            p["attributes"]["TEXCOORD_1"] = self.accessor("VEC2", FLOAT, uvs1)
         if mode != TRIANGLES:
             p["mode"] = mode
         if material is not None:
@@ -218,13 +220,19 @@ def materials():
         {"name": "Checker", "pbrMetallicRoughness": {
             "baseColorFactor": [1, 0.5, 1, 1], "metallicFactor": 0,
             "baseColorTexture": {"index": 0}}},
+        # The same texture read through the second uv set.
+        {"name": "CheckerSet1", "pbrMetallicRoughness": {
+            "metallicFactor": 0, "baseColorTexture": {"index": 0, "texCoord": 1}}},
     ]
     g["images"] = []
     d.image()
     g["textures"] = [{"source": 0}]
     g["meshes"] = [{"name": m["name"] + "Mesh", "primitives": [
         d.primitive(QUAD, [0, 1, 2, 0, 2, 3], U16, material=i, uvs=QUAD_UV)]}
-        for i, m in enumerate(g["materials"])]
+        for i, m in enumerate(g["materials"][:-1])]
+    g["meshes"].append({"name": "CheckerSet1Mesh", "primitives": [d.primitive(
+        QUAD, [0, 1, 2, 0, 2, 3], U16, material=len(g["materials"]) - 1,
+        uvs=[(0.5, 0.5)] * 4, uvs1=QUAD_UV)]})
     g["meshes"].append({"name": "PlainMesh", "primitives": [d.primitive(QUAD, [0, 1, 2, 0, 2, 3])]})
     # Nodes named after their material; the plain one unnamed, so named by its mesh.
     g["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g["materials"])]

@@ -92,16 +92,22 @@ impl Builder<'_> {
             let Some(triangles) = triangulate(mode, &indices) else {
                 continue;
             };
-            let uvs = match prim.attributes.get(&Checked::Valid(Semantic::TexCoords(0))) {
+            // The set the base-colour texture reads (its `texCoord`, usually 0).
+            let set = prim
+                .material
+                .and_then(|m| self.root.materials.get(m.value()))
+                .and_then(|m| m.pbr_metallic_roughness.base_color_texture.as_ref())
+                .map_or(0, |t| t.tex_coord);
+            let uvs = match prim
+                .attributes
+                .get(&Checked::Valid(Semantic::TexCoords(set)))
+            {
                 Some(&acc) => {
-                    let uvs = self.read_floats(
-                        acc,
-                        Type::Vec2,
-                        &format!("{here}.attributes.TEXCOORD_0"),
-                    )?;
+                    let at = format!("{here}.attributes.TEXCOORD_{set}");
+                    let uvs = self.read_floats(acc, Type::Vec2, &at)?;
                     if uvs.len() != count * 2 {
                         return Err(self.err(
-                            &format!("{here}.attributes.TEXCOORD_0"),
+                            &at,
                             format!("{} texture coordinates for {count} vertices", uvs.len() / 2),
                         ));
                     }
