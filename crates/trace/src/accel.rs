@@ -1,0 +1,403 @@
+//! The two-level acceleration structure: one BVH per mesh in object space (bottom level)
+//! and one over the instances' world bounds (top level). Moving instances rebuilds only
+//! the top level, as OptiX transform nodes did for ILPSolver (DESIGN.md §7).
+
+use crate::holes::{HOLE_THICKNESS, HoleVolume};
+use crate::ray::{Hit, Interaction, Ray};
+use crate::triangle::{Tri, TriRay};
+use crate::wide::{self, NodeRay};
+use glam::{Affine3A, Vec2, Vec3, Vec3A};
+use invlight_scene::{InstanceId, MaterialId, Mesh, Scene};
+use obvhs::aabb::Aabb;
+use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::triangle::Triangle;
+use obvhs::{BvhBuildParams, cwbvh::builder};
+use std::time::{Duration, Instant};
+
+/// Counts and timings of a build, for logs and benchmarks.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AccelStats {
+    /// Meshes with a bottom-level BVH.
+    pub meshes: usize,
+    /// Instances in the top level (holes and empty meshes are not).
+    pub instances: usize,
+    /// Hole volumes.
+    pub holes: usize,
+    /// Triangles over all bottom-level BVHs (each mesh once, however often instanced).
+    pub triangles: usize,
+    /// Bottom-level nodes (80 bytes each).
+    pub blas_nodes: usize,
+    /// Top-level nodes.
+    pub tlas_nodes: usize,
+    /// Deepest bottom-level tree, in nodes.
+    pub max_depth: u32,
+    /// Bytes of nodes and triangles traversal touches.
+    pub bytes: usize,
+    /// Seconds spent building the bottom level.
+    pub blas_seconds: f64,
+    /// Seconds spent building the top level (the last time it was built).
+    pub tlas_seconds: f64,
+}
+
+/// A mesh's bottom-level BVH and its triangles laid out in the BVH's leaf order, so a
+/// leaf's triangles are read from one place without an index indirection.
+#[derive(Debug, Clone, Default)]
+struct Blas {
+    nodes: Vec<CwBvhNode>,
+    tris: Vec<Tri>,
+    /// Object-space bounds of the traced triangles, or `None` when there are none.
+    bounds: Option<(Vec3, Vec3)>,
+    /// Object-space bounds of the mesh's hole triangles, if any.
+    hole_bounds: Option<(Vec3, Vec3)>,
+}
+
+/// What an interaction needs of a mesh beyond the BVH.
+#[derive(Debug, Clone, Default)]
+struct MeshAttrs {
+    positions: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    triangles: Vec<[u32; 3]>,
+    materials: Vec<MaterialId>,
+}
+
+/// An instance as the top level stores it.
+#[derive(Debug, Clone, Copy)]
+struct TlasItem {
+    object_from_world: Affine3A,
+    blas: u32,
+    instance: InstanceId,
+}
+
+/// Each scene instance's transforms.
+#[derive(Debug, Clone, Copy)]
+struct Placed {
+    world_from_object: Affine3A,
+    object_from_world: Affine3A,
+    mesh: u32,
+}
+
+/// Ray casting against a [`Scene`]: closest hit, any hit (shadow rays) and surface
+/// interactions. Build with [`Accel::new`]; after moving instances (or holes) call
+/// [`Accel::update_instances`]. Shared by reference across threads.
+#[derive(Debug, Clone)]
+pub struct Accel {
+    blas: Vec<Blas>,
+    meshes: Vec<MeshAttrs>,
+    placed: Vec<Placed>,
+    tlas: Vec<CwBvhNode>,
+    items: Vec<TlasItem>,
+    holes: Vec<HoleVolume>,
+    stats: AccelStats,
+}
+
+/// The build quality of both levels: obvhs's "medium" preset (PLOC with search radius
+/// and reinsertion, up to 3 triangles per leaf) measured fastest to trace per build
+/// second here (BENCHMARKS-trace.md).
+fn build_params() -> BvhBuildParams {
+    BvhBuildParams::medium_build()
+}
+
+impl Accel {
+    /// Builds a BVH per mesh and the top level over the instances.
+    pub fn new(scene: &Scene) -> Accel {
+        let start = Instant::now();
+        let hole_material: Vec<bool> = scene.materials.iter().map(|m| m.hole).collect();
+        let blas: Vec<Blas> = scene
+            .meshes
+            .iter()
+            .map(|m| build_blas(m, &hole_material))
+            .collect();
+        let meshes = scene
+            .meshes
+            .iter()
+            .map(|m| MeshAttrs {
+                positions: m.positions.clone(),
+                uvs: m.uvs.clone(),
+                triangles: m.triangles.clone(),
+                materials: m.materials.clone(),
+            })
+            .collect();
+        let stats = AccelStats {
+            meshes: blas.iter().filter(|b| !b.nodes.is_empty()).count(),
+            triangles: blas.iter().map(|b| b.tris.len()).sum(),
+            blas_nodes: blas.iter().map(|b| b.nodes.len()).sum(),
+            max_depth: blas
+                .iter()
+                .map(|b| wide::depth(&b.nodes))
+                .max()
+                .unwrap_or(0),
+            blas_seconds: start.elapsed().as_secs_f64(),
+            ..AccelStats::default()
+        };
+        let mut accel = Accel {
+            blas,
+            meshes,
+            placed: Vec::new(),
+            tlas: Vec::new(),
+            items: Vec::new(),
+            holes: Vec::new(),
+            stats,
+        };
+        accel.update_instances(scene);
+        accel
+    }
+
+    /// Rebuilds the top level and the hole volumes from the scene's instance transforms,
+    /// keeping every mesh's BVH. The scene's meshes must be those `new` was given; if
+    /// their number changed, everything is rebuilt.
+    pub fn update_instances(&mut self, scene: &Scene) {
+        if scene.meshes.len() != self.blas.len() {
+            *self = Accel::new(scene);
+            return;
+        }
+        let start = Instant::now();
+        self.placed = scene
+            .instances
+            .iter()
+            .map(|inst| {
+                let world_from_object = Affine3A::from_mat4(inst.transform);
+                Placed {
+                    world_from_object,
+                    object_from_world: world_from_object.inverse(),
+                    mesh: inst.mesh,
+                }
+            })
+            .collect();
+        let invertible = |p: &Placed| {
+            p.world_from_object.matrix3.determinant() != 0.0
+                && p.object_from_world.matrix3.is_finite()
+                && p.object_from_world.translation.is_finite()
+        };
+        let mut boxes = Vec::new();
+        let mut candidates = Vec::new();
+        for (id, p) in self.placed.iter().enumerate() {
+            let Some(blas) = self.blas.get(p.mesh as usize) else {
+                continue;
+            };
+            if let Some((lo, hi)) = blas.bounds
+                && invertible(p)
+            {
+                boxes.push(world_box(lo, hi, &p.world_from_object));
+                candidates.push(TlasItem {
+                    object_from_world: p.object_from_world,
+                    blas: p.mesh,
+                    instance: id as InstanceId,
+                });
+            }
+        }
+        let tlas = if boxes.is_empty() {
+            obvhs::cwbvh::CwBvh::default()
+        } else {
+            builder::build_cwbvh(&boxes, build_params(), &mut Duration::default())
+        };
+        self.items = tlas
+            .primitive_indices
+            .iter()
+            .map(|&i| candidates[i as usize])
+            .collect();
+        self.tlas = tlas.nodes;
+
+        let thickness = scene
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length().max(f32::MIN_POSITIVE))
+            * HOLE_THICKNESS;
+        self.holes = scene
+            .instances
+            .iter()
+            .filter_map(|inst| {
+                let (lo, hi) = self.blas.get(inst.mesh as usize)?.hole_bounds?;
+                HoleVolume::new(lo, hi, &inst.transform, thickness)
+            })
+            .collect();
+
+        self.stats.instances = self.items.len();
+        self.stats.holes = self.holes.len();
+        self.stats.tlas_nodes = self.tlas.len();
+        self.stats.tlas_seconds = start.elapsed().as_secs_f64();
+        self.stats.bytes = (self.stats.blas_nodes + self.stats.tlas_nodes) * size_of::<CwBvhNode>()
+            + self.stats.triangles * size_of::<Tri>()
+            + self.items.len() * size_of::<TlasItem>();
+    }
+
+    /// Counts and build times.
+    pub fn stats(&self) -> AccelStats {
+        self.stats
+    }
+
+    /// The closest hit with `0 < t < ray.t_max`, skipping surfaces inside holes.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut best = None;
+        self.trace(ray, |hit| {
+            best = Some(hit);
+            false
+        });
+        best
+    }
+
+    /// Whether anything outside the holes blocks the ray before `ray.t_max`.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        let mut blocked = false;
+        self.trace(ray, |_| {
+            blocked = true;
+            true
+        });
+        blocked
+    }
+
+    /// Walks both levels; `accept` receives each hit nearer than every earlier accepted
+    /// one (the ray is shortened to it) and returns `true` to stop.
+    #[inline(always)]
+    fn trace<F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
+        let origin = Vec3A::from(ray.origin);
+        let dir = Vec3A::from(ray.dir);
+        let world = NodeRay::new(origin, dir);
+        let mut t_max = ray.t_max;
+        let holes = &self.holes[..];
+        wide::traverse(&self.tlas, &world, &mut t_max, |slot, t_max| {
+            let item = &self.items[slot as usize];
+            let blas = &self.blas[item.blas as usize];
+            let o = item.object_from_world.transform_point3a(origin);
+            let d = item.object_from_world.transform_vector3a(dir);
+            let node_ray = NodeRay::new(o, d);
+            let tri_ray = TriRay::new(o, d);
+            let mut stop = false;
+            wide::traverse(&blas.nodes, &node_ray, t_max, |slot, t_max| {
+                let tri = &blas.tris[slot as usize];
+                let Some(h) = tri_ray.intersect(tri, *t_max) else {
+                    return false;
+                };
+                if !holes.is_empty() {
+                    let p = origin + dir * h.t;
+                    if holes.iter().any(|v| v.contains(p)) {
+                        return false;
+                    }
+                }
+                *t_max = h.t;
+                stop = accept(Hit {
+                    t: h.t,
+                    instance: item.instance,
+                    triangle: tri.index,
+                    u: h.u,
+                    v: h.v,
+                });
+                stop
+            });
+            stop
+        });
+    }
+
+    /// The surface at `hit` (a hit of `ray` returned by [`Accel::intersect`]): point
+    /// interpolated from the barycentrics, geometric normal, material and texture
+    /// coordinates.
+    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+        let placed = &self.placed[hit.instance as usize];
+        let mesh = &self.meshes[placed.mesh as usize];
+        let t = hit.triangle as usize;
+        let [i0, i1, i2] = mesh.triangles[t].map(|i| i as usize);
+        let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);
+        let w = 1.0 - hit.u - hit.v;
+        let local = w * p0 + hit.u * p1 + hit.v * p2;
+        let point = placed.world_from_object.transform_point3(local);
+        let n_local = (p1 - p0).cross(p2 - p0);
+        let normal =
+            Vec3::from(placed.object_from_world.matrix3.transpose() * Vec3A::from(n_local))
+                .normalize_or_zero();
+        // A sliver so thin its normal vanishes in rounding still faces the ray.
+        let normal = if normal == Vec3::ZERO {
+            -ray.dir
+        } else {
+            normal
+        };
+        let uv = if mesh.uvs.len() == mesh.positions.len() {
+            w * mesh.uvs[i0] + hit.u * mesh.uvs[i1] + hit.v * mesh.uvs[i2]
+        } else {
+            Vec2::ZERO
+        };
+        Interaction {
+            point,
+            normal,
+            material: mesh.materials[t],
+            uv,
+            instance: hit.instance,
+            triangle: hit.triangle,
+        }
+    }
+}
+
+/// World bounds of the object box `lo..hi` under `m`, from its eight corners.
+fn world_box(lo: Vec3, hi: Vec3, m: &Affine3A) -> Aabb {
+    let mut b = Aabb::empty();
+    for i in 0..8 {
+        let c = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        b.extend(m.transform_point3a(c.into()));
+    }
+    b
+}
+
+/// Builds a mesh's BVH over its non-hole triangles; triangles with out-of-range vertex
+/// indices are left out.
+fn build_blas(mesh: &Mesh, hole_material: &[bool]) -> Blas {
+    let is_hole = |t: usize| {
+        let m = mesh.materials.get(t).copied().unwrap_or(u32::MAX) as usize;
+        hole_material.get(m).copied().unwrap_or(false)
+    };
+    let corners = |t: usize| -> Option<[Vec3; 3]> {
+        let [a, b, c] = mesh.triangles[t];
+        Some([
+            *mesh.positions.get(a as usize)?,
+            *mesh.positions.get(b as usize)?,
+            *mesh.positions.get(c as usize)?,
+        ])
+    };
+    let mut tris = Vec::new();
+    let mut hole_bounds: Option<(Vec3, Vec3)> = None;
+    for t in 0..mesh.triangles.len() {
+        let Some(v) = corners(t) else { continue };
+        if is_hole(t) {
+            let (lo, hi) = hole_bounds.unwrap_or((v[0], v[0]));
+            hole_bounds = Some((
+                lo.min(v[0]).min(v[1]).min(v[2]),
+                hi.max(v[0]).max(v[1]).max(v[2]),
+            ));
+        } else {
+            tris.push(Tri { v, index: t as u32 });
+        }
+    }
+    if tris.is_empty() {
+        return Blas {
+            hole_bounds,
+            ..Blas::default()
+        };
+    }
+    let prims: Vec<Triangle> = tris
+        .iter()
+        .map(|t| Triangle {
+            v0: t.v[0].into(),
+            v1: t.v[1].into(),
+            v2: t.v[2].into(),
+        })
+        .collect();
+    let bvh = builder::build_cwbvh_from_tris(&prims, build_params(), &mut Duration::default());
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for t in &tris {
+        for v in t.v {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    Blas {
+        tris: bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| tris[i as usize])
+            .collect(),
+        nodes: bvh.nodes,
+        bounds: Some((lo, hi)),
+        hole_bounds,
+    }
+}
