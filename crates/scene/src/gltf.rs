@@ -4,7 +4,7 @@
 //! What is read (DESIGN.md §1): triangle meshes named by node (else mesh) name, a name
 //! covering its node's descendants; world transforms from TRS or matrix hierarchies;
 //! metallic-roughness materials as diffuse, mirror, glass, emitter or hole
-//! ([`material`]); KHR_lights_punctual lights in cd and lx; perspective cameras; and
+//! (module `material`); KHR_lights_punctual lights in cd and lx; perspective cameras; and
 //! `*__Geometry` placement rectangles. Positions are kept as written, +Y up.
 //!
 //! The JSON schema is `gltf-json`, the document model of the `gltf` crate, but not that

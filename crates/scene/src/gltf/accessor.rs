@@ -1,4 +1,4 @@
-//! Accessors (glTF 2.0 spec §3.6): typed arrays laid over buffer views, with byte
+//! Accessors (glTF 2.0 spec §3.6.2): typed arrays laid over buffer views, with byte
 //! strides, normalised integers (also KHR_mesh_quantization's) and sparse substitution.
 //!
 //! Every element is copied into a dense array after checking its whole byte range

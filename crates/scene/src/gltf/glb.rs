@@ -1,4 +1,4 @@
-//! The binary glTF container (`.glb`, glTF 2.0 spec §4.4): a 12-byte header, a JSON
+//! The binary glTF container (`.glb`, glTF 2.0 spec chapter 4): a 12-byte header, a JSON
 //! chunk, then an optional BIN chunk that is the first buffer.
 //!
 //! Written here rather than taken from the `gltf` crate because its `Glb::from_slice`

@@ -11,7 +11,7 @@ use gltf_json as json;
 /// Roughness at or below which a metal is taken for a perfect mirror: photon tracing has
 /// only Lambertian and perfectly specular reflection, and a glossy lobe this narrow is
 /// closer to the mirror.
-pub(super) const MIRROR_ROUGHNESS: f32 = 0.2;
+const MIRROR_ROUGHNESS: f32 = 0.2;
 
 /// glTF's `ior` default (KHR_materials_ior), that of common glass.
 const DEFAULT_IOR: f32 = 1.5;
@@ -63,6 +63,10 @@ impl Builder<'_> {
             .and_then(|e| e.emissive_strength.as_ref())
             .map_or(1.0, |s| s.emissive_strength.0);
         let emission = Vec3::from_array(m.emissive_factor.0).max(Vec3::ZERO) * strength.max(0.0);
+        let factors = [pbr.metallic_factor.0, pbr.roughness_factor.0, r, g, b];
+        if !emission.is_finite() || factors.iter().any(|f| !f.is_finite()) {
+            return Err(self.err(&here, "a factor is not a finite number"));
+        }
 
         let material = if ior.is_some_and(|ior| ior < 1.0) {
             // ILPSolver marks apertures by an index of refraction below 1 (DESIGN.md §2).

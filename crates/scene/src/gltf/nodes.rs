@@ -238,6 +238,9 @@ impl Builder<'_> {
         })?;
         let at = format!("extensions.KHR_lights_punctual.lights[{l}]");
         let strength = Vec3::from_array(light.color) * light.intensity;
+        if !strength.is_finite() {
+            return Err(self.err(&at, "color × intensity is not a finite number"));
+        }
         let position = world.transform_point3(Vec3::ZERO);
         let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
         if direction == Vec3::ZERO {
@@ -311,6 +314,13 @@ impl Builder<'_> {
         let Some(p) = &camera.perspective else {
             return Ok(());
         };
+        let aspect_ok = p.aspect_ratio.is_none_or(|a| a.is_finite() && a > 0.0);
+        if !(p.yfov > 0.0 && p.yfov < std::f32::consts::PI && aspect_ok) {
+            return Err(self.err(
+                &format!("cameras[{c}].perspective"),
+                "yfov must lie in (0, π) and aspectRatio be positive",
+            ));
+        }
         let forward = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
         let up = world.transform_vector3(Vec3::Y);
         let up = (up - forward * up.dot(forward)).normalize_or_zero();
