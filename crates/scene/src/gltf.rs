@@ -31,8 +31,8 @@ use std::path::Path;
 /// The general hint of a file that breaks the glTF rules.
 const VALIDATOR_HINT: &str = "the file breaks the glTF 2.0 rules: check it with the Khronos glTF Validator or export it again";
 
-/// Extensions whose absence of support would change what is loaded, that invlight
-/// reads; a file that *requires* any other extension is refused rather than misread.
+/// The extensions invlight reads. A file that *requires* any other (mesh compression,
+/// texture transforms, other image formats) is refused rather than misread.
 const SUPPORTED_REQUIRED: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
