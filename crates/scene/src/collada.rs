@@ -42,8 +42,9 @@ const MAX_DEPTH: usize = 256;
 pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| LoadError::new(path, format!("the file is not UTF-8 text: {e}")))?;
+    // Some exporters write Latin-1 names; read them with replacement characters rather
+    // than refuse the file.
+    let text = String::from_utf8_lossy(&bytes);
     let options = roxmltree::ParsingOptions {
         allow_dtd: true,
         ..Default::default()

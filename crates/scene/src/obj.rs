@@ -14,7 +14,8 @@
 //! The parser is hand-rolled over the bytes of the file (no regex, no per-line
 //! allocation) because the scenes of the thesis are large: the conference room has
 //! 331k triangles (DESIGN.md §6). Statements other than `v vt f o g usemtl mtllib` are
-//! ignored, as the format allows (`vn s l p` and vendor extensions).
+//! ignored, as the format allows (`vn s l p` and vendor extensions). Free-form curves
+//! and surfaces and `\` line continuations are not supported.
 
 mod mtl;
 

@@ -15,6 +15,9 @@
 //! 5. `diffuse` colour, or a texture (`sampler2D` → `surface` → `image` `init_from`,
 //!    decoded as sRGB) that multiplies white → diffuse K_d.
 //!
+//! `specular`/`shininess` (Phong highlights) and `ambient` are not read: the tracer's
+//! only specular reflection is the perfect mirror of `reflective`.
+//!
 //! Opacity follows COLLADA 1.4.1 §7 (profile_COMMON transparency): `A_ONE` (default):
 //! `transparent.a × transparency`; `RGB_ZERO`: `1 − Y(transparent.rgb) × transparency`;
 //! `A_ZERO`: `1 − transparent.a × transparency`; `RGB_ONE`: `Y(transparent.rgb) ×
