@@ -87,6 +87,17 @@ fn ilpsolver_cornell_box() {
         .collect();
     covered.sort();
     assert_eq!(covered, ["Cube-1", "Cube-2", "Cube-Ceiling"]);
+    // Two primitive lists in one geometry keep their own bound materials.
+    let walls = &s.meshes[instance(&s, "Cube-1").mesh as usize];
+    let mut wall_materials: Vec<&str> = walls
+        .materials
+        .iter()
+        .map(|&m| s.materials[m as usize].name.as_str())
+        .collect();
+    wall_materials.dedup();
+    assert_eq!(wall_materials, ["red_001", "green_001"]);
+    let ceiling = &s.meshes[instance(&s, "Cube-Ceiling").mesh as usize];
+    assert_eq!(s.materials[ceiling.materials[0] as usize].name, "white_001");
     let cone = instance(&s, "Cone");
     assert!(close3(
         cone.transform.transform_point3(Vec3::ZERO),
