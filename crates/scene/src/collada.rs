@@ -44,12 +44,17 @@ pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
         .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
     // Some exporters write Latin-1 names; read them with replacement characters rather
     // than refuse the file.
-    let text = String::from_utf8_lossy(&bytes);
+    parse(path, &String::from_utf8_lossy(&bytes))
+}
+
+/// Reads the text of a COLLADA file; `path` names it in errors and anchors the image
+/// files it references.
+fn parse(path: &Path, text: &str) -> Result<Scene, LoadError> {
     let options = roxmltree::ParsingOptions {
         allow_dtd: true,
         ..Default::default()
     };
-    let doc = roxmltree::Document::parse_with_options(&text, options).map_err(|e| {
+    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
         let pos = e.pos();
         LoadError::at(
             path,
@@ -397,5 +402,32 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         let m = self.scene.add_material(material);
         self.materials.insert(id.to_string(), m);
         Ok(m)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hostile edits of a file that uses most of the reader (number lists, indices,
+    /// counts, references, transforms, lights) give errors, never a panic.
+    #[test]
+    fn no_panic_under_byte_edits() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/collada/textured/scene.dae");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let body = text.find("<library_effects>").unwrap();
+        let mut bytes = text.clone().into_bytes();
+        let mut errors = 0;
+        // Every fifth byte, with edits taking turns, keeps the test quick in debug.
+        let edits = [b'-', b'9', b'#', b' ', b'<'];
+        for (k, i) in (body..bytes.len()).step_by(5).enumerate() {
+            let original = bytes[i];
+            bytes[i] = edits[k % edits.len()];
+            let edited = String::from_utf8_lossy(&bytes);
+            errors += usize::from(parse(&path, &edited).is_err());
+            bytes[i] = original;
+        }
+        assert!(errors > 0);
     }
 }

@@ -38,8 +38,13 @@ const DEFAULT_REFLECTANCE: f32 = 0.8;
 pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
+    parse(path, &bytes)
+}
+
+/// Reads the bytes of an OBJ file; `path` names it in errors and anchors its MTL files.
+fn parse(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
     let mut parser = Parser::new(path);
-    for (number, line) in lines(&bytes) {
+    for (number, line) in lines(bytes) {
         parser.statement(line).map_err(|fault| match fault {
             Fault::Here(message) => LoadError::at(path, format!("line {number}"), message),
             Fault::Library(e) => e,
@@ -429,6 +434,24 @@ mod tests {
         assert!(resolve_index(b"-0", 4, "vertex").is_err());
         assert!(resolve_index(b"1.5", 4, "vertex").is_err());
         assert!(resolve_index(b"99999999999999999999", 4, "vertex").is_err());
+    }
+
+    /// Hostile edits of a file using every statement read (with its MTL and texture)
+    /// give errors, never a panic.
+    #[test]
+    fn no_panic_under_byte_edits() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/obj/names.obj");
+        let mut bytes = std::fs::read(&path).unwrap();
+        let mut errors = 0;
+        for i in 0..bytes.len() {
+            let original = bytes[i];
+            for b in [b'-', b'0', b'/', b' ', b'\n'] {
+                bytes[i] = b;
+                errors += usize::from(parse(&path, &bytes).is_err());
+            }
+            bytes[i] = original;
+        }
+        assert!(errors > 0);
     }
 
     #[test]
