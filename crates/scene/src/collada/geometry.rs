@@ -126,6 +126,12 @@ pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
         if let Some(s) = uv_source {
             load_source(ctx, mesh, s, &mut sources)?;
         }
+        // Looked up once per primitive, not per corner.
+        let positions = &sources[position_source];
+        let uvs = match (uv_offset, uv_source) {
+            (Some(o), Some(s)) => Some((o, &sources[s])),
+            _ => None,
+        };
         let symbol = prim.attribute("material").unwrap_or("").to_string();
         let symbol_index = match out.symbols.iter().position(|s| *s == symbol) {
             Some(i) => i,
@@ -164,21 +170,21 @@ pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
                         ),
                     ));
                 }
-                let t = match (uv_offset, uv_source) {
-                    (Some(o), Some(s)) => {
+                let t = match uvs {
+                    Some((o, source)) => {
                         let t = indices[c * stride + o];
-                        if t as usize >= sources[s].count {
+                        if t as usize >= source.count {
                             return Err(ctx.error(
                                 prim,
                                 format!(
                                     "texture coordinate index {t} is out of range: the source has {}",
-                                    sources[s].count
+                                    source.count
                                 ),
                             ));
                         }
                         t
                     }
-                    _ => u32::MAX,
+                    None => u32::MAX,
                 };
                 if !first_seen[p as usize] {
                     first_seen[p as usize] = true;
@@ -187,14 +193,14 @@ pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
                 let next = out.positions.len() as u32;
                 let v = *remap.entry((p, t)).or_insert(next);
                 if v == next {
-                    let [x, y, z] = sources[position_source].get::<3>(p as usize);
+                    let [x, y, z] = positions.get::<3>(p as usize);
                     out.positions.push(Vec3::new(x, y, z));
-                    let uv = match uv_source {
-                        Some(s) if t != u32::MAX => {
-                            let [u, v] = sources[s].get::<2>(t as usize);
+                    let uv = match uvs {
+                        Some((_, source)) => {
+                            let [u, v] = source.get::<2>(t as usize);
                             Vec2::new(u, 1.0 - v)
                         }
-                        _ => Vec2::ZERO,
+                        None => Vec2::ZERO,
                     };
                     out.uvs.push(uv);
                 }
