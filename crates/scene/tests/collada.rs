@@ -232,7 +232,7 @@ fn units_transforms_textures_glass_holes_and_instanced_nodes() {
     // sampler2D → surface → image, with a %20 in the file name; v flipped to the
     // top-row-first texture convention: uv (0.25, 0.75) is the top-left red texel.
     let checker = &s.materials[mesh.materials[0] as usize];
-    assert_eq!(checker.name, "Checker");
+    assert_eq!((checker.name.as_str(), checker.hole), ("Checker", false));
     let texture = &s.textures[checker.texture.expect("texture") as usize];
     assert_eq!((texture.width, texture.height), (2, 2));
     assert_eq!(texture.sample(mesh.uvs[0]), Vec3::new(1.0, 0.0, 0.0));

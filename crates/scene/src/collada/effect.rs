@@ -6,8 +6,9 @@
 //!    (DESIGN.md §1). ILPSolver's scenes have no units: `16 16 16` in its Cornell box
 //!    is kept as 16 cd/m², so its results scale with that arbitrary number. The diffuse
 //!    colour is kept too (ILPSolver's emitters reflect).
-//! 2. `index_of_refraction` < 1 → a **hole** (aperture).
-//! 3. `index_of_refraction` > 1 → **glass** of that index. Its transmission is
+//! 2. `index_of_refraction` < 1 → a **hole** (aperture), unless textured (ILPSolver
+//!    tests the texture first; ILPSolver's `hole.dae` writes 0.25 with transparency 0).
+//! 3. `index_of_refraction` > 1 → **glass** of that index, unless textured. Its transmission is
 //!    `1 − opacity` when `transparent`/`transparency` make it see-through, else 1: in
 //!    ILPSolver the index alone makes clear glass, and Blender writes an index other
 //!    than 1 only for ray-traced transparency.
@@ -126,10 +127,13 @@ pub(super) fn read(
     }
     let ior = float("index_of_refraction")?.unwrap_or(1.0);
     let opacity = opacity(ctx, shading, &params)?;
-    if ior < 1.0 && !m.is_emissive() {
+    // ILPSolver decides emitter, then texture, then the index of refraction: exporters
+    // that write `index_of_refraction 0` on textured materials make no holes there.
+    let plain = !m.is_emissive() && m.texture.is_none();
+    if ior < 1.0 && plain {
         return Ok(Material::hole(name));
     }
-    if ior > 1.0 && !m.is_emissive() {
+    if ior > 1.0 && plain {
         m.ior = ior;
         m.transmission = if opacity < 1.0 { 1.0 - opacity } else { 1.0 };
         m.specular = Vec3::ZERO;
