@@ -454,6 +454,20 @@ mod tests {
         assert!(errors > 0);
     }
 
+    /// Every prefix of a real file loads or gives an error naming it; none panics.
+    #[test]
+    fn truncations_never_panic() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/obj/CornellBox-Original.obj");
+        let bytes = std::fs::read(&path).unwrap();
+        for len in 0..bytes.len() {
+            if let Err(e) = parse(&path, &bytes[..len]) {
+                assert_eq!(e.path, path);
+                assert!(e.location.starts_with("line "), "{e}");
+            }
+        }
+    }
+
     #[test]
     fn rest_of_line_keeps_inner_spaces() {
         assert_eq!(

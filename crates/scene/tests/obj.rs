@@ -227,26 +227,3 @@ fn a_missing_material_library_is_a_warning() {
     assert_eq!(s.materials[0].name, "red");
     assert_eq!(s.materials[0].diffuse, Vec3::splat(0.8));
 }
-
-/// Every prefix of a real file loads or gives a located error; none panics.
-#[test]
-fn truncated_real_files_never_panic() {
-    let dir = std::env::temp_dir().join(format!("invlight-obj-cut-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::copy(
-        data("CornellBox-Original.mtl"),
-        dir.join("CornellBox-Original.mtl"),
-    )
-    .unwrap();
-    for name in ["CornellBox-Original.obj"] {
-        let bytes = std::fs::read(data(name)).unwrap();
-        let cut = dir.join(name);
-        for len in 0..bytes.len() {
-            std::fs::write(&cut, &bytes[..len]).unwrap();
-            if let Err(e) = load(&cut, &LoadOptions::default()) {
-                assert!(e.to_string().starts_with(&cut.display().to_string()), "{e}");
-            }
-        }
-    }
-    std::fs::remove_dir_all(&dir).unwrap();
-}
