@@ -3,9 +3,10 @@
 //! Names: every face belongs to the current `o` object name and the current `g` group
 //! names (a `g` line may list several). Faces sharing the same set of names form one
 //! mesh placed by one instance; the instance belongs to the surface of each of its names,
-//! so a name covers all its faces however the file interleaves them. Faces before any
-//! `o`/`g` line, or after a bare `g`, belong to the group `default`, the OBJ
-//! specification's default group name.
+//! so a name covers all its faces however the file interleaves them. Group names stay
+//! in effect across an `o` line until the next `g`, as the specification has it. Faces
+//! with neither name (before any `o`/`g`, or after a bare `g` with no object) belong to
+//! the group `default`, the specification's default group name.
 //!
 //! Positions are kept as written (`scene.up` = +Y; `--up`/`--scale` are applied by
 //! [`crate::load`]). Texture coordinates are flipped to the top-row-first convention of
