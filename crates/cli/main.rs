@@ -1,1 +1,64 @@
-fn main() {}
+//! The `invlight` command: parses arguments, wires the library crates together and
+//! reports. Everything that computes lives in the crates under `crates/`.
+
+mod args;
+mod measure;
+mod progress;
+mod scene_info;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Inverse lighting: measure the light on named surfaces of a 3D scene, and search a
+/// scene's free parameters (where a lamp, an object or a skylight goes, where the sun
+/// comes from, how light a wall is) for the configurations that light a surface best.
+///
+/// Light is estimated by photon tracing on all CPU cores, in lux, with confidence
+/// intervals. Scenes: glTF 2.0 (.gltf, .glb), COLLADA (.dae), Wavefront OBJ (.obj).
+#[derive(Parser)]
+#[command(name = "invlight", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Mean illuminance of named surfaces, with confidence intervals.
+    Measure(measure::MeasureArgs),
+    /// What a scene file holds: surfaces, lights, cameras, bounds. Run it first to find
+    /// the names to measure or to put in a problem file.
+    Scene(scene_info::SceneArgs),
+}
+
+/// An error caused by what the user gave us (a file, a name, a value): exit code 2.
+#[derive(Debug)]
+pub struct InputError(pub String);
+
+impl std::fmt::Display for InputError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for InputError {}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Measure(args) => measure::run(args),
+        Command::Scene(args) => scene_info::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            // Bad input (a file, a name, a value) is exit code 2, as for clap's own
+            // usage errors; anything else that fails (writing output) is 1.
+            let input = err
+                .chain()
+                .any(|e| e.is::<InputError>() || e.is::<invlight_scene::LoadError>());
+            ExitCode::from(if input { 2 } else { 1 })
+        }
+    }
+}

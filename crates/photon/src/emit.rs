@@ -1,0 +1,245 @@
+//! Photon emission from every light kind, each light chosen with probability proportional
+//! to its luminous flux (thesis App. C.3; pbrt-v4 `PowerLightSampler`), and each photon
+//! drawn from the light's own emission profile, so that every photon carries the same
+//! luminous power: the scene's total flux. Equal powers keep the per-photon variance, and
+//! so the reported intervals, as small as this estimator allows.
+
+use crate::rng::Rng;
+use crate::sampling;
+use glam::Vec3;
+use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use std::f32::consts::PI;
+
+/// Where a photon starts, where it goes and the (RGB) power it carries, lm.
+#[derive(Debug, Clone, Copy)]
+pub struct EmitSample {
+    /// Starting point.
+    pub origin: Vec3,
+    /// Unit direction of travel.
+    pub dir: Vec3,
+    /// Front-face normal when the photon leaves a surface (area lights), for offsetting.
+    pub surface_normal: Option<Vec3>,
+    /// RGB power, whose luminance is the scene's total flux.
+    pub power: Rgb,
+}
+
+/// One emitting thing, with the RGB power a photon carries when it is chosen.
+#[derive(Debug, Clone)]
+enum Source {
+    Point {
+        position: Vec3,
+        power: Rgb,
+    },
+    /// glTF spot: full intensity inside the inner cone, falling as t² (t linear in cos θ)
+    /// to zero at the outer cone.
+    Spot {
+        position: Vec3,
+        axis: Vec3,
+        cos_inner: f32,
+        cos_outer: f32,
+        /// Share of the flux inside the inner cone, which chooses between the two parts.
+        flat_share: f32,
+        power: Rgb,
+    },
+    /// Sun: a disk perpendicular to the direction, centred on the scene's bounding sphere
+    /// and of its radius, placed outside it (thesis §4.5, fig. 4.8).
+    Directional {
+        direction: Vec3,
+        centre: Vec3,
+        radius: f32,
+        power: Rgb,
+    },
+    /// An emissive triangle (Lambertian, front face).
+    Triangle {
+        p0: Vec3,
+        e1: Vec3,
+        e2: Vec3,
+        normal: Vec3,
+        power: Rgb,
+    },
+}
+
+/// The lights of a scene as a distribution to draw photons from.
+#[derive(Debug, Clone, Default)]
+pub struct Emitters {
+    sources: Vec<Source>,
+    /// Cumulative luminous flux of `sources`.
+    cdf: Vec<f64>,
+}
+
+impl Emitters {
+    /// Collects every light of `scene`: point, spot and directional lights and every
+    /// emissive triangle.
+    pub fn new(scene: &Scene) -> Emitters {
+        let mut flux_rgb: Vec<Rgb> = Vec::new();
+        let mut sources = Vec::new();
+        let (centre, radius) = match scene.bounds() {
+            Some((lo, hi)) => ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3)),
+            None => (Vec3::ZERO, 1.0),
+        };
+        for light in &scene.lights {
+            let flux = light.kind.flux();
+            match light.kind {
+                LightKind::Point { position, .. } => sources.push(Source::Point {
+                    position,
+                    power: Vec3::ZERO,
+                }),
+                LightKind::Spot {
+                    position,
+                    direction,
+                    inner,
+                    outer,
+                    ..
+                } => {
+                    let cos_inner = inner.cos();
+                    let cos_outer = outer.cos().min(cos_inner);
+                    let flat = 1.0 - cos_inner;
+                    let ring = (cos_inner - cos_outer) / 3.0;
+                    sources.push(Source::Spot {
+                        position,
+                        axis: direction.normalize(),
+                        cos_inner,
+                        cos_outer,
+                        flat_share: flat / (flat + ring).max(f32::MIN_POSITIVE),
+                        power: Vec3::ZERO,
+                    })
+                }
+                LightKind::Directional { direction, .. } => {
+                    sources.push(Source::Directional {
+                        direction: direction.normalize(),
+                        centre,
+                        radius,
+                        power: Vec3::ZERO,
+                    });
+                    flux_rgb.push(flux * (PI * radius * radius));
+                    continue;
+                }
+            }
+            flux_rgb.push(flux);
+        }
+        for inst in &scene.instances {
+            let mesh = &scene.meshes[inst.mesh as usize];
+            for (t, &m) in mesh.materials.iter().enumerate() {
+                let emission = scene.materials[m as usize].emission;
+                if emission.max_element() <= 0.0 {
+                    continue;
+                }
+                let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
+                let cross = (b - a).cross(c - a);
+                let area = 0.5 * cross.length();
+                if area <= 0.0 {
+                    continue;
+                }
+                sources.push(Source::Triangle {
+                    p0: a,
+                    e1: b - a,
+                    e2: c - a,
+                    normal: cross.normalize(),
+                    power: Vec3::ZERO,
+                });
+                // A Lambertian emitter of radiance L sends π·L per unit area.
+                flux_rgb.push(emission * (PI * area));
+            }
+        }
+        let total: f64 = flux_rgb.iter().map(|&f| luminance(f) as f64).sum();
+        let mut cdf = Vec::with_capacity(sources.len());
+        let mut acc = 0.0f64;
+        for (source, flux) in sources.iter_mut().zip(&flux_rgb) {
+            let y = luminance(*flux) as f64;
+            acc += y;
+            cdf.push(acc);
+            // Chosen with probability y / total, a photon carries flux · total / y.
+            let power = if y > 0.0 {
+                *flux * (total / y) as f32
+            } else {
+                Vec3::ZERO
+            };
+            match source {
+                Source::Point { power: p, .. }
+                | Source::Spot { power: p, .. }
+                | Source::Directional { power: p, .. }
+                | Source::Triangle { power: p, .. } => *p = power,
+            }
+        }
+        Emitters { sources, cdf }
+    }
+
+    /// Total luminous flux of the scene's lights, lm (for the sun: what crosses the disk
+    /// that covers the scene).
+    pub fn total_flux(&self) -> f64 {
+        self.cdf.last().copied().unwrap_or(0.0)
+    }
+
+    /// Whether the scene has no light at all.
+    pub fn is_empty(&self) -> bool {
+        self.total_flux() <= 0.0
+    }
+
+    /// Draws a photon. Must not be called when [`Emitters::is_empty`].
+    #[inline]
+    pub fn sample(&self, rng: &mut Rng) -> EmitSample {
+        let source = &self.sources[sampling::pick(&self.cdf, rng.uniform())];
+        let (u1, u2, u3) = (rng.uniform(), rng.uniform(), rng.uniform());
+        match *source {
+            Source::Point { position, power } => EmitSample {
+                origin: position,
+                dir: sampling::sphere(u1, u2),
+                surface_normal: None,
+                power,
+            },
+            Source::Spot {
+                position,
+                axis,
+                cos_inner,
+                cos_outer,
+                flat_share,
+                power,
+            } => {
+                let cos_theta = if u3 < flat_share {
+                    // Uniform in solid angle inside the inner cone.
+                    1.0 - u1 * (1.0 - cos_inner)
+                } else {
+                    // Density ∝ t² on t ∈ [0, 1]: t = u^(1/3).
+                    cos_outer + u1.cbrt() * (cos_inner - cos_outer)
+                };
+                EmitSample {
+                    origin: position,
+                    dir: sampling::cone(axis, cos_theta, u2),
+                    surface_normal: None,
+                    power,
+                }
+            }
+            Source::Directional {
+                direction,
+                centre,
+                radius,
+                power,
+            } => {
+                let (x, y) = sampling::disk(u1, u2);
+                let (t, b) = sampling::basis(direction);
+                EmitSample {
+                    origin: centre + (t * x + b * y - direction * 1.01) * radius,
+                    dir: direction,
+                    surface_normal: None,
+                    power,
+                }
+            }
+            Source::Triangle {
+                p0,
+                e1,
+                e2,
+                normal,
+                power,
+            } => {
+                let (b1, b2) = sampling::triangle(u1, u2);
+                let u4 = rng.uniform();
+                EmitSample {
+                    origin: p0 + e1 * b1 + e2 * b2,
+                    dir: sampling::cosine_hemisphere(normal, u3, u4),
+                    surface_normal: Some(normal),
+                    power,
+                }
+            }
+        }
+    }
+}

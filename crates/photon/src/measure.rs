@@ -1,0 +1,241 @@
+//! Measuring surfaces: per-surface tallies of the photons' arrivals (thesis §3.3, §4.9.2),
+//! accumulated without storing photons, in parallel, with results that do not depend on
+//! the number of threads.
+//!
+//! Photons are traced in chunks of [`CHUNK`] consecutive indices, each chunk tallied on
+//! its own, and the chunk tallies summed in index order, [`BLOCK`] chunks at a time. The
+//! sum order is therefore fixed by the photon count alone: the same seed gives the same
+//! bits on one thread or many, and memory stays constant however many photons are traced.
+
+use crate::emit::Emitters;
+use crate::estimate::Estimate;
+use crate::path::{PathVisitor, trace_photon};
+use crate::rng::Rng;
+use glam::Vec3;
+use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
+use invlight_trace::{Accel, Interaction};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Photons per chunk: large enough that a chunk's bookkeeping is negligible, small
+/// enough to balance two to a hundred threads.
+pub const CHUNK: u64 = 4096;
+/// Chunks reduced at a time: bounds memory, keeps all threads busy.
+pub const BLOCK: u64 = 256;
+
+/// How to trace.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceSettings {
+    /// Photons to emit, N.
+    pub photons: u64,
+    /// Seed of the random streams; photon i uses the stream (seed, i).
+    pub seed: u64,
+    /// Surface interactions followed after the first hit from the light. Russian
+    /// roulette ends paths on its own; this is a safety cap (the thesis used 4).
+    pub max_bounces: u32,
+}
+
+impl Default for TraceSettings {
+    fn default() -> Self {
+        TraceSettings {
+            photons: 1_000_000,
+            seed: 1,
+            max_bounces: DEFAULT_MAX_BOUNCES,
+        }
+    }
+}
+
+/// The default bounce cap: high enough that, with the reflectances of real rooms, no
+/// measurable energy is cut off (0.9^1000 ≈ 2·10⁻⁴⁶), low enough to stop a photon caught
+/// between perfect mirrors.
+pub const DEFAULT_MAX_BOUNCES: u32 = 1000;
+
+/// Sums over photons of one target's per-photon contributions X_i, in lm (the luminous
+/// power a photon brings to the target, all its arrivals added).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Tally {
+    /// Σ X_i.
+    pub sum: f64,
+    /// Σ X_i².
+    pub sum_sq: f64,
+    /// Number of arrivals.
+    pub hits: u64,
+}
+
+impl Tally {
+    fn merge(&mut self, other: &Tally) {
+        self.sum += other.sum;
+        self.sum_sq += other.sum_sq;
+        self.hits += other.hits;
+    }
+}
+
+/// What a trace measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TraceResult {
+    /// Photons emitted, N.
+    pub photons: u64,
+    /// Rays cast (closest-hit queries).
+    pub rays: u64,
+    /// One tally per target, in the order the targets were given.
+    pub tallies: Vec<Tally>,
+    /// Luminous power that left the scene, Σ over photons, lm·photons (divide by N).
+    pub escaped: f64,
+    /// The scene's total luminous flux Φ, lm: what each photon carries.
+    pub flux: f64,
+}
+
+impl TraceResult {
+    /// Mean illuminance of target `i` of area `area` m², in lux, with its standard
+    /// error: F_N = Σ_i X_i / (A·N) (thesis eq. 3.2).
+    pub fn estimate(&self, i: usize, area: f64) -> Estimate {
+        let t = &self.tallies[i];
+        let inv = 1.0 / area;
+        Estimate::from_sums(t.sum * inv, t.sum_sq * inv * inv, self.photons)
+    }
+}
+
+/// Which targets each instance belongs to (a compressed sparse row table: an instance
+/// may be under several names, e.g. a node and its parent).
+struct TargetMap {
+    offsets: Vec<u32>,
+    targets: Vec<u32>,
+}
+
+impl TargetMap {
+    fn new(scene: &Scene, targets: &[SurfaceId]) -> TargetMap {
+        let mut per_instance: Vec<Vec<u32>> = vec![Vec::new(); scene.instances.len()];
+        for (t, &s) in targets.iter().enumerate() {
+            for &i in &scene.surfaces[s as usize].instances {
+                per_instance[i as usize].push(t as u32);
+            }
+        }
+        let mut offsets = vec![0u32];
+        let mut flat = Vec::new();
+        for list in per_instance {
+            flat.extend(list);
+            offsets.push(flat.len() as u32);
+        }
+        TargetMap {
+            offsets,
+            targets: flat,
+        }
+    }
+
+    #[inline]
+    fn of(&self, instance: u32) -> &[u32] {
+        let i = instance as usize;
+        &self.targets[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+}
+
+/// Tallies one chunk of photons: per-photon sums in `current`, folded into `tallies`
+/// when the photon ends.
+struct ChunkTally<'a> {
+    map: &'a TargetMap,
+    tallies: Vec<Tally>,
+    current: Vec<f64>,
+    touched: Vec<u32>,
+    escaped: f64,
+}
+
+impl PathVisitor for ChunkTally<'_> {
+    #[inline]
+    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32) {
+        for &t in self.map.of(at.instance) {
+            if self.current[t as usize] == 0.0 {
+                self.touched.push(t);
+            }
+            self.current[t as usize] += luminance(power) as f64;
+            self.tallies[t as usize].hits += 1;
+        }
+    }
+
+    #[inline]
+    fn escape(&mut self, power: Rgb) {
+        self.escaped += luminance(power) as f64;
+    }
+}
+
+impl ChunkTally<'_> {
+    #[inline]
+    fn end_photon(&mut self) {
+        for &t in &self.touched {
+            let x = std::mem::take(&mut self.current[t as usize]);
+            let tally = &mut self.tallies[t as usize];
+            tally.sum += x;
+            tally.sum_sq += x * x;
+        }
+        self.touched.clear();
+    }
+}
+
+/// Traces `settings.photons` photons from the lights of `scene` and tallies their
+/// arrivals on the surfaces `targets`. `progress` is called from worker threads with
+/// the number of photons traced so far.
+pub fn trace(
+    scene: &Scene,
+    accel: &Accel,
+    targets: &[SurfaceId],
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> TraceResult {
+    let emitters = Emitters::new(scene);
+    let map = TargetMap::new(scene, targets);
+    let mut result = TraceResult {
+        photons: settings.photons,
+        rays: 0,
+        tallies: vec![Tally::default(); targets.len()],
+        escaped: 0.0,
+        flux: emitters.total_flux(),
+    };
+    if emitters.is_empty() {
+        return result;
+    }
+    let chunks = settings.photons.div_ceil(CHUNK);
+    let done = AtomicU64::new(0);
+    let mut block_start = 0;
+    while block_start < chunks {
+        let block_end = (block_start + BLOCK).min(chunks);
+        let parts: Vec<(ChunkTally, u64)> = (block_start..block_end)
+            .into_par_iter()
+            .map(|chunk| {
+                let first = chunk * CHUNK;
+                let last = (first + CHUNK).min(settings.photons);
+                let mut tally = ChunkTally {
+                    map: &map,
+                    tallies: vec![Tally::default(); targets.len()],
+                    current: vec![0.0; targets.len()],
+                    touched: Vec::with_capacity(targets.len()),
+                    escaped: 0.0,
+                };
+                let mut rays = 0;
+                for i in first..last {
+                    let mut rng = Rng::new(settings.seed, i);
+                    rays += trace_photon(
+                        scene,
+                        accel,
+                        &emitters,
+                        &mut rng,
+                        settings.max_bounces,
+                        &mut tally,
+                    );
+                    tally.end_photon();
+                }
+                if let Some(report) = progress {
+                    report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
+                }
+                (tally, rays)
+            })
+            .collect();
+        for (part, rays) in &parts {
+            for (total, t) in result.tallies.iter_mut().zip(&part.tallies) {
+                total.merge(t);
+            }
+            result.escaped += part.escaped;
+            result.rays += rays;
+        }
+        block_start = block_end;
+    }
+    result
+}

@@ -1,0 +1,186 @@
+//! One photon's path through the scene (thesis Algorithm 2.2; the loop has pbrt-v4's
+//! light-path shape, `LightPathIntegrator`): emit, then intersect → report the arrival →
+//! choose by Russian roulette between diffuse reflection, mirror reflection, refraction
+//! and absorption. Paths end only by absorption, escape or the bounce cap, so estimates
+//! are unbiased when the cap is not reached.
+
+use crate::emit::{EmitSample, Emitters};
+use crate::rng::Rng;
+use crate::sampling;
+use glam::Vec3;
+use invlight_scene::{Rgb, Scene};
+use invlight_trace::{Accel, Interaction, Ray, offset_point};
+
+/// What a path reports to whoever follows it: tallies for measurement, stored photons
+/// for rendering.
+pub trait PathVisitor {
+    /// A photon carrying `power` arrived at `at` travelling along `dir`; `bounce` is 0 for
+    /// the first hit from the light. Called for every arrival, before the surface acts.
+    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32);
+    /// A photon carrying `power` left the scene.
+    fn escape(&mut self, power: Rgb);
+}
+
+/// What happens to a photon at a surface, with the factor its power is multiplied by.
+enum Event {
+    Diffuse(Rgb),
+    Mirror(Rgb),
+    Dielectric(f32),
+    Absorbed,
+}
+
+/// Traces one photon drawn from `emitters` with `rng`, reporting to `visitor`; at most
+/// `max_bounces` surface interactions follow the first hit. Returns the rays cast.
+pub fn trace_photon(
+    scene: &Scene,
+    accel: &Accel,
+    emitters: &Emitters,
+    rng: &mut Rng,
+    max_bounces: u32,
+    visitor: &mut impl PathVisitor,
+) -> u64 {
+    let EmitSample {
+        origin,
+        dir,
+        surface_normal,
+        mut power,
+    } = emitters.sample(rng);
+    let mut ray = match surface_normal {
+        Some(n) => Ray::new(offset_point(origin, n), dir),
+        None => Ray::new(origin, dir),
+    };
+    let mut rays = 0;
+    for bounce in 0..=max_bounces {
+        rays += 1;
+        let Some(hit) = accel.intersect(&ray) else {
+            visitor.escape(power);
+            break;
+        };
+        let at = accel.interaction(&ray, &hit);
+        visitor.arrive(&at, ray.dir, power, bounce);
+        if bounce == max_bounces {
+            break;
+        }
+        // The normal on the side the photon came from.
+        let n = if at.normal.dot(ray.dir) < 0.0 {
+            at.normal
+        } else {
+            -at.normal
+        };
+        let dir = match interact(scene, &at, rng) {
+            Event::Absorbed => break,
+            Event::Diffuse(f) => {
+                power *= f;
+                sampling::cosine_hemisphere(n, rng.uniform(), rng.uniform())
+            }
+            Event::Mirror(f) => {
+                power *= f;
+                reflect(ray.dir, n)
+            }
+            Event::Dielectric(f) => {
+                power *= f;
+                let entering = at.normal.dot(ray.dir) < 0.0;
+                let ior = scene.materials[at.material as usize].ior;
+                let eta = if entering { 1.0 / ior } else { ior };
+                let cos_i = -ray.dir.dot(n);
+                match refract(ray.dir, n, eta) {
+                    Some(t) if rng.uniform() >= fresnel_dielectric(cos_i, eta) => t,
+                    _ => reflect(ray.dir, n),
+                }
+            }
+        };
+        debug_assert!(dir.is_finite() && (dir.length() - 1.0).abs() < 1e-3);
+        ray = at.spawn(dir);
+    }
+    rays
+}
+
+/// Russian roulette over the material's parts (thesis Algorithm 2.2): with probability
+/// ρ_d = mean(K_d) diffuse, ρ_s = mean(K_s) mirror, ρ_t = transmission dielectric, else
+/// absorbed. The surviving power is scaled by (part / probability) so that its
+/// expectation is the physical one; probabilities are normalised when a material's
+/// parts add up to more than one.
+#[inline]
+fn interact(scene: &Scene, at: &Interaction, rng: &mut Rng) -> Event {
+    let m = &scene.materials[at.material as usize];
+    let mut kd = m.diffuse;
+    if let Some(t) = m.texture {
+        kd *= scene.textures[t as usize].sample(at.uv);
+    }
+    let rho_d = kd.element_sum() / 3.0;
+    let rho_s = m.specular.element_sum() / 3.0;
+    let rho_t = m.transmission;
+    let norm = (rho_d + rho_s + rho_t).max(1.0);
+    let (p_d, p_s, p_t) = (rho_d / norm, rho_s / norm, rho_t / norm);
+    let xi = rng.uniform();
+    if xi < p_d {
+        Event::Diffuse(kd / p_d)
+    } else if xi < p_d + p_s {
+        Event::Mirror(m.specular / p_s)
+    } else if xi < p_d + p_s + p_t {
+        Event::Dielectric(rho_t / p_t)
+    } else {
+        Event::Absorbed
+    }
+}
+
+/// Mirror reflection of `d` about the unit normal `n`.
+#[inline]
+pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
+    d - 2.0 * d.dot(n) * n
+}
+
+/// Refraction of unit `d` through unit normal `n` (facing against `d`) with relative
+/// index `eta = n_from / n_to`; `None` on total internal reflection (Snell's law).
+#[inline]
+pub fn refract(d: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
+    let cos_i = -d.dot(n);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((d * eta + n * (eta * cos_i - cos_t)).normalize())
+}
+
+/// Unpolarised Fresnel reflectance of a dielectric interface for incidence cosine
+/// `cos_i` and relative index `eta = n_from / n_to` (pbrt-v4 `FrDielectric`).
+#[inline]
+pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    // With n_from = eta·n_to: r_parl = (n_to cos_i − n_from cos_t)/(…+…), etc.
+    let r_parl = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    let r_perp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    0.5 * (r_parl * r_parl + r_perp * r_perp)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fresnel_at_normal_incidence() {
+        // ((n1 − n2)/(n1 + n2))² = (0.5/2.5)² = 0.04 for glass of index 1.5, both ways.
+        assert!((fresnel_dielectric(1.0, 1.0 / 1.5) - 0.04).abs() < 1e-6);
+        assert!((fresnel_dielectric(1.0, 1.5) - 0.04).abs() < 1e-6);
+        // Total internal reflection beyond the critical angle inside glass.
+        assert_eq!(fresnel_dielectric(0.5, 1.5), 1.0);
+    }
+
+    #[test]
+    fn refraction_obeys_snell() {
+        let n = Vec3::Z;
+        let d = Vec3::new(0.6, 0.0, -0.8);
+        let t = refract(d, n, 1.0 / 1.5).unwrap();
+        let sin_i = 0.6f32;
+        let sin_t = t.x / t.length();
+        assert!((sin_i - 1.5 * sin_t).abs() < 1e-6);
+        assert!(t.z < 0.0);
+        assert!(refract(Vec3::new(0.9, 0.0, -0.436).normalize(), n, 1.5).is_none());
+    }
+}

@@ -1,0 +1,338 @@
+//! Photon tracing against closed-form illuminances (issue 2, item 8). Every check is
+//! |estimate − exact| < 4 σ with σ the standard error the estimate reports itself
+//! (a 4 σ miss has probability 6·10⁻⁵ for an honest interval); seeds are fixed.
+
+use invlight_photon::{Estimate, TraceSettings, trace};
+use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
+use invlight_trace::Accel;
+use std::f64::consts::PI;
+
+const Z: f64 = 4.0;
+
+fn settings(photons: u64) -> TraceSettings {
+    TraceSettings {
+        photons,
+        seed: 7,
+        ..TraceSettings::default()
+    }
+}
+
+/// Measures the named surfaces of `scene`.
+fn measure(scene: &Scene, names: &[&str], photons: u64) -> Vec<Estimate> {
+    let accel = Accel::new(scene);
+    let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
+    let r = trace(scene, &accel, &ids, &settings(photons), None);
+    ids.iter()
+        .enumerate()
+        .map(|(i, &s)| r.estimate(i, scene.surface_area(s) as f64))
+        .collect()
+}
+
+fn assert_close(e: &Estimate, exact: f64, what: &str) {
+    let err = (e.mean - exact).abs();
+    assert!(
+        err < Z * e.std_error,
+        "{what}: estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
+        e.mean,
+        e.std_error,
+        err / e.std_error
+    );
+    // The interval must also be informative, or the check above means nothing.
+    assert!(
+        e.std_error < 0.02 * exact,
+        "{what}: σ {} too large",
+        e.std_error
+    );
+}
+
+fn point(name: &str, position: Vec3, cd: f32) -> Light {
+    Light {
+        name: name.into(),
+        kind: LightKind::Point {
+            position,
+            intensity: Vec3::splat(cd),
+        },
+    }
+}
+
+/// A horizontal rectangle [x0,x1]×[y0,y1] at height z, counter-clockwise seen from +z.
+fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: u32) -> Mesh {
+    Mesh::quad(
+        [
+            Vec3::new(x0, y0, z),
+            Vec3::new(x1, y0, z),
+            Vec3::new(x1, y1, z),
+            Vec3::new(x0, y1, z),
+        ],
+        m,
+    )
+}
+
+/// Solid angle of the rectangle [0,x]×[0,y] at z = 0 seen from (0,0,h), signed by x·y.
+fn corner_solid_angle(x: f64, y: f64, h: f64) -> f64 {
+    (x * y / (h * (x * x + y * y + h * h).sqrt())).atan()
+}
+
+/// Solid angle of [x0,x1]×[y0,y1] at z = 0 seen from (0,0,h) (corner decomposition).
+fn rect_solid_angle(x0: f64, x1: f64, y0: f64, y1: f64, h: f64) -> f64 {
+    corner_solid_angle(x1, y1, h) - corner_solid_angle(x0, y1, h) - corner_solid_angle(x1, y0, h)
+        + corner_solid_angle(x0, y0, h)
+}
+
+#[test]
+fn point_source_over_a_square() {
+    // E_mean = I·Ω/A: the flux a point source of I cd sends into the solid angle Ω.
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let floor = scene.add_mesh(rect(-1.0, 1.0, -1.0, 1.0, 0.0, grey));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.0, 0.0, 1.5), 100.0));
+    let e = measure(&scene, &["Floor"], 400_000);
+    let exact = 100.0 * rect_solid_angle(-1.0, 1.0, -1.0, 1.0, 1.5) / 4.0;
+    assert_close(&e[0], exact, "point over square");
+}
+
+#[test]
+fn off_axis_point_source() {
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.3)));
+    let patch = scene.add_mesh(rect(0.5, 2.0, -0.25, 1.0, 0.0, grey));
+    scene.add_instance("Patch", patch, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.0, 0.0, 0.8), 50.0));
+    let e = measure(&scene, &["Patch"], 1_000_000);
+    let area = 1.5 * 1.25;
+    let exact = 50.0 * rect_solid_angle(0.5, 2.0, -0.25, 1.0, 0.8) / area;
+    assert_close(&e[0], exact, "off-axis point");
+}
+
+/// View factor between two coaxial parallel rectangles a × b, distance c apart (Howell,
+/// A Catalog of Radiation Heat Transfer Configuration Factors, C-11).
+fn parallel_rectangles(a: f64, b: f64, c: f64) -> f64 {
+    let (x, y) = (a / c, b / c);
+    let (x2, y2) = (x * x, y * y);
+    2.0 / (PI * x * y)
+        * (((1.0 + x2) * (1.0 + y2) / (1.0 + x2 + y2)).sqrt().ln()
+            + x * (1.0 + y2).sqrt() * (x / (1.0 + y2).sqrt()).atan()
+            + y * (1.0 + x2).sqrt() * (y / (1.0 + x2).sqrt()).atan()
+            - x * x.atan()
+            - y * y.atan())
+}
+
+#[test]
+fn parallel_lambertian_area_source() {
+    // A 1 × 0.6 m panel of luminance L facing down onto an equal panel 0.5 m below:
+    // E = π·L·A·F₁₂ / A = π·L·F₁₂.
+    let lum = 1000.0f32;
+    let mut scene = Scene::default();
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let glow = scene.add_material(Material::emitter("Glow", Vec3::splat(lum)));
+    let receiver = scene.add_mesh(rect(0.0, 1.0, 0.0, 0.6, 0.0, black));
+    // Clockwise seen from above, so its front face looks down.
+    let emitter = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(0.0, 0.0, 0.5),
+            Vec3::new(0.0, 0.6, 0.5),
+            Vec3::new(1.0, 0.6, 0.5),
+            Vec3::new(1.0, 0.0, 0.5),
+        ],
+        glow,
+    ));
+    scene.add_instance("Receiver", receiver, Mat4::IDENTITY);
+    scene.add_instance("Panel", emitter, Mat4::IDENTITY);
+    let e = measure(&scene, &["Receiver"], 400_000);
+    let exact = PI * lum as f64 * parallel_rectangles(1.0, 0.6, 0.5);
+    assert_close(&e[0], exact, "parallel area source");
+}
+
+#[test]
+fn closed_room_interreflection() {
+    // Every photon arrives on the walls 1/(1 − ρ) times on average: E = Φ/(A(1 − ρ)).
+    let rho = 0.8f32;
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let e = measure(&scene, &["Room"], 200_000);
+    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
+    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    assert_close(&e[0], exact, "closed room");
+}
+
+#[test]
+fn thesis_bounce_cap_under_counts_a_bright_room() {
+    // With at most 4 bounces after the first hit the room gets Φ(1 − ρ⁵)/(A(1 − ρ)).
+    let rho = 0.8f32;
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let accel = Accel::new(&scene);
+    let s = TraceSettings {
+        max_bounces: 4,
+        ..settings(200_000)
+    };
+    let r = trace(&scene, &accel, &[0], &s, None);
+    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
+    let exact = 4.0 * PI * 100.0 * (1.0 - (rho as f64).powi(5)) / (area * (1.0 - rho as f64));
+    assert_close(&r.estimate(0, area), exact, "capped room");
+}
+
+#[test]
+fn sun_on_a_tilted_plane() {
+    // A plane tilted 35° from the horizontal under a vertical sun of E lx gets E·cos 35°.
+    let tilt = 35f32.to_radians();
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let plane = scene.add_mesh(rect(-1.0, 1.0, -0.5, 0.5, 0.0, grey));
+    scene.add_instance("Roof", plane, Mat4::from_rotation_x(tilt));
+    scene.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: -Vec3::Z,
+            illuminance: Vec3::splat(10_000.0),
+        },
+    });
+    let e = measure(&scene, &["Roof"], 400_000);
+    assert_close(&e[0], 10_000.0 * (tilt as f64).cos(), "tilted plane");
+}
+
+#[test]
+fn mirror_adds_the_image_source() {
+    // A lamp 1 m above a large mirror (K_s = 0.9); a black target 2 m above the lamp
+    // sees the lamp at 2 m and its image at 4 m: E = I(Ω₂ + K_s Ω₄)/A.
+    let mut scene = Scene::default();
+    let mirror = scene.add_material(Material::mirror("Mirror", Vec3::splat(0.9)));
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let m = scene.add_mesh(rect(-50.0, 50.0, -50.0, 50.0, 0.0, mirror));
+    let t = scene.add_mesh(rect(-0.5, 0.5, -0.5, 0.5, 3.0, black));
+    scene.add_instance("Mirror", m, Mat4::IDENTITY);
+    scene.add_instance("Target", t, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.0, 0.0, 1.0), 100.0));
+    let e = measure(&scene, &["Target"], 1_000_000);
+    let direct = rect_solid_angle(-0.5, 0.5, -0.5, 0.5, 2.0);
+    let image = rect_solid_angle(-0.5, 0.5, -0.5, 0.5, 4.0);
+    assert_close(&e[0], 100.0 * (direct + 0.9 * image), "mirror image");
+}
+
+#[test]
+fn glass_slab_transmits_by_fresnel() {
+    // A sun at normal incidence through a clear slab of index 1.5 (R = 0.04 per face,
+    // all inner reflections summed): T = (1 − R)/(1 + R).
+    let mut scene = Scene::default();
+    let glass = scene.add_material(Material::glass("Glass", 1.5));
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let slab = scene.add_mesh(Mesh::cuboid(
+        Vec3::new(-2.0, -2.0, 1.0),
+        Vec3::new(2.0, 2.0, 1.2),
+        glass,
+    ));
+    let target = scene.add_mesh(rect(-0.5, 0.5, -0.5, 0.5, 0.0, black));
+    scene.add_instance("Slab", slab, Mat4::IDENTITY);
+    scene.add_instance("Target", target, Mat4::IDENTITY);
+    scene.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: -Vec3::Z,
+            illuminance: Vec3::splat(1000.0),
+        },
+    });
+    let e = measure(&scene, &["Target"], 2_000_000);
+    let r = 0.04;
+    assert_close(&e[0], 1000.0 * (1.0 - r) / (1.0 + r), "glass slab");
+}
+
+#[test]
+fn spot_light_flux_reaches_the_floor() {
+    // All of a spot's flux 2πI((1 − cos θi) + (cos θi − cos θo)/3) lands on a floor that
+    // covers its cone.
+    let mut scene = Scene::default();
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let floor = scene.add_mesh(rect(-10.0, 10.0, -10.0, 10.0, 0.0, black));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    let (inner, outer) = (0.3f32, 0.6f32);
+    scene.lights.push(Light {
+        name: "Spot".into(),
+        kind: LightKind::Spot {
+            position: Vec3::new(1.0, 0.0, 2.0),
+            direction: -Vec3::Z,
+            intensity: Vec3::splat(500.0),
+            inner,
+            outer,
+        },
+    });
+    let e = measure(&scene, &["Floor"], 100_000);
+    let (ci, co) = (inner.cos() as f64, outer.cos() as f64);
+    let flux = 2.0 * PI * 500.0 * ((1.0 - ci) + (ci - co) / 3.0);
+    // Every photon lands: the estimate has no variance, so compare to rounding.
+    assert!((e[0].mean - flux / 400.0).abs() < 1e-4 * flux / 400.0);
+}
+
+#[test]
+fn energy_is_conserved() {
+    // In an open grey box (ρ = 0.5) lit by a lamp, absorbed + escaped = emitted:
+    // (1 − ρ)·E·A + escaped/N = Φ. The two terms are correlated per photon, so the
+    // tolerance adds their standard errors (Cauchy–Schwarz bound on the sum's σ).
+    let rho = 0.5f64;
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho as f32)));
+    let mut open_box = Mesh::cuboid(Vec3::ZERO, Vec3::new(2.0, 2.0, 2.0), grey);
+    open_box.triangles.truncate(2); // keep the floor…
+    let walls = Mesh::cuboid(Vec3::ZERO, Vec3::new(2.0, 2.0, 2.0), grey);
+    open_box.triangles.extend_from_slice(&walls.triangles[4..]); // …and the four walls
+    open_box.materials = vec![grey; open_box.triangles.len()];
+    let b = scene.add_mesh(open_box);
+    scene.add_instance("Box", b, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.7, 1.2, 1.0), 10.0));
+    let accel = Accel::new(&scene);
+    let r = trace(&scene, &accel, &[0], &settings(400_000), None);
+    let area = scene.surface_area(0) as f64;
+    let e = r.estimate(0, area);
+    let absorbed = (1.0 - rho) * e.mean * area;
+    let n = r.photons as f64;
+    let escaped = r.escaped / n;
+    let flux = 4.0 * PI * 10.0;
+    // Each photon's escape is 0 or Φ: a Bernoulli mean with σ = Φ·sqrt(p(1 − p)/N).
+    let p = escaped / flux;
+    let se = (1.0 - rho) * area * e.std_error + flux * (p * (1.0 - p) / n).sqrt();
+    assert!(
+        (absorbed + escaped - flux).abs() < Z * se,
+        "{absorbed} + {escaped} vs {flux}"
+    );
+    assert!(p > 0.1 && p < 0.9);
+}
+
+#[test]
+fn same_bits_on_one_and_two_threads() {
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.7)));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(3.0, 2.0, 2.5), grey));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 1.0, 2.0), 100.0));
+    let accel = Accel::new(&scene);
+    let s = settings(3 * invlight_photon::CHUNK + 17);
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| trace(&scene, &accel, &[0], &s, None))
+    };
+    assert_eq!(run(1), run(2));
+    assert_eq!(run(2), run(3));
+}
