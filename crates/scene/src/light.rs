@@ -58,9 +58,7 @@ impl LightKind {
     /// Position of a point or spot light.
     pub fn position(&self) -> Option<Vec3> {
         match self {
-            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
-                Some(*position)
-            }
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => Some(*position),
             LightKind::Directional { .. } => None,
         }
     }

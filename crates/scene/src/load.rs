@@ -84,9 +84,7 @@ pub(crate) fn scale_scene(scene: &mut Scene, s: f32) {
     }
     for light in &mut scene.lights {
         match &mut light.kind {
-            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
-                *position *= s
-            }
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => *position *= s,
             LightKind::Directional { .. } => {}
         }
     }

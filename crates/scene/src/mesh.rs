@@ -39,7 +39,9 @@ impl Mesh {
                 if z { max.z } else { min.z },
             )
         };
-        let positions: Vec<Vec3> = (0..8).map(|i| p(i & 1 != 0, i & 2 != 0, i & 4 != 0)).collect();
+        let positions: Vec<Vec3> = (0..8)
+            .map(|i| p(i & 1 != 0, i & 2 != 0, i & 4 != 0))
+            .collect();
         // Faces as counter-clockwise quads seen from outside.
         let faces = [
             [0, 2, 3, 1], // -z

@@ -166,7 +166,11 @@ impl Scene {
         self.surfaces[surface as usize]
             .instances
             .iter()
-            .map(|&i| self.meshes[self.instances[i as usize].mesh as usize].triangles.len())
+            .map(|&i| {
+                self.meshes[self.instances[i as usize].mesh as usize]
+                    .triangles
+                    .len()
+            })
             .sum()
     }
 
