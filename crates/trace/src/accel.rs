@@ -5,7 +5,7 @@
 use crate::holes::{HOLE_THICKNESS, HoleVolume};
 use crate::ray::{Hit, Interaction, Ray};
 use crate::triangle::{Tri, TriRay};
-use crate::wide::{self, NodeRay};
+use crate::wide::{self, NodeRay, NodeTest};
 use glam::{Affine3A, Vec2, Vec3, Vec3A};
 use invlight_scene::{InstanceId, MaterialId, Mesh, Scene};
 use obvhs::aabb::Aabb;
@@ -64,6 +64,8 @@ struct MeshAttrs {
 #[derive(Debug, Clone, Copy)]
 struct TlasItem {
     object_from_world: Affine3A,
+    /// The transform is the identity: the world ray's constants serve as they are.
+    identity: bool,
     blas: u32,
     instance: InstanceId,
 }
@@ -88,11 +90,14 @@ pub struct Accel {
     items: Vec<TlasItem>,
     holes: Vec<HoleVolume>,
     stats: AccelStats,
+    /// Whether the CPU runs the AVX2 traversal.
+    avx2: bool,
 }
 
 /// The build quality of both levels: obvhs's "medium" preset (PLOC with search radius
-/// and reinsertion, up to 3 triangles per leaf) measured fastest to trace per build
-/// second here (BENCHMARKS-trace.md).
+/// and reinsertion, up to 3 triangles per leaf). Its "fast", "slow" (spatial pre-splits)
+/// and "very slow" presets traced Sponza within ±10 % of it, inside the noise, while
+/// "slow" took twice and "very slow" six times as long to build (BENCHMARKS-trace.md).
 fn build_params() -> BvhBuildParams {
     BvhBuildParams::medium_build()
 }
@@ -137,6 +142,7 @@ impl Accel {
             items: Vec::new(),
             holes: Vec::new(),
             stats,
+            avx2: avx2_available(),
         };
         accel.update_instances(scene);
         accel
@@ -180,6 +186,7 @@ impl Accel {
                 boxes.push(world_box(lo, hi, &p.world_from_object));
                 candidates.push(TlasItem {
                     object_from_world: p.object_from_world,
+                    identity: p.world_from_object == Affine3A::IDENTITY,
                     blas: p.mesh,
                     instance: id as InstanceId,
                 });
@@ -226,18 +233,53 @@ impl Accel {
 
     /// The closest hit with `0 < t < ray.t_max`, skipping surfaces inside holes.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU reports AVX2 and FMA.
+            return unsafe { self.intersect_avx2(ray) };
+        }
+        self.closest::<wide::Portable>(ray)
+    }
+
+    /// Whether anything outside the holes blocks the ray before `ray.t_max`.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `intersect`.
+            return unsafe { self.occluded_avx2(ray) };
+        }
+        self.any::<wide::Portable>(ray)
+    }
+
+    /// `intersect` compiled for AVX2 (8 child boxes per instruction), chosen at run time
+    /// so one binary runs everywhere and is fast where it can be.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn intersect_avx2(&self, ray: &Ray) -> Option<Hit> {
+        self.closest::<wide::Avx2>(ray)
+    }
+
+    /// `occluded` compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
+        self.any::<wide::Avx2>(ray)
+    }
+
+    #[inline(always)]
+    fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
         let mut best = None;
-        self.trace(ray, |hit| {
+        self.trace::<T, _>(ray, |hit| {
             best = Some(hit);
             false
         });
         best
     }
 
-    /// Whether anything outside the holes blocks the ray before `ray.t_max`.
-    pub fn occluded(&self, ray: &Ray) -> bool {
+    #[inline(always)]
+    fn any<T: NodeTest>(&self, ray: &Ray) -> bool {
         let mut blocked = false;
-        self.trace(ray, |_| {
+        self.trace::<T, _>(ray, |_| {
             blocked = true;
             true
         });
@@ -247,43 +289,59 @@ impl Accel {
     /// Walks both levels; `accept` receives each hit nearer than every earlier accepted
     /// one (the ray is shortened to it) and returns `true` to stop.
     #[inline(always)]
-    fn trace<F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
+    fn trace<T: NodeTest, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
         let origin = Vec3A::from(ray.origin);
         let dir = Vec3A::from(ray.dir);
         let world = NodeRay::new(origin, dir);
+        let world_tri = TriRay::new(origin, dir);
         let mut t_max = ray.t_max;
         let holes = &self.holes[..];
-        wide::traverse(&self.tlas, &world, &mut t_max, |slot, t_max| {
-            let item = &self.items[slot as usize];
-            let blas = &self.blas[item.blas as usize];
-            let o = item.object_from_world.transform_point3a(origin);
-            let d = item.object_from_world.transform_vector3a(dir);
-            let node_ray = NodeRay::new(o, d);
-            let tri_ray = TriRay::new(o, d);
-            let mut stop = false;
-            wide::traverse(&blas.nodes, &node_ray, t_max, |slot, t_max| {
-                let tri = &blas.tris[slot as usize];
-                let Some(h) = tri_ray.intersect(tri, *t_max) else {
-                    return false;
+        wide::traverse::<T, _, _>(
+            &self.tlas,
+            &self.items,
+            &world,
+            &mut t_max,
+            |slot, t_max| {
+                let item = &self.items[slot as usize];
+                let blas = &self.blas[item.blas as usize];
+                let (node_ray, tri_ray) = if item.identity {
+                    (world, world_tri)
+                } else {
+                    let o = item.object_from_world.transform_point3a(origin);
+                    let d = item.object_from_world.transform_vector3a(dir);
+                    (NodeRay::new(o, d), TriRay::new(o, d))
                 };
-                if !holes.is_empty() {
-                    let p = origin + dir * h.t;
-                    if holes.iter().any(|v| v.contains(p)) {
-                        return false;
-                    }
-                }
-                *t_max = h.t;
-                stop = accept(Hit {
-                    t: h.t,
-                    instance: item.instance,
-                    triangle: tri.index,
-                    u: h.u,
-                    v: h.v,
-                });
+                let mut stop = false;
+                wide::traverse::<T, _, _>(
+                    &blas.nodes,
+                    &blas.tris,
+                    &node_ray,
+                    t_max,
+                    |slot, t_max| {
+                        let tri = &blas.tris[slot as usize];
+                        let Some(h) = tri_ray.intersect(tri, *t_max) else {
+                            return false;
+                        };
+                        if !holes.is_empty() {
+                            let p = origin + dir * h.t;
+                            if holes.iter().any(|v| v.contains(p)) {
+                                return false;
+                            }
+                        }
+                        *t_max = h.t;
+                        stop = accept(Hit {
+                            t: h.t,
+                            instance: item.instance,
+                            triangle: tri.index,
+                            u: h.u,
+                            v: h.v,
+                        });
+                        stop
+                    },
+                );
                 stop
-            });
-            stop
-        });
+            },
+        );
     }
 
     /// The surface at `hit` (a hit of `ray` returned by [`Accel::intersect`]): point
@@ -322,6 +380,21 @@ impl Accel {
             triangle: hit.triangle,
         }
     }
+}
+
+/// Whether the AVX2 traversal may run on this CPU.
+fn avx2_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        is_x86_feature_detected!("avx2")
+            && is_x86_feature_detected!("fma")
+            && is_x86_feature_detected!("bmi1")
+            && is_x86_feature_detected!("bmi2")
+            && is_x86_feature_detected!("lzcnt")
+            && is_x86_feature_detected!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
 }
 
 /// World bounds of the object box `lo..hi` under `m`, from its eight corners.
@@ -399,5 +472,51 @@ fn build_blas(mesh: &Mesh, hole_material: &[bool]) -> Blas {
         nodes: bvh.nodes,
         bounds: Some((lo, hi)),
         hole_bounds,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use invlight_scene::{Mat4, Material, Quat};
+
+    /// The AVX2 and portable node tests must agree hit for hit (the public functions
+    /// take the AVX2 path wherever the CPU allows, so the portable one is checked here).
+    #[test]
+    fn portable_and_avx2_traversals_agree() {
+        let mut scene = Scene::default();
+        let mat = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+        let mut state = 1u32;
+        let mut next = || {
+            // Park–Miller minimal standard generator, fixed seed.
+            state = ((state as u64 * 48_271) % 0x7fff_ffff) as u32;
+            state as f32 / 0x7fff_ffff as f32 * 2.0 - 1.0
+        };
+        let mut mesh = Mesh::default();
+        for t in 0..500u32 {
+            let c = Vec3::new(next(), next(), next()) * 3.0;
+            for _ in 0..3 {
+                mesh.positions
+                    .push(c + Vec3::new(next(), next(), next()) * 0.4);
+            }
+            mesh.triangles.push([3 * t, 3 * t + 1, 3 * t + 2]);
+            mesh.materials.push(mat);
+        }
+        let id = scene.add_mesh(mesh);
+        scene.add_instance("a", id, Mat4::IDENTITY);
+        let rot = Mat4::from_rotation_translation(Quat::from_rotation_z(0.7), Vec3::X);
+        scene.add_instance("b", id, rot);
+        let accel = Accel::new(&scene);
+        let mut hits = 0;
+        for _ in 0..5000 {
+            let origin = Vec3::new(next(), next(), next()) * 5.0;
+            let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
+            let ray = Ray::new(origin, dir);
+            let portable = accel.closest::<wide::Portable>(&ray);
+            assert_eq!(accel.intersect(&ray), portable);
+            assert_eq!(accel.occluded(&ray), accel.any::<wide::Portable>(&ray));
+            hits += portable.is_some() as usize;
+        }
+        assert!(hits > 500, "{hits} hits");
     }
 }

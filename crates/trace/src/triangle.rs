@@ -6,7 +6,7 @@
 //! exact negatives of each other and a ray through the edge hits one of them. Edge
 //! functions that round to zero are recomputed in double precision, as the paper does.
 
-use glam::{Vec3, Vec3A};
+use glam::{Mat3A, Vec3, Vec3A};
 
 /// A triangle as stored for intersection: its object-space corners and its index in the
 /// mesh (40 bytes, so that a leaf's triangles sit in one or two cache lines).
@@ -16,16 +16,12 @@ pub(crate) struct Tri {
     pub index: u32,
 }
 
-/// Per-ray constants of the sheared frame.
+/// Per-ray constants of the sheared frame: `shear · (p − origin)` gives a vertex's
+/// coordinates (x, y across the ray, z along it scaled to t).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TriRay {
     origin: Vec3A,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    shear: Mat3A,
 }
 
 /// A hit: distance and the barycentrics of vertices 1 and 2.
@@ -53,40 +49,34 @@ impl TriRay {
         if dir[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
+        let (sx, sy, sz) = (dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
+        // Column k of the shear holds what coordinate k contributes to (x, y, z): the
+        // paper's `A[kx] − Sx·A[kz]`, `A[ky] − Sy·A[kz]`, `Sz·A[kz]`, each sum having a
+        // single rounded product, so every vertex is transformed exactly as in the paper.
+        let mut cols = [Vec3A::ZERO; 3];
+        cols[kx] = Vec3A::X;
+        cols[ky] = Vec3A::Y;
+        cols[kz] = Vec3A::new(-sx, -sy, sz);
         TriRay {
             origin,
-            kx,
-            ky,
-            kz,
-            sx: dir[kx] / dir[kz],
-            sy: dir[ky] / dir[kz],
-            sz: 1.0 / dir[kz],
+            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
         }
     }
 
     /// The hit of this ray with `tri` at `0 < t < t_max`, from either side.
     #[inline(always)]
     pub fn intersect(&self, tri: &Tri, t_max: f32) -> Option<TriHit> {
-        let a = Vec3A::from(tri.v[0]) - self.origin;
-        let b = Vec3A::from(tri.v[1]) - self.origin;
-        let c = Vec3A::from(tri.v[2]) - self.origin;
-        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
-        let ax = a[kx] - self.sx * a[kz];
-        let ay = a[ky] - self.sy * a[kz];
-        let bx = b[kx] - self.sx * b[kz];
-        let by = b[ky] - self.sy * b[kz];
-        let cx = c[kx] - self.sx * c[kz];
-        let cy = c[ky] - self.sy * c[kz];
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
+        let a = self.shear * (Vec3A::from(tri.v[0]) - self.origin);
+        let b = self.shear * (Vec3A::from(tri.v[1]) - self.origin);
+        let c = self.shear * (Vec3A::from(tri.v[2]) - self.origin);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut v = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
         if u == 0.0 || v == 0.0 || w == 0.0 {
-            let (ax, ay, bx, by, cx, cy) = (
-                ax as f64, ay as f64, bx as f64, by as f64, cx as f64, cy as f64,
-            );
-            u = (cx * by - cy * bx) as f32;
-            v = (ax * cy - ay * cx) as f32;
-            w = (bx * ay - by * ax) as f32;
+            let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+            u = (c.x * b.y - c.y * b.x) as f32;
+            v = (a.x * c.y - a.y * c.x) as f32;
+            w = (b.x * a.y - b.y * a.x) as f32;
         }
         if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
             return None;
@@ -95,15 +85,11 @@ impl TriRay {
         if det == 0.0 {
             return None;
         }
-        let az = self.sz * a[kz];
-        let bz = self.sz * b[kz];
-        let cz = self.sz * c[kz];
-        let t_scaled = u * az + v * bz + w * cz;
+        let t_scaled = u * a.z + v * b.z + w * c.z;
         // Two-sided: compare with the sign of det folded in, t > 0 strictly.
         let sign = det.to_bits() & 0x8000_0000;
         let t_signed = f32::from_bits(t_scaled.to_bits() ^ sign);
-        let det_abs = det.abs();
-        if !(t_signed > 0.0 && t_signed < t_max * det_abs) {
+        if !(t_signed > 0.0 && t_signed < t_max * det.abs()) {
             return None;
         }
         let inv = 1.0 / det;
