@@ -1,0 +1,273 @@
+//! Random-ray throughput of [`Accel`] on an OBJ file (positions and faces only) or the
+//! Cornell box, with obvhs's own flat traversal as the yardstick.
+//!
+//! ```text
+//! unzip -o /work/shared/scenes/sponza/sponza.zip -d /tmp/scenes
+//! cargo run --release -p invlight-trace --example raybench -- /tmp/scenes/sponza.obj
+//! cargo run --release -p invlight-trace --example raybench -- cornell
+//! ```
+//!
+//! Rays start uniformly in the scene's bounding box with uniform directions (fixed seed).
+//! Every figure of one run is measured on the same rays, so ratios between variants are
+//! meaningful on a noisy shared machine even when absolute rates drift.
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::Rng;
+use glam::{Mat4, Vec3, Vec3A};
+use invlight_scene::{Material, Mesh, Scene};
+use invlight_trace::{Accel, Ray};
+use obvhs::{
+    BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris, ray::RayHit, triangle::Triangle,
+};
+use rayon::prelude::*;
+use std::time::{Duration, Instant};
+
+const CORNELL: &str = "/work/shared/scenes/cornell-box/cornell_box.obj";
+
+/// Groups (`o`/`g`) of an OBJ file as triangle meshes: positions and fan-triangulated
+/// faces only.
+fn read_obj(path: &str) -> Result<Vec<(String, Mesh)>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let mut positions: Vec<Vec3> = Vec::new();
+    let mut groups: Vec<(String, Mesh)> = vec![("default".into(), Mesh::default())];
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let bad = |what: &str| format!("{path}:{}: bad {what}", n + 1);
+        match words.next() {
+            Some("v") => {
+                let c: Vec<f32> = words
+                    .take(3)
+                    .map(|w| w.parse().map_err(|_| bad("vertex")))
+                    .collect::<Result<_, _>>()?;
+                if c.len() != 3 {
+                    return Err(bad("vertex"));
+                }
+                positions.push(Vec3::new(c[0], c[1], c[2]));
+            }
+            Some("o" | "g") => groups.push((words.collect::<Vec<_>>().join(" "), Mesh::default())),
+            Some("f") => {
+                let idx: Vec<u32> = words
+                    .map(|w| {
+                        let i: i64 = w
+                            .split('/')
+                            .next()
+                            .unwrap_or("")
+                            .parse()
+                            .map_err(|_| bad("face"))?;
+                        let i = if i < 0 {
+                            positions.len() as i64 + i
+                        } else {
+                            i - 1
+                        };
+                        u32::try_from(i).map_err(|_| bad("face index"))
+                    })
+                    .collect::<Result<_, _>>()?;
+                let mesh = &mut groups.last_mut().expect("a default group").1;
+                for k in 1..idx.len().saturating_sub(1) {
+                    mesh.triangles.push([idx[0], idx[k], idx[k + 1]]);
+                    mesh.materials.push(0);
+                }
+            }
+            _ => {}
+        }
+    }
+    // Each group keeps only the vertices it uses.
+    Ok(groups
+        .into_iter()
+        .filter(|(_, m)| !m.triangles.is_empty())
+        .map(|(name, mut m)| {
+            let mut map = std::collections::HashMap::new();
+            for t in &mut m.triangles {
+                for i in t.iter_mut() {
+                    let next = map.len() as u32;
+                    *i = *map.entry(*i).or_insert(next);
+                }
+            }
+            let mut used = vec![Vec3::ZERO; map.len()];
+            for (&old, &new) in &map {
+                used[new as usize] = positions.get(old as usize).copied().unwrap_or(Vec3::ZERO);
+            }
+            m.positions = used;
+            (name, m)
+        })
+        .collect())
+}
+
+/// The groups as one scene: one instance per group, or one mesh for everything.
+fn scene_of(groups: &[(String, Mesh)], merged: bool) -> Scene {
+    let mut scene = Scene::default();
+    scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    if merged {
+        let mut all = Mesh::default();
+        for (_, m) in groups {
+            let base = all.positions.len() as u32;
+            all.positions.extend(&m.positions);
+            all.triangles
+                .extend(m.triangles.iter().map(|t| t.map(|i| i + base)));
+            all.materials.extend(&m.materials);
+        }
+        let id = scene.add_mesh(all);
+        scene.add_instance("all", id, Mat4::IDENTITY);
+    } else {
+        for (name, m) in groups {
+            let id = scene.add_mesh(m.clone());
+            scene.add_instance(name, id, Mat4::IDENTITY);
+        }
+    }
+    scene
+}
+
+fn rays(scene: &Scene, n: usize) -> Vec<Ray> {
+    let (lo, hi) = scene.bounds().expect("a non-empty scene");
+    let mut rng = Rng::new(42);
+    (0..n)
+        .map(|_| Ray::new(rng.in_box(lo, hi), rng.direction()))
+        .collect()
+}
+
+/// CPU time this thread has run, from the scheduler (ns): unlike wall time it does not
+/// count the time other processes on this shared machine take the core away.
+fn thread_cpu_ns() -> u64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(0)
+}
+
+/// Rays per CPU-second of `f` on one thread (best of 3 passes), rays per wall-second on
+/// the rayon pool (best of 3), and a checksum (hits) so nothing is optimised away.
+fn rate<F: Fn(&Ray) -> bool + Sync>(rays: &[Ray], f: F) -> (f64, f64, usize) {
+    let mut single = 0.0f64;
+    let mut parallel = 0.0f64;
+    let mut hits = 0;
+    for _ in 0..3 {
+        let (start, wall) = (thread_cpu_ns(), Instant::now());
+        hits = rays.iter().filter(|r| f(r)).count();
+        let ns = thread_cpu_ns() - start;
+        let secs = if ns > 0 {
+            ns as f64 * 1e-9
+        } else {
+            wall.elapsed().as_secs_f64()
+        };
+        single = single.max(rays.len() as f64 / secs);
+        let start = Instant::now();
+        let par_hits = rays
+            .par_chunks(4096)
+            .map(|c| c.iter().filter(|r| f(r)).count())
+            .sum::<usize>();
+        parallel = parallel.max(rays.len() as f64 / start.elapsed().as_secs_f64());
+        assert_eq!(hits, par_hits);
+    }
+    (single, parallel, hits)
+}
+
+fn report(label: &str, (single, parallel, hits): (f64, f64, usize), base: f64, n: usize) {
+    println!(
+        "{label:<44} {:>6.2} M/s per core  {:>6.2} M/s wall on {} threads  ({:.2}× obvhs flat)  hits {:.1} %",
+        single / 1e6,
+        parallel / 1e6,
+        rayon::current_num_threads(),
+        single / base,
+        100.0 * hits as f64 / n as f64
+    );
+}
+
+fn main() -> Result<(), String> {
+    let arg = std::env::args().nth(1).unwrap_or_else(|| "cornell".into());
+    let path = if arg == "cornell" { CORNELL } else { &arg };
+    let n: usize = std::env::args()
+        .nth(2)
+        .map_or(Ok(1_000_000), |s| s.parse())
+        .map_err(|_| "bad ray count")?;
+    let groups = read_obj(path)?;
+    let per_group = scene_of(&groups, false);
+    let merged = scene_of(&groups, true);
+    let triangles: usize = groups.iter().map(|(_, m)| m.triangles.len()).sum();
+    println!(
+        "{path}: {triangles} triangles in {} groups; {n} random rays",
+        groups.len()
+    );
+    let rays = rays(&merged, n);
+
+    // Yardstick: obvhs's own traversal and Möller–Trumbore test over one flat BVH.
+    let tris: Vec<Triangle> = merged.meshes[0]
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|i| Vec3A::from(merged.meshes[0].positions[i as usize]));
+            Triangle {
+                v0: p[0],
+                v1: p[1],
+                v2: p[2],
+            }
+        })
+        .collect();
+    let start = Instant::now();
+    let flat = build_cwbvh_from_tris(
+        &tris,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
+    let flat_build = start.elapsed().as_secs_f64();
+    let flat_tris: Vec<Triangle> = flat
+        .primitive_indices
+        .iter()
+        .map(|&i| tris[i as usize])
+        .collect();
+    let obvhs_ray = |r: &Ray| obvhs::ray::Ray::new_inf(r.origin.into(), r.dir.into());
+    let base = rate(&rays, |r| {
+        let mut hit = RayHit::none();
+        flat.ray_traverse(obvhs_ray(r), &mut hit, |ray, i| flat_tris[i].intersect(ray))
+    });
+    println!(
+        "obvhs flat CwBvh build {flat_build:.3} s, {} nodes",
+        flat.nodes.len()
+    );
+    report("obvhs flat: ray_traverse, Möller", base, base.0, n);
+    let occl = rate(&rays, |r| {
+        !flat.ray_traverse_miss(obvhs_ray(r), |ray, i| flat_tris[i].intersect(ray))
+    });
+    report("obvhs flat: ray_traverse_miss (any hit)", occl, base.0, n);
+
+    for (label, scene) in [
+        ("one mesh", &merged),
+        ("one instance per group", &per_group),
+    ] {
+        let start = Instant::now();
+        let accel = Accel::new(scene);
+        let build = start.elapsed().as_secs_f64();
+        let s = accel.stats();
+        let start = Instant::now();
+        let mut again = accel.clone();
+        let clone_time = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        again.update_instances(scene);
+        let update = start.elapsed().as_secs_f64();
+        println!(
+            "Accel, {label}: build {build:.3} s (BLAS {:.3} s), TLAS update {:.2} ms (clone {:.2} ms); {} instances, {} BLAS + {} TLAS nodes, depth {}, {:.1} MB",
+            s.blas_seconds,
+            update * 1e3,
+            clone_time * 1e3,
+            s.instances,
+            s.blas_nodes,
+            s.tlas_nodes,
+            s.max_depth,
+            s.bytes as f64 / 1e6
+        );
+        report(
+            &format!("Accel, {label}: intersect"),
+            rate(&rays, |r| accel.intersect(r).is_some()),
+            base.0,
+            n,
+        );
+        report(
+            &format!("Accel, {label}: occluded"),
+            rate(&rays, |r| accel.occluded(r)),
+            base.0,
+            n,
+        );
+    }
+    Ok(())
+}
