@@ -204,10 +204,18 @@ impl Accel {
             .collect();
         self.tlas = tlas.nodes;
 
-        let thickness = scene
-            .bounds()
-            .map_or(1.0, |(lo, hi)| (hi - lo).length().max(f32::MIN_POSITIVE))
-            * HOLE_THICKNESS;
+        // The scene's size from the instance boxes just computed (not from every vertex:
+        // this runs at every move).
+        let diagonal = boxes
+            .iter()
+            .fold(Aabb::empty(), |all, b| all.union(b))
+            .diagonal()
+            .length();
+        let thickness = if diagonal.is_finite() && diagonal > 0.0 {
+            diagonal * HOLE_THICKNESS
+        } else {
+            HOLE_THICKNESS
+        };
         self.holes = scene
             .instances
             .iter()

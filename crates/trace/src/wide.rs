@@ -41,11 +41,18 @@ impl NodeRay {
         NodeRay {
             origin,
             inv_dir: Vec3A::new(inv(dir.x), inv(dir.y), inv(dir.z)),
-            negative: [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0],
+            // The sign bit, not `< 0.0`: a component of −0.0 has the inverse −∞ (clamped
+            // to −10³⁰), so the slab test must take it as negative too, or near and far
+            // swap and the ray misses everything (a sun along `-Vec3::Z` did).
+            negative: [
+                dir.x.is_sign_negative(),
+                dir.y.is_sign_negative(),
+                dir.z.is_sign_negative(),
+            ],
             // The octant in obvhs's encoding (`ray_get_octant_inv4`).
-            oct_inv4: (if dir.x < 0.0 { 0 } else { 0x0404_0404 })
-                | (if dir.y < 0.0 { 0 } else { 0x0202_0202 })
-                | (if dir.z < 0.0 { 0 } else { 0x0101_0101 }),
+            oct_inv4: (if dir.x.is_sign_negative() { 0 } else { 0x0404_0404 })
+                | (if dir.y.is_sign_negative() { 0 } else { 0x0202_0202 })
+                | (if dir.z.is_sign_negative() { 0 } else { 0x0101_0101 }),
         }
     }
 }
