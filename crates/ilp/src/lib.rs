@@ -46,6 +46,7 @@ mod cache;
 mod compare;
 mod isoc;
 mod output;
+mod photons;
 mod problem;
 mod rng;
 mod space;
@@ -57,6 +58,7 @@ pub use compare::{Comparison, Interval, compare};
 pub use invlight_photon::Estimate;
 pub use isoc::{Admission, Isoc, Member};
 pub use output::{ObjectiveInfo, Output, csv_header, read_solutions};
+pub use photons::PhotonEvaluator;
 pub use problem::{Objective, Problem, ProblemError, VariableKind, VariableSpec};
 pub use rng::{SplitMix64, mix};
 pub use space::{

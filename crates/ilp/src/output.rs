@@ -150,14 +150,15 @@ impl<'b> Output<'b> {
     }
 
     /// Rewrites `result.json` atomically: readers see the old or the new file, never
-    /// half of one.
+    /// half of one. No fsync: the rename is atomic for readers, and syncing on every
+    /// ISOC change (every evaluation while the ISOC is a plateau of zeros) cost more
+    /// than the tracing of small scenes.
     pub fn write_result(&self, isoc: &Isoc) -> io::Result<()> {
         let tmp = self.result.with_extension("json.tmp");
         {
             let mut f = File::create(&tmp)?;
             serde_json::to_writer_pretty(&mut f, &self.result_json(isoc))?;
             writeln!(f)?;
-            f.sync_all()?;
         }
         std::fs::rename(&tmp, &self.result)
     }
