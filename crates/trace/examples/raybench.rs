@@ -231,12 +231,17 @@ fn main() -> Result<(), String> {
     });
     report("obvhs flat: ray_traverse_miss (any hit)", occl, base.0, n);
 
-    for (label, scene) in [
-        ("one mesh", &merged),
-        ("one instance per group", &per_group),
+    for (label, scene, bake) in [
+        ("one mesh", &merged, false),
+        ("one instance per group", &per_group, false),
+        ("groups baked (with_movable)", &per_group, true),
     ] {
         let start = Instant::now();
-        let accel = Accel::new(scene);
+        let accel = if bake {
+            Accel::with_movable(scene, &[])
+        } else {
+            Accel::new(scene)
+        };
         let build = start.elapsed().as_secs_f64();
         let s = accel.stats();
         let start = Instant::now();

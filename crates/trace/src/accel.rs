@@ -6,7 +6,7 @@ use crate::holes::{HOLE_THICKNESS, HoleVolume};
 use crate::ray::{Hit, Interaction, Ray};
 use crate::triangle::{Tri, TriRay};
 use crate::wide::{self, NodeRay, NodeTest};
-use glam::{Affine3A, Vec2, Vec3, Vec3A};
+use glam::{Affine3A, Mat4, Vec2, Vec3, Vec3A};
 use invlight_scene::{InstanceId, MaterialId, Mesh, Scene};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -45,10 +45,11 @@ pub struct AccelStats {
 struct Blas {
     nodes: Vec<CwBvhNode>,
     tris: Vec<Tri>,
-    /// Object-space bounds of the traced triangles, or `None` when there are none.
+    /// Bounds of the traced triangles, or `None` when there are none.
     bounds: Option<(Vec3, Vec3)>,
-    /// Object-space bounds of the mesh's hole triangles, if any.
-    hole_bounds: Option<(Vec3, Vec3)>,
+    /// For the merged BVH of static instances ([`Accel::with_movable`]): the instance of
+    /// each slot's triangle. Empty for a mesh's own BVH.
+    instances: Vec<InstanceId>,
 }
 
 /// What an interaction needs of a mesh beyond the BVH.
@@ -83,7 +84,15 @@ struct Placed {
 /// [`Accel::update_instances`]. Shared by reference across threads.
 #[derive(Debug, Clone)]
 pub struct Accel {
+    /// A BVH per mesh (empty for meshes no separate instance uses), then the merged BVH
+    /// of static instances.
     blas: Vec<Blas>,
+    /// Object-space bounds of each mesh's hole triangles.
+    hole_bounds: Vec<Option<(Vec3, Vec3)>>,
+    /// With [`Accel::with_movable`]: the instances kept separate, and the transform each
+    /// merged instance was baked with (`None` for separate ones).
+    movable: Option<Vec<InstanceId>>,
+    baked: Vec<Option<Mat4>>,
     meshes: Vec<MeshAttrs>,
     placed: Vec<Placed>,
     tlas: Vec<CwBvhNode>,
@@ -105,13 +114,82 @@ fn build_params() -> BvhBuildParams {
 impl Accel {
     /// Builds a BVH per mesh and the top level over the instances.
     pub fn new(scene: &Scene) -> Accel {
+        Accel::build(scene, None)
+    }
+
+    /// Like [`Accel::new`], but only the instances in `movable` get their own entry in
+    /// the top level; every other instance is baked in world space into one shared BVH.
+    ///
+    /// Use it when the caller knows which instances will move (the objects, lights and
+    /// holes a problem's variables place): a ray that starts inside the boxes of many
+    /// overlapping static instances then walks one tree instead of entering each of them
+    /// (Sponza's 34 groups as separate instances trace at 0.6–0.7× the single-tree rate;
+    /// BENCHMARKS-trace.md). [`Accel::update_instances`] still rebuilds only the top
+    /// level while just the movable instances move; if a baked instance's transform
+    /// changed, it rebuilds everything, correct but slow.
+    pub fn with_movable(scene: &Scene, movable: &[InstanceId]) -> Accel {
+        Accel::build(scene, Some(movable.to_vec()))
+    }
+
+    /// Builds the bottom level (a BVH per mesh used by a separate instance, plus the
+    /// merged BVH when `movable` is given), then the top level.
+    fn build(scene: &Scene, movable: Option<Vec<InstanceId>>) -> Accel {
         let start = Instant::now();
         let hole_material: Vec<bool> = scene.materials.iter().map(|m| m.hole).collect();
-        let blas: Vec<Blas> = scene
-            .meshes
-            .iter()
-            .map(|m| build_blas(m, &hole_material))
-            .collect();
+        let n = scene.instances.len();
+        let separate: Vec<bool> = match &movable {
+            None => vec![true; n],
+            Some(ids) => {
+                let mut v = vec![false; n];
+                for &i in ids {
+                    if let Some(s) = v.get_mut(i as usize) {
+                        *s = true;
+                    }
+                }
+                v
+            }
+        };
+        let mut needed = vec![false; scene.meshes.len()];
+        for (inst, &sep) in scene.instances.iter().zip(&separate) {
+            if sep && let Some(u) = needed.get_mut(inst.mesh as usize) {
+                *u = true;
+            }
+        }
+        let mut hole_bounds = Vec::with_capacity(scene.meshes.len());
+        let mut blas: Vec<Blas> = Vec::with_capacity(scene.meshes.len() + 1);
+        for (m, &needed) in scene.meshes.iter().zip(&needed) {
+            let (tris, holes) = mesh_triangles(m, &hole_material);
+            hole_bounds.push(holes);
+            blas.push(if needed {
+                build_blas(tris, Vec::new())
+            } else {
+                Blas::default()
+            });
+        }
+        let mut baked = vec![None; n];
+        if movable.is_some() {
+            let mut tris = Vec::new();
+            let mut owners = Vec::new();
+            for (id, inst) in scene.instances.iter().enumerate() {
+                if separate[id] || inst.transform.determinant() == 0.0 {
+                    continue;
+                }
+                let Some(mesh) = scene.meshes.get(inst.mesh as usize) else {
+                    continue;
+                };
+                let (local, _) = mesh_triangles(mesh, &hole_material);
+                if local.is_empty() {
+                    // A hole (or empty) instance: nothing to bake, free to move.
+                    continue;
+                }
+                baked[id] = Some(inst.transform);
+                for (v, t) in local {
+                    tris.push((v.map(|p| inst.transform.transform_point3(p)), t));
+                    owners.push(id as InstanceId);
+                }
+            }
+            blas.push(build_blas(tris, owners));
+        }
         let meshes = scene
             .meshes
             .iter()
@@ -136,6 +214,9 @@ impl Accel {
         };
         let mut accel = Accel {
             blas,
+            hole_bounds,
+            movable,
+            baked,
             meshes,
             placed: Vec::new(),
             tlas: Vec::new(),
@@ -144,18 +225,34 @@ impl Accel {
             stats,
             avx2: avx2_available(),
         };
-        accel.update_instances(scene);
+        accel.place_instances(scene);
         accel
     }
 
     /// Rebuilds the top level and the hole volumes from the scene's instance transforms,
-    /// keeping every mesh's BVH. The scene's meshes must be those `new` was given; if
-    /// their number changed, everything is rebuilt.
+    /// keeping every mesh's BVH. The scene's meshes, instances' meshes and materials'
+    /// hole flags must be those the structure was built with; if the number of meshes or
+    /// instances changed, or (see [`Accel::with_movable`]) a baked instance moved,
+    /// everything is rebuilt.
     pub fn update_instances(&mut self, scene: &Scene) {
-        if scene.meshes.len() != self.blas.len() {
-            *self = Accel::new(scene);
+        let moved_baked = self.movable.is_some()
+            && scene
+                .instances
+                .iter()
+                .zip(&self.baked)
+                .any(|(inst, b)| b.is_some_and(|m| m != inst.transform));
+        if scene.meshes.len() != self.meshes.len()
+            || scene.instances.len() != self.baked.len()
+            || moved_baked
+        {
+            *self = Accel::build(scene, self.movable.take());
             return;
         }
+        self.place_instances(scene);
+    }
+
+    /// The top level and hole volumes for the current transforms.
+    fn place_instances(&mut self, scene: &Scene) {
         let start = Instant::now();
         self.placed = scene
             .instances
@@ -177,6 +274,9 @@ impl Accel {
         let mut boxes = Vec::new();
         let mut candidates = Vec::new();
         for (id, p) in self.placed.iter().enumerate() {
+            if self.baked[id].is_some() {
+                continue;
+            }
             let Some(blas) = self.blas.get(p.mesh as usize) else {
                 continue;
             };
@@ -191,6 +291,18 @@ impl Accel {
                     instance: id as InstanceId,
                 });
             }
+        }
+        if self.movable.is_some()
+            && let Some(merged) = self.blas.last()
+            && let Some((lo, hi)) = merged.bounds
+        {
+            boxes.push(Aabb::new(lo.into(), hi.into()));
+            candidates.push(TlasItem {
+                object_from_world: Affine3A::IDENTITY,
+                identity: true,
+                blas: (self.blas.len() - 1) as u32,
+                instance: InstanceId::MAX,
+            });
         }
         let tlas = if boxes.is_empty() {
             obvhs::cwbvh::CwBvh::default()
@@ -220,7 +332,7 @@ impl Accel {
             .instances
             .iter()
             .filter_map(|inst| {
-                let (lo, hi) = self.blas.get(inst.mesh as usize)?.hole_bounds?;
+                let (lo, hi) = (*self.hole_bounds.get(inst.mesh as usize)?)?;
                 HoleVolume::new(lo, hi, &inst.transform, thickness)
             })
             .collect();
@@ -339,7 +451,11 @@ impl Accel {
                         *t_max = h.t;
                         stop = accept(Hit {
                             t: h.t,
-                            instance: item.instance,
+                            instance: if blas.instances.is_empty() {
+                                item.instance
+                            } else {
+                                blas.instances[slot as usize]
+                            },
                             triangle: tri.index,
                             u: h.u,
                             v: h.v,
@@ -419,9 +535,12 @@ fn world_box(lo: Vec3, hi: Vec3, m: &Affine3A) -> Aabb {
     b
 }
 
-/// Builds a mesh's BVH over its non-hole triangles; triangles with out-of-range vertex
-/// indices are left out.
-fn build_blas(mesh: &Mesh, hole_material: &[bool]) -> Blas {
+/// A triangle's corners and its index in its mesh.
+type Corners = ([Vec3; 3], u32);
+
+/// A mesh's traced (non-hole) triangles, and the bounds of its hole triangles; triangles
+/// with out-of-range vertex indices are left out.
+fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<(Vec3, Vec3)>) {
     let is_hole = |t: usize| {
         let m = mesh.materials.get(t).copied().unwrap_or(u32::MAX) as usize;
         hole_material.get(m).copied().unwrap_or(false)
@@ -445,41 +564,51 @@ fn build_blas(mesh: &Mesh, hole_material: &[bool]) -> Blas {
                 hi.max(v[0]).max(v[1]).max(v[2]),
             ));
         } else {
-            tris.push(Tri { v, index: t as u32 });
+            tris.push((v, t as u32));
         }
     }
+    (tris, hole_bounds)
+}
+
+/// The BVH over `tris`, with `owners[i]` the instance of `tris[i]` for a merged BVH
+/// (empty otherwise); the triangles are stored in the BVH's leaf order.
+fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>) -> Blas {
     if tris.is_empty() {
-        return Blas {
-            hole_bounds,
-            ..Blas::default()
-        };
+        return Blas::default();
     }
     let prims: Vec<Triangle> = tris
         .iter()
-        .map(|t| Triangle {
-            v0: t.v[0].into(),
-            v1: t.v[1].into(),
-            v2: t.v[2].into(),
+        .map(|(v, _)| Triangle {
+            v0: v[0].into(),
+            v1: v[1].into(),
+            v2: v[2].into(),
         })
         .collect();
     let bvh = builder::build_cwbvh_from_tris(&prims, build_params(), &mut Duration::default());
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);
-    for t in &tris {
-        for v in t.v {
-            lo = lo.min(v);
-            hi = hi.max(v);
+    for (v, _) in &tris {
+        for &p in v {
+            lo = lo.min(p);
+            hi = hi.max(p);
         }
     }
+    let order = &bvh.primitive_indices;
     Blas {
-        tris: bvh
-            .primitive_indices
+        tris: order
             .iter()
-            .map(|&i| tris[i as usize])
+            .map(|&i| {
+                let (v, index) = tris[i as usize];
+                Tri { v, index }
+            })
             .collect(),
+        instances: if owners.is_empty() {
+            Vec::new()
+        } else {
+            order.iter().map(|&i| owners[i as usize]).collect()
+        },
         nodes: bvh.nodes,
         bounds: Some((lo, hi)),
-        hole_bounds,
     }
 }
 

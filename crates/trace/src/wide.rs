@@ -50,9 +50,19 @@ impl NodeRay {
                 dir.z.is_sign_negative(),
             ],
             // The octant in obvhs's encoding (`ray_get_octant_inv4`).
-            oct_inv4: (if dir.x.is_sign_negative() { 0 } else { 0x0404_0404 })
-                | (if dir.y.is_sign_negative() { 0 } else { 0x0202_0202 })
-                | (if dir.z.is_sign_negative() { 0 } else { 0x0101_0101 }),
+            oct_inv4: (if dir.x.is_sign_negative() {
+                0
+            } else {
+                0x0404_0404
+            }) | (if dir.y.is_sign_negative() {
+                0
+            } else {
+                0x0202_0202
+            }) | (if dir.z.is_sign_negative() {
+                0
+            } else {
+                0x0101_0101
+            }),
         }
     }
 }

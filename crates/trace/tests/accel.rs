@@ -93,17 +93,12 @@ fn random_ray(rng: &mut Rng, bounded: bool) -> Ray {
     r
 }
 
-#[test]
-fn closest_and_any_hit_match_brute_force() {
-    let mut rng = Rng::new(7);
-    let scene = random_scene(&mut rng);
-    let accel = Accel::new(&scene);
-    assert_eq!(accel.stats().instances, 6);
-    assert_eq!(accel.stats().triangles, 341);
+/// Compares `accel` with brute force on 4000 random rays (half of them bounded).
+fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng) {
     let (mut compared, mut hits) = (0, 0);
     for i in 0..4000 {
-        let ray = random_ray(&mut rng, i % 2 == 1);
-        let reference = brute_force(&scene, &ray);
+        let ray = random_ray(rng, i % 2 == 1);
+        let reference = brute_force(scene, &ray);
         let got = accel.intersect(&ray);
         // Rays that graze an edge (reference margin within rounding) or hit two
         // surfaces at nearly the same distance may legitimately resolve either way.
@@ -148,6 +143,39 @@ fn closest_and_any_hit_match_brute_force() {
     }
     assert!(compared > 3900, "{compared} rays compared");
     assert!(hits > 400, "{hits} hits compared");
+}
+
+#[test]
+fn closest_and_any_hit_match_brute_force() {
+    let mut rng = Rng::new(7);
+    let scene = random_scene(&mut rng);
+    let accel = Accel::new(&scene);
+    assert_eq!(accel.stats().instances, 6);
+    assert_eq!(accel.stats().triangles, 341);
+    check_against_brute_force(&accel, &scene, &mut rng);
+}
+
+#[test]
+fn merged_static_instances_match_brute_force_and_move() {
+    let mut rng = Rng::new(8);
+    let mut scene = random_scene(&mut rng);
+    // Instances 1 and 4 separate, the other four baked into one tree.
+    let mut accel = Accel::with_movable(&scene, &[1, 4]);
+    assert_eq!(accel.stats().instances, 3);
+    check_against_brute_force(&accel, &scene, &mut rng);
+
+    // Moving a movable instance rebuilds the top level only.
+    let nodes = accel.stats().blas_nodes;
+    scene.instances[4].transform =
+        Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
+    accel.update_instances(&scene);
+    assert_eq!(accel.stats().blas_nodes, nodes);
+    check_against_brute_force(&accel, &scene, &mut rng);
+
+    // Moving a baked one is still traced right (by a full rebuild).
+    scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
+    accel.update_instances(&scene);
+    check_against_brute_force(&accel, &scene, &mut rng);
 }
 
 fn quad_scene(corners: [Vec3; 4], transform: Mat4) -> Scene {
@@ -233,6 +261,17 @@ fn rays_pass_through_holes_and_holes_move() {
     accel.update_instances(&scene);
     assert!(accel.intersect(&up(0.5, 0.5)).is_some(), "old hole closed");
     assert!(accel.intersect(&up(2.5, 2.5)).is_none(), "new hole open");
+
+    // With the roof baked into the static tree, the hole still moves by a top-level
+    // update alone.
+    let mut merged = Accel::with_movable(&scene, &[]);
+    let nodes = merged.stats().blas_nodes;
+    assert!(merged.intersect(&up(2.5, 2.5)).is_none());
+    scene.instances[1].transform = Mat4::from_translation(Vec3::new(-3.0, 1.0, 3.0));
+    merged.update_instances(&scene);
+    assert_eq!(merged.stats().blas_nodes, nodes);
+    assert!(merged.intersect(&up(2.5, 2.5)).is_some());
+    assert!(merged.intersect(&up(-2.5, 1.5)).is_none());
 }
 
 #[test]
