@@ -1,0 +1,306 @@
+//! `invlight solve`: reads a problem file, loads its scene, runs the noisy VNS with
+//! photon-traced estimates, and reports the ISOC. The files (`solutions.csv`,
+//! `result.json`) are written as the search goes; Ctrl-C stops it cleanly and
+//! `--resume` continues it.
+
+use crate::InputError;
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use invlight_ilp::{
+    Binding, Interval, Isoc, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Record,
+    Search, Value, read_solutions,
+};
+use invlight_photon::{TraceSettings, z_two_sided};
+use invlight_scene::LoadOptions;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Raised by Ctrl-C; the search stops after the evaluation in progress.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Solve an inverse lighting problem: search the free variables of a problem file for
+/// the configurations that light its surface best.
+///
+/// The problem file is ILPSolver's XML format (docs/problem-file.md). Results go to the
+/// output folder as the search goes: solutions.csv (one row per photon trace) and
+/// result.json (the best configurations, rewritten whenever they change). Ctrl-C stops
+/// cleanly; --resume continues from solutions.csv.
+#[derive(clap::Args, Debug)]
+pub struct SolveArgs {
+    /// The problem file (.xml).
+    pub problem: PathBuf,
+    /// Folder for solutions.csv and result.json [default: the problem's <output path>,
+    /// relative to the problem file].
+    #[arg(long, short, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Photons of a full evaluation, N [default: the problem's `photons`, else 100000].
+    #[arg(long, value_name = "N")]
+    pub photons: Option<u64>,
+    /// Candidates the search draws before it stops, cache hits included [default: the
+    /// problem's maxIterations, else 1000].
+    #[arg(long, value_name = "K")]
+    pub iterations: Option<u64>,
+    /// Seed of the photons and of the search [default: the problem's `seed`, else 1].
+    /// The same seed, photon count and problem give the same solutions.csv on any
+    /// number of threads.
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+    /// Bounces per photon path; Russian roulette ends paths without bias, this only
+    /// bounds them [default: the problem's `maxBounces`, else the tracer's].
+    #[arg(long, value_name = "K")]
+    pub max_bounces: Option<u32>,
+    /// Confidence of the intervals and comparisons, in (0, 1) [default: the problem's
+    /// `confidence`, else 0.95].
+    #[arg(long, value_name = "C")]
+    pub confidence: Option<f64>,
+    /// Print result.json's content instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Continue a stopped run from the output folder's solutions.csv: evaluated cells
+    /// are not traced again.
+    #[arg(long)]
+    pub resume: bool,
+    /// Worker threads [default: one per core].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+fn input(e: impl std::fmt::Display) -> anyhow::Error {
+    anyhow::Error::new(InputError(e.to_string()))
+}
+
+/// Runs `invlight solve`.
+pub fn run(args: SolveArgs) -> Result<()> {
+    // 1. The problem, with command-line overrides.
+    let mut problem = invlight_ilp::Problem::read(&args.problem).map_err(input)?;
+    for w in &problem.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some(n) = args.photons {
+        if n == 0 {
+            return Err(input("--photons must be positive"));
+        }
+        problem.photons = n;
+    }
+    if let Some(k) = args.iterations {
+        problem.max_iterations = k;
+    }
+    if let Some(s) = args.seed {
+        problem.seed = s;
+    }
+    if let Some(c) = args.confidence {
+        if !(c > 0.0 && c < 1.0) {
+            return Err(input(format!(
+                "--confidence is {c}, expected a number in (0, 1)"
+            )));
+        }
+        problem.confidence = c;
+    }
+    let max_bounces = args
+        .max_bounces
+        .or(problem.max_bounces)
+        .unwrap_or(TraceSettings::default().max_bounces);
+
+    // 2. The scene, bound to the problem.
+    let mut scene = invlight_scene::load(&problem.scene, &LoadOptions::default())
+        .with_context(|| format!("loading the scene of {}", args.problem.display()))?;
+    let binding = Binding::new(&problem, &mut scene).map_err(input)?;
+    for w in &binding.warnings {
+        eprintln!("warning: {w}");
+    }
+    let settings = problem.settings();
+    let z = z_two_sided(problem.confidence);
+
+    // 3. Output, resuming if asked.
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| problem.output.clone());
+    let csv = dir.join("solutions.csv");
+    let resumed = if args.resume && csv.is_file() {
+        Some(read_solutions(&csv, &binding, z).map_err(input)?)
+    } else {
+        if args.resume {
+            eprintln!("note: no {} to resume; starting afresh", csv.display());
+        }
+        None
+    };
+    let mut search = Search::new(&binding.space, settings, &binding.initial);
+    if let Some((records, _)) = &resumed {
+        search.replay(records);
+        eprintln!(
+            "resuming after {} evaluations (iteration {})",
+            records.len(),
+            search.iteration()
+        );
+    }
+    let info = ObjectiveInfo {
+        surface: problem.objective.surface.clone(),
+        cap: problem.objective.cap,
+        photons: problem.photons,
+    };
+    let output = Output::create(
+        &dir,
+        &binding,
+        info,
+        z,
+        resumed.as_ref().map(|(r, _)| r.as_slice()),
+        resumed.as_ref().map_or(0.0, |(_, e)| *e),
+    )
+    .with_context(|| format!("creating the output folder {}", dir.display()))?;
+
+    // 4. Search, on a pool of the requested size, until done or Ctrl-C.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .context("starting the worker threads")?;
+    let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces);
+    STOP.store(false, Ordering::Relaxed);
+    // A second handler cannot be installed in the same process; the first one sets
+    // the same flag, so that error is harmless.
+    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::Relaxed));
+    let mut reporter = Reporter {
+        output,
+        bar: progress_bar(problem.max_iterations, search.iteration()),
+        z,
+    };
+    let outcome = pool
+        .install(|| search.run(&mut eval, &mut reporter, &STOP))
+        .with_context(|| format!("writing to {}", dir.display()))?;
+    reporter.bar.finish_and_clear();
+    reporter
+        .output
+        .write_result(search.isoc())
+        .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
+
+    // 5. Report.
+    let (rays, photons) = eval.work();
+    let secs = reporter.output.elapsed();
+    match outcome {
+        Outcome::Interrupted => eprintln!(
+            "interrupted: the files are complete up to the last evaluation; continue with --resume"
+        ),
+        Outcome::Exhausted => eprintln!("every cell was evaluated"),
+        Outcome::Finished => {}
+    }
+    eprintln!(
+        "{} evaluations, {photons} photons, {rays} rays in {secs:.1} s; results in {}",
+        search.evaluations(),
+        dir.display()
+    );
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&reporter.output.result_json(search.isoc()))?
+        );
+    } else {
+        print_table(
+            &binding,
+            search.isoc(),
+            &problem.objective.surface,
+            problem.confidence,
+        );
+    }
+    Ok(())
+}
+
+/// Forwards the search's reports to the files and the progress bar.
+struct Reporter<'b> {
+    output: Output<'b>,
+    bar: ProgressBar,
+    z: f64,
+}
+
+impl Observer for Reporter<'_> {
+    fn evaluated(&mut self, record: &Record, isoc: &Isoc, changed: bool) -> std::io::Result<()> {
+        self.output.evaluated(record, isoc, changed)?;
+        if let Some(best) = best(isoc) {
+            let i = Interval::of(&best.estimate, self.z);
+            self.bar.set_message(format!(
+                "best {} lx [{}, {}], ISOC of {}",
+                sig(best.estimate.mean),
+                sig(i.low),
+                sig(i.high),
+                isoc.members().len()
+            ));
+        }
+        Ok(())
+    }
+
+    fn iteration(&mut self, iteration: u64) {
+        self.bar.set_position(iteration);
+    }
+}
+
+fn best(isoc: &Isoc) -> Option<&invlight_ilp::Member> {
+    isoc.members()
+        .iter()
+        .max_by(|a, b| a.estimate.mean.total_cmp(&b.estimate.mean))
+}
+
+/// A bar over the iterations on stderr, hidden when stderr is not a terminal.
+fn progress_bar(total: u64, start: u64) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    if !std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    bar.set_style(
+        ProgressStyle::with_template("[{elapsed_precise}] {bar:30} {pos}/{len} iterations  {msg}")
+            .expect("the template is valid"),
+    );
+    bar.set_position(start);
+    bar
+}
+
+/// Four significant digits, in plain or scientific notation as the size asks.
+fn sig(x: f64) -> String {
+    let a = x.abs();
+    if a != 0.0 && !(1e-3..1e5).contains(&a) {
+        format!("{x:.3e}")
+    } else {
+        let decimals = if a == 0.0 {
+            0
+        } else {
+            (3 - a.log10().floor() as i32).max(0) as usize
+        };
+        format!("{x:.decimals$}")
+    }
+}
+
+/// The ISOC, best mean first.
+fn print_table(binding: &Binding, isoc: &Isoc, surface: &str, confidence: f64) {
+    let mut members: Vec<_> = isoc.members().iter().collect();
+    members.sort_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean));
+    println!(
+        "{} configuration(s) light '{surface}' best, indistinguishable at {} % confidence:",
+        members.len(),
+        confidence * 100.0
+    );
+    for (k, m) in members.iter().enumerate() {
+        let i = Interval::of(&m.estimate, isoc.z());
+        let vars: Vec<String> = binding
+            .space
+            .variables()
+            .iter()
+            .zip(binding.values(&m.config))
+            .map(|(v, value)| match value {
+                Value::Position(p) => {
+                    format!("{} at ({}, {}, {})", v.id, sig(p.x), sig(p.y), sig(p.z))
+                }
+                Value::Direction(d) => {
+                    format!("{} along ({}, {}, {})", v.id, sig(d.x), sig(d.y), sig(d.z))
+                }
+                Value::Color { value, .. } => format!("{} V = {}", v.id, sig(value)),
+            })
+            .collect();
+        println!(
+            "{:>3}. {} lx [{}, {}]  {}",
+            k + 1,
+            sig(m.estimate.mean),
+            sig(i.low),
+            sig(i.high),
+            vars.join(", ")
+        );
+    }
+}
