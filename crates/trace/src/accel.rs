@@ -17,9 +17,11 @@ use std::time::{Duration, Instant};
 /// Counts and timings of a build, for logs and benchmarks.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct AccelStats {
-    /// Meshes with a bottom-level BVH.
+    /// Bottom-level BVHs: one per mesh a separate instance uses, plus the merged one of
+    /// [`Accel::with_movable`].
     pub meshes: usize,
-    /// Instances in the top level (holes and empty meshes are not).
+    /// Entries of the top level: separate instances (holes and empty meshes are not)
+    /// and the merged BVH.
     pub instances: usize,
     /// Hole volumes.
     pub holes: usize,
@@ -416,56 +418,51 @@ impl Accel {
         let world_tri = TriRay::new(origin, dir);
         let mut t_max = ray.t_max;
         let holes = &self.holes[..];
-        wide::traverse::<T, _, _>(
-            &self.tlas,
-            &self.items,
-            &world,
-            &mut t_max,
-            |slot, t_max| {
-                let item = &self.items[slot as usize];
-                let blas = &self.blas[item.blas as usize];
-                let (node_ray, tri_ray) = if item.identity {
-                    (world, world_tri)
-                } else {
-                    let o = item.object_from_world.transform_point3a(origin);
-                    let d = item.object_from_world.transform_vector3a(dir);
-                    (NodeRay::new(o, d), TriRay::new(o, d))
+        let mut instance = |slot: u32, t_max: &mut f32| {
+            let item = &self.items[slot as usize];
+            let blas = &self.blas[item.blas as usize];
+            let (node_ray, tri_ray) = if item.identity {
+                (world, world_tri)
+            } else {
+                let o = item.object_from_world.transform_point3a(origin);
+                let d = item.object_from_world.transform_vector3a(dir);
+                (NodeRay::new(o, d), TriRay::new(o, d))
+            };
+            let mut stop = false;
+            wide::traverse::<T, _, _>(&blas.nodes, &blas.tris, &node_ray, t_max, |slot, t_max| {
+                let tri = &blas.tris[slot as usize];
+                let Some(h) = tri_ray.intersect(tri, *t_max) else {
+                    return false;
                 };
-                let mut stop = false;
-                wide::traverse::<T, _, _>(
-                    &blas.nodes,
-                    &blas.tris,
-                    &node_ray,
-                    t_max,
-                    |slot, t_max| {
-                        let tri = &blas.tris[slot as usize];
-                        let Some(h) = tri_ray.intersect(tri, *t_max) else {
-                            return false;
-                        };
-                        if !holes.is_empty() {
-                            let p = origin + dir * h.t;
-                            if holes.iter().any(|v| v.contains(p)) {
-                                return false;
-                            }
-                        }
-                        *t_max = h.t;
-                        stop = accept(Hit {
-                            t: h.t,
-                            instance: if blas.instances.is_empty() {
-                                item.instance
-                            } else {
-                                blas.instances[slot as usize]
-                            },
-                            triangle: tri.index,
-                            u: h.u,
-                            v: h.v,
-                        });
-                        stop
+                if !holes.is_empty() {
+                    let p = origin + dir * h.t;
+                    if holes.iter().any(|v| v.contains(p)) {
+                        return false;
+                    }
+                }
+                *t_max = h.t;
+                stop = accept(Hit {
+                    t: h.t,
+                    instance: if blas.instances.is_empty() {
+                        item.instance
+                    } else {
+                        blas.instances[slot as usize]
                     },
-                );
+                    triangle: tri.index,
+                    u: h.u,
+                    v: h.v,
+                });
                 stop
-            },
-        );
+            });
+            stop
+        };
+        if self.items.len() == 1 {
+            // A single entry (one instance, or everything baked): its own root test
+            // suffices.
+            instance(0, &mut t_max);
+        } else {
+            wide::traverse::<T, _, _>(&self.tlas, &self.items, &world, &mut t_max, instance);
+        }
     }
 
     /// The surface at `hit` (a hit of `ray` returned by [`Accel::intersect`]): point
