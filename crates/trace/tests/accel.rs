@@ -93,10 +93,10 @@ fn random_ray(rng: &mut Rng, bounded: bool) -> Ray {
     r
 }
 
-/// Compares `accel` with brute force on 4000 random rays (half of them bounded).
-fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng) {
+/// Compares `accel` with brute force on `n` random rays (half of them bounded).
+fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usize) {
     let (mut compared, mut hits) = (0, 0);
-    for i in 0..4000 {
+    for i in 0..n {
         let ray = random_ray(rng, i % 2 == 1);
         let reference = brute_force(scene, &ray);
         let got = accel.intersect(&ray);
@@ -141,8 +141,9 @@ fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng) {
             (g, r) => panic!("ray {i}: accel {g:?}, brute force {r:?}"),
         }
     }
-    assert!(compared > 3900, "{compared} rays compared");
-    assert!(hits > 400, "{hits} hits compared");
+    // Ambiguous rays are rare (~1 %), and about an eighth of the rays hit.
+    assert!(compared * 100 > n * 97, "{compared} rays compared");
+    assert!(hits * 10 > n, "{hits} hits compared");
 }
 
 #[test]
@@ -152,7 +153,7 @@ fn closest_and_any_hit_match_brute_force() {
     let accel = Accel::new(&scene);
     assert_eq!(accel.stats().instances, 6);
     assert_eq!(accel.stats().triangles, 341);
-    check_against_brute_force(&accel, &scene, &mut rng);
+    check_against_brute_force(&accel, &scene, &mut rng, 3000);
 }
 
 #[test]
@@ -162,7 +163,7 @@ fn merged_static_instances_match_brute_force_and_move() {
     // Instances 1 and 4 separate, the other four baked into one tree.
     let mut accel = Accel::with_movable(&scene, &[1, 4]);
     assert_eq!(accel.stats().instances, 3);
-    check_against_brute_force(&accel, &scene, &mut rng);
+    check_against_brute_force(&accel, &scene, &mut rng, 1000);
 
     // Moving a movable instance rebuilds the top level only.
     let nodes = accel.stats().blas_nodes;
@@ -170,12 +171,12 @@ fn merged_static_instances_match_brute_force_and_move() {
         Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
     accel.update_instances(&scene);
     assert_eq!(accel.stats().blas_nodes, nodes);
-    check_against_brute_force(&accel, &scene, &mut rng);
+    check_against_brute_force(&accel, &scene, &mut rng, 1000);
 
     // Moving a baked one is still traced right (by a full rebuild).
     scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
     accel.update_instances(&scene);
-    check_against_brute_force(&accel, &scene, &mut rng);
+    check_against_brute_force(&accel, &scene, &mut rng, 1000);
 }
 
 fn quad_scene(corners: [Vec3; 4], transform: Mat4) -> Scene {
