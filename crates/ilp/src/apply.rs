@@ -232,6 +232,19 @@ impl Binding {
         })
     }
 
+    /// The instances a configuration may move (objects, emissive objects and holes
+    /// placed on rectangles), in variable order: the acceleration structure keeps them
+    /// separate and bakes everything else into one tree.
+    pub fn movable_instances(&self) -> Vec<InstanceId> {
+        let mut out = Vec::new();
+        for t in &self.targets {
+            if let Target::Move { instances, .. } = t {
+                out.extend(instances.iter().map(|&(i, _)| i));
+            }
+        }
+        out
+    }
+
     /// The world value of every variable at `config`.
     pub fn values(&self, config: &Configuration) -> Vec<Value> {
         self.space
@@ -566,6 +579,7 @@ mod tests {
         let t = s.instances[1].transform.w_axis.truncate();
         assert!((t - Vec3::new(2.5, 1.5, 0.0)).length() < 1e-6);
         assert!(!b.apply(&mut s, &config), "nothing moves twice");
+        assert_eq!(b.movable_instances(), vec![1]);
         assert_eq!(
             s.instances[2].transform.w_axis.truncate(),
             Vec3::new(0.0, 0.0, 2.0)

@@ -1,6 +1,7 @@
 //! The objective by photon tracing (thesis §3.3, §4.9.2): apply the configuration to
-//! the scene, refit the acceleration structure's top level if an instance moved, trace,
-//! and read the objective surface's tally.
+//! the scene, rebuild the acceleration structure's top level if an instance moved (the
+//! instances no variable moves are baked into one tree once), trace, and read the
+//! objective surface's tally.
 //!
 //! Every evaluation uses the same photon seed (common random numbers, DESIGN.md §2):
 //! photon i of two configurations starts from the same random numbers, so their
@@ -31,7 +32,7 @@ impl<'b> PhotonEvaluator<'b> {
     /// An evaluator owning `scene` (already prepared by [`Binding::new`]); photons use
     /// `seed` and at most `max_bounces` bounces.
     pub fn new(binding: &'b Binding, scene: Scene, seed: u64, max_bounces: u32) -> Self {
-        let accel = Accel::new(&scene);
+        let accel = Accel::with_movable(&scene, &binding.movable_instances());
         let area = scene.surface_area(binding.objective) as f64;
         PhotonEvaluator {
             binding,

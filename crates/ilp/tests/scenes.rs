@@ -5,7 +5,8 @@
 //! within 2·z·sqrt(σ² + σ_best²) of the best member's (each estimate within z·σ of its
 //! truth, and the two indistinguishable).
 //!
-//! Photon budgets are small so each problem solves in about a second in release.
+//! Photon budgets are small so each problem solves in about a second in release. With
+//! these budgets every test passed for each of 24 other photon seeds (11–34).
 
 use glam::{DVec3, Mat4, Vec3};
 use invlight_ilp::{
@@ -206,7 +207,7 @@ fn lamp_scene() -> (Scene, Problem) {
     });
     let pb = problem(
         "meshSize=\"10\"><lightInSurface id=\"Lamp\" surface=\"Ceiling__Geometry\"/>",
-        "maxIterations=\"150\" photons=\"20000\" seed=\"5\"",
+        "maxIterations=\"300\" photons=\"20000\" seed=\"5\"",
         "<maximizeRadiance surface=\"Desk\"/>",
     );
     (s, pb)
@@ -266,7 +267,7 @@ fn emissive_panel_on_ceiling_goes_above_the_desk() {
     );
     let pb = problem(
         "meshSize=\"10\"><lightInSurface id=\"Panel\" surface=\"Ceiling__Geometry\"/>",
-        "maxIterations=\"150\" photons=\"20000\" seed=\"5\"",
+        "maxIterations=\"300\" photons=\"20000\" seed=\"5\"",
         "<maximizeRadiance surface=\"Desk\"/>",
     );
     let solved = solve(&pb, s);
@@ -316,7 +317,7 @@ fn object_on_floor_goes_under_the_lamp() {
     });
     let pb = problem(
         "meshSize=\"10\"><objectInSurface id=\"Statue\" surface=\"Floor__Geometry\"/>",
-        "maxIterations=\"150\" photons=\"20000\" seed=\"2\"",
+        "maxIterations=\"300\" photons=\"20000\" seed=\"2\"",
         "<maximizeRadiance surface=\"Statue\"/>",
     );
     let solved = solve(&pb, s);
@@ -437,7 +438,7 @@ fn wall_scene(cap: Option<f64>) -> (Scene, Problem) {
         .unwrap_or_default();
     let pb = problem(
         "meshSize=\"20\"><color id=\"Walls\" hue=\"39\" saturation=\"0.23\"/>",
-        "maxIterations=\"60\" photons=\"20000\" seed=\"4\"",
+        "maxIterations=\"60\" photons=\"20000\" seed=\"4\" fastEvaluationQuality=\"1\"",
         &format!("<maximizeRadiance surface=\"Floor\"{cap}/>"),
     );
     (s, pb)
@@ -446,8 +447,8 @@ fn wall_scene(cap: Option<f64>) -> (Scene, Problem) {
 #[test]
 fn wall_colour_stays_under_the_cap() {
     // The cap is the floor's illuminance with V = 0.575 (the centre of cell 11 of 20)
-    // as the search itself estimates it: the same seed and N photons, so cell 11's
-    // estimate equals the cap and it is valid, while cell 12 (V = 0.625, ~9 % more light
+    // as the search itself estimates it: the same seed and N photons in one stage
+    // (fastEvaluationQuality 1), so cell 11's estimate equals the cap and it is valid, while cell 12 (V = 0.625, ~9 % more light
     // off the walls, its noise strongly correlated with cell 11's by the common random
     // numbers) lies above it. The best valid V is cell 11's.
     let (mut scene, pb) = wall_scene(None);
