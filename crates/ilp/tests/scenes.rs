@@ -93,7 +93,9 @@ struct Solved {
     evaluations: u64,
 }
 
-fn solve(problem: &Problem, mut scene: Scene) -> Solved {
+/// Solves and prints one line of figures (shown with `--nocapture`; BENCHMARKS-ilp.md).
+fn solve(name: &str, problem: &Problem, mut scene: Scene) -> Solved {
+    let start = std::time::Instant::now();
     let binding = Binding::new(problem, &mut scene).unwrap();
     let mut search = Search::new(&binding.space, problem.settings(), &binding.initial);
     let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, 64);
@@ -102,6 +104,13 @@ fn solve(problem: &Problem, mut scene: Scene) -> Solved {
         .unwrap();
     let isoc = search.isoc().clone();
     let evaluations = search.evaluations();
+    let secs = start.elapsed().as_secs_f64();
+    let (rays, photons) = eval.work();
+    eprintln!(
+        "{name}: {evaluations} evaluations, {photons} photons, {rays} rays, {secs:.3} s, {:.2} ms per evaluation, ISOC of {}",
+        1e3 * secs / evaluations as f64,
+        isoc.members().len()
+    );
     Solved {
         binding,
         isoc,
@@ -216,7 +225,7 @@ fn lamp_scene() -> (Scene, Problem) {
 #[test]
 fn lamp_on_ceiling_goes_above_the_desk() {
     let (scene, pb) = lamp_scene();
-    let solved = solve(&pb, scene);
+    let solved = solve("lamp", &pb, scene);
     // Desk centre (3, 1.25) → (s, t) = (0.75, 0.3125).
     let optimum = Configuration {
         coords: vec![0.75, 0.3125],
@@ -270,7 +279,7 @@ fn emissive_panel_on_ceiling_goes_above_the_desk() {
         "maxIterations=\"300\" photons=\"20000\" seed=\"5\"",
         "<maximizeRadiance surface=\"Desk\"/>",
     );
-    let solved = solve(&pb, s);
+    let solved = solve("panel", &pb, s);
     // Panel centre over the desk centre: P = (2.9, 1.15) → (s, t) = (0.763, 0.303).
     let optimum = Configuration {
         coords: vec![2.9 / 3.8, 1.15 / 3.8],
@@ -320,7 +329,7 @@ fn object_on_floor_goes_under_the_lamp() {
         "maxIterations=\"300\" photons=\"20000\" seed=\"2\"",
         "<maximizeRadiance surface=\"Statue\"/>",
     );
-    let solved = solve(&pb, s);
+    let solved = solve("object", &pb, s);
     // Box centre under the lamp: its reference corner at (1.1, 0, 2.5).
     let optimum = Configuration {
         coords: vec![1.1 / 4.0, 2.5 / 4.0],
@@ -402,7 +411,7 @@ fn skylight_lets_the_sun_onto_the_board() {
         "maxIterations=\"300\" photons=\"40000\" seed=\"3\"",
         "<maximizeRadiance surface=\"Board\"/>",
     );
-    let solved = solve(&pb, s);
+    let solved = solve("skylight", &pb, s);
     // The beam through the roof plane (y = 2.5) lands 2.49·0.3 m further in +x on the
     // board (y = 0.01): the skylight's centre at x = 2.8 − 0.747, z = 1.6.
     let shift = 2.49 * sun.x / -sun.y;
@@ -460,7 +469,7 @@ fn wall_colour_stays_under_the_cap() {
     let cap = invlight_ilp::Evaluate::evaluate(&mut eval, &reference, pb.photons).unwrap();
 
     let (scene, pb) = wall_scene(Some(cap.mean));
-    let solved = solve(&pb, scene);
+    let solved = solve("wall colour", &pb, scene);
     let cells: Vec<u32> = solved.isoc.members().iter().map(|m| m.cell.0[0]).collect();
     assert!(cells.contains(&11), "ISOC cells {cells:?}, cap {cap:?}");
     // Every member is valid: its interval reaches below the cap.
@@ -509,7 +518,7 @@ fn sun_through_window_onto_board() {
         "maxIterations=\"400\" photons=\"40000\" seed=\"6\"",
         "<maximizeRadiance surface=\"Blackboard\"/>",
     );
-    let solved = solve(&pb, s);
+    let solved = solve("window", &pb, s);
     let optimum = Configuration {
         coords: vec![17.5 / 36.0, 7.5 / 9.0],
     };
