@@ -9,10 +9,13 @@ use crate::wide::{self, NodeRay, NodeTest};
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec3A};
 use invlight_scene::{InstanceId, MaterialId, Mesh, Scene};
 use obvhs::aabb::Aabb;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::cwbvh::{CwBvh, bvh2_to_cwbvh::bvh2_to_cwbvh};
+use obvhs::ploc::PlocBuilder;
 use obvhs::triangle::Triangle;
-use obvhs::{BvhBuildParams, cwbvh::builder};
-use std::time::{Duration, Instant};
+use obvhs::{Boundable, BvhBuildParams};
+use std::time::Instant;
 
 /// Counts and timings of a build, for logs and benchmarks.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -111,6 +114,22 @@ pub struct Accel {
 /// "slow" took twice and "very slow" six times as long to build (BENCHMARKS-trace.md).
 fn build_params() -> BvhBuildParams {
     BvhBuildParams::medium_build()
+}
+
+/// obvhs's `build_cwbvh` (PLOC, reinsertion, conversion to 8-wide) without the validation
+/// it runs in debug builds, which asserts a depth below 32 levels: the conference room's
+/// tree reaches that (our traversal stack holds 64), and validating is slow.
+fn build_cwbvh<T: Boundable>(prims: &[T]) -> CwBvh {
+    let p = build_params();
+    let mut bvh2 = PlocBuilder::with_capacity(prims.len()).build(
+        p.ploc_search_distance,
+        prims,
+        (0..prims.len() as u32).collect(),
+        p.sort_precision,
+        p.search_depth_threshold,
+    );
+    ReinsertionOptimizer::default().run(&mut bvh2, p.reinsertion_batch_ratio, None);
+    bvh2_to_cwbvh(&bvh2, p.max_prims_per_leaf.clamp(1, 3), true, false)
 }
 
 impl Accel {
@@ -307,9 +326,9 @@ impl Accel {
             });
         }
         let tlas = if boxes.is_empty() {
-            obvhs::cwbvh::CwBvh::default()
+            CwBvh::default()
         } else {
-            builder::build_cwbvh(&boxes, build_params(), &mut Duration::default())
+            build_cwbvh(&boxes)
         };
         self.items = tlas
             .primitive_indices
@@ -581,7 +600,7 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>) -> Blas {
             v2: v[2].into(),
         })
         .collect();
-    let bvh = builder::build_cwbvh_from_tris(&prims, build_params(), &mut Duration::default());
+    let bvh = build_cwbvh(&prims);
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);
     for (v, _) in &tris {
