@@ -304,3 +304,115 @@ fn print_table(binding: &Binding, isoc: &Isoc, surface: &str, confidence: f64) {
         );
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn args(problem: &str, out: &Path) -> SolveArgs {
+        SolveArgs {
+            problem: Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/data/ilp")
+                .join(problem),
+            output: Some(out.to_path_buf()),
+            photons: Some(8000),
+            iterations: Some(40),
+            seed: None,
+            max_bounces: None,
+            confidence: None,
+            json: false,
+            resume: false,
+            threads: Some(2),
+        }
+    }
+
+    fn rows(out: &Path) -> Vec<String> {
+        std::fs::read_to_string(out.join("solutions.csv"))
+            .unwrap()
+            .lines()
+            .map(String::from)
+            .collect()
+    }
+
+    /// Solving writes a row per evaluation and a result.json; --resume goes on from
+    /// the rows without tracing a cell twice; an interruption leaves valid files.
+    /// (One test: Ctrl-C's flag is process-wide.)
+    #[test]
+    fn solve_resume_and_interrupt() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        run(args("lamp-room.xml", &out)).unwrap();
+        let first = rows(&out);
+        assert_eq!(
+            first[0],
+            "iteration,Lamp.x,Lamp.y,Lamp.z,low,mean,high,photons,seconds,elapsed,verdict"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("result.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["evaluations"].as_u64(), Some(first.len() as u64 - 1));
+        assert_eq!(json["objective"]["surface"], "Desk");
+        assert!(!json["isoc"].as_array().unwrap().is_empty());
+
+        let mut more = args("lamp-room.xml", &out);
+        more.iterations = Some(120);
+        more.resume = true;
+        run(more).unwrap();
+        let second = rows(&out);
+        assert!(second.len() > first.len());
+        assert_eq!(second[..first.len()], first[..]);
+        let mut traced = std::collections::HashSet::new();
+        for (i, r) in second[1..].iter().enumerate() {
+            let c: Vec<&str> = r.split(',').collect();
+            let key = c[1..4].join(",");
+            let refined = i > 0 && second[i].ends_with(",refine");
+            assert!(traced.insert(key) || refined, "cell traced twice: {r}");
+        }
+
+        // Interrupt a long run once it has written a few rows.
+        let out2 = dir.path().join("interrupted");
+        let watch = out2.join("solutions.csv");
+        let stopper = std::thread::spawn(move || {
+            for _ in 0..2000 {
+                let n = std::fs::read_to_string(&watch).map_or(0, |s| s.lines().count());
+                if n > 4 {
+                    STOP.store(true, Ordering::Relaxed);
+                    return;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+        });
+        let mut long = args("lamp-room.xml", &out2);
+        long.iterations = Some(100_000);
+        run(long).unwrap();
+        stopper.join().unwrap();
+        let cut = rows(&out2);
+        assert!(cut.len() > 4 && cut.len() < 1000, "{} rows", cut.len());
+        assert!(cut.iter().all(|r| r.split(',').count() == 11));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out2.join("result.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["evaluations"].as_u64(), Some(cut.len() as u64 - 1));
+    }
+
+    #[test]
+    fn bad_input_is_an_input_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let err = run(args("no-such-problem.xml", dir.path())).unwrap_err();
+        assert!(err.chain().any(|e| e.is::<InputError>()), "{err:#}");
+        let mut a = args("lamp-room.xml", dir.path());
+        a.confidence = Some(1.5);
+        let err = run(a).unwrap_err();
+        assert!(format!("{err:#}").contains("--confidence"), "{err:#}");
+    }
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(sig(165.23), "165.2");
+        assert_eq!(sig(0.5022), "0.5022");
+        assert_eq!(sig(0.0003), "3.000e-4");
+        assert_eq!(sig(0.0), "0");
+        assert_eq!(sig(123456.0), "1.235e5");
+    }
+}
