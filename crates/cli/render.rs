@@ -1,0 +1,228 @@
+//! `invlight render`: a photon-mapped picture of a scene from its camera, or a
+//! false-colour picture of the illuminance with a legend in lux.
+
+use crate::InputError;
+use crate::args::LoadArgs;
+use crate::progress;
+use clap::Args;
+use invlight_photon::DEFAULT_MAX_BOUNCES;
+use invlight_render::{
+    Exposure, Integrator, Lights, PhotonMap, PhotonSettings, RenderSettings, Store, ToneMap, View,
+    auto_max, false_colour, render, render_illuminance, tone_map,
+};
+use invlight_scene::Scene;
+use invlight_trace::Accel;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Options of `invlight render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file: glTF 2.0 (.gltf, .glb), COLLADA (.dae) or Wavefront OBJ (.obj).
+    pub scene: PathBuf,
+    /// PNG file to write.
+    #[arg(long, short = 'o', value_name = "FILE")]
+    pub output: PathBuf,
+    /// The camera to render from, by name (default: the scene's first camera, or a view
+    /// of the whole scene when it has none). `invlight scene FILE` lists the cameras.
+    #[arg(long, value_name = "NAME")]
+    pub camera: Option<String>,
+    /// Image width, pixels.
+    #[arg(long, default_value_t = 640, value_name = "W")]
+    pub width: u32,
+    /// Image height, pixels (default: from the camera's aspect ratio, else 3/4 of the
+    /// width).
+    #[arg(long, value_name = "H")]
+    pub height: Option<u32>,
+    /// Photons emitted for the photon map (indirect light and caustics); 0 renders
+    /// direct light only.
+    #[arg(long, short = 'n', default_value_t = 1_000_000, value_name = "N")]
+    pub photons: u64,
+    /// Photon gather radius, m (default: from the mean photon density, so that a disc
+    /// holds about 100 photons). Smaller is sharper and noisier.
+    #[arg(long, value_name = "R")]
+    pub radius: Option<f32>,
+    /// Camera rays per pixel (anti-aliasing; also averages area-light noise).
+    #[arg(long, default_value_t = 4, value_name = "S")]
+    pub samples: u32,
+    /// Shadow rays to area lights (emissive surfaces) per shading point.
+    #[arg(long, default_value_t = 2, value_name = "K")]
+    pub light_samples: u32,
+    /// Mirror and glass bounces followed from the camera.
+    #[arg(long, default_value_t = 8, value_name = "K")]
+    pub max_depth: u32,
+    /// Surface interactions a photon follows after its first hit (a safety cap; Russian
+    /// roulette ends paths on its own).
+    #[arg(long, default_value_t = DEFAULT_MAX_BOUNCES, value_name = "K")]
+    pub max_bounces: u32,
+    /// Seed of the random streams: the same seed gives the same picture on any number of
+    /// threads.
+    #[arg(long, default_value_t = 1, value_name = "S")]
+    pub seed: u64,
+    /// Exposure compensation in stops (+1 is twice as bright), applied to the automatic
+    /// exposure (the image's log-average luminance shown as middle grey) or to
+    /// --luminance.
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        value_name = "EV",
+        allow_negative_numbers = true
+    )]
+    pub exposure: f32,
+    /// A fixed exposure: this luminance in cd/m² is shown as middle grey. Use the same
+    /// value to compare pictures of several configurations.
+    #[arg(long, value_name = "CD_M2")]
+    pub luminance: Option<f32>,
+    /// Colour every visible surface point by its illuminance (direct light plus the
+    /// photon map) instead of rendering it, with a legend bar in lux on the right.
+    #[arg(long, alias = "false-color")]
+    pub false_colour: bool,
+    /// Top of the false-colour scale, lx (default: the 99th percentile of what is seen,
+    /// rounded up).
+    #[arg(long, value_name = "LX", requires = "false_colour")]
+    pub max_lux: Option<f64>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "T")]
+    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub load: LoadArgs,
+}
+
+/// The view and image size the options ask for.
+fn view_of(args: &RenderArgs, scene: &Scene) -> anyhow::Result<(View, u32, u32)> {
+    let camera =
+        match &args.camera {
+            Some(name) => Some(scene.cameras.iter().find(|c| &c.name == name).ok_or_else(
+                || {
+                    let names: Vec<String> = scene
+                        .cameras
+                        .iter()
+                        .map(|c| format!("'{}'", c.name))
+                        .collect();
+                    InputError(format!(
+                        "{}: no camera named '{name}'{}",
+                        args.scene.display(),
+                        if names.is_empty() {
+                            " (the scene has no camera; leave out --camera for a default view)"
+                                .to_string()
+                        } else {
+                            format!("\n  hint: its cameras are {}", names.join(", "))
+                        }
+                    ))
+                },
+            )?),
+            None => scene.cameras.first(),
+        };
+    let width = args.width;
+    let height = args.height.unwrap_or_else(|| {
+        let aspect = camera.and_then(|c| c.aspect).unwrap_or(4.0 / 3.0);
+        ((width as f32 / aspect).round() as u32).max(1)
+    });
+    if width == 0 || height == 0 || width as u64 * height as u64 > 1 << 28 {
+        return Err(InputError(format!(
+            "an image of {width}×{height} pixels cannot be rendered"
+        ))
+        .into());
+    }
+    let aspect = width as f32 / height as f32;
+    let view = match camera {
+        Some(c) => View::from_camera(c, aspect),
+        None => View::default_for(scene, aspect)
+            .ok_or_else(|| InputError(format!("{}: the scene is empty", args.scene.display())))?,
+    };
+    Ok((view, width, height))
+}
+
+/// Runs `invlight render`.
+pub fn run(args: RenderArgs) -> anyhow::Result<()> {
+    if let Some(l) = args.luminance
+        && !(l > 0.0 && l.is_finite())
+    {
+        return Err(InputError(format!("--luminance {l} must be a positive luminance")).into());
+    }
+    if let Some(m) = args.max_lux
+        && !(m > 0.0 && m.is_finite())
+    {
+        return Err(InputError(format!("--max-lux {m} must be a positive illuminance")).into());
+    }
+    if let Some(r) = args.radius
+        && !(r > 0.0 && r.is_finite())
+    {
+        return Err(InputError(format!("--radius {r} must be a positive length")).into());
+    }
+    let scene = args.load.load(&args.scene)?;
+    let (view, width, height) = view_of(&args, &scene)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()?;
+    let start = Instant::now();
+    let accel = Accel::new(&scene);
+    let photon_settings = PhotonSettings {
+        photons: args.photons,
+        seed: args.seed,
+        max_bounces: args.max_bounces,
+        store: if args.false_colour {
+            Store::All
+        } else {
+            Store::Diffuse
+        },
+        radius: args.radius,
+        ..PhotonSettings::default()
+    };
+    let map_start = Instant::now();
+    let map = if args.photons > 0 {
+        let bar = progress::bar(args.photons, "photons");
+        let report = |done: u64| bar.set_position(done);
+        let map =
+            pool.install(|| PhotonMap::build(&scene, &accel, &photon_settings, Some(&report)));
+        bar.finish_and_clear();
+        Some(map)
+    } else {
+        None
+    };
+    let map_seconds = map_start.elapsed().as_secs_f64();
+    let lights = Lights::new(&scene);
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: args.samples.max(1),
+        light_samples: args.light_samples,
+        max_depth: args.max_depth,
+        seed: args.seed,
+    };
+    let integrator = Integrator::new(&scene, &accel, &lights, map.as_ref(), settings);
+    let render_start = Instant::now();
+    let bar = progress::bar(height as u64, "rows");
+    let report = |done: u64| bar.set_position(done);
+    let picture = if args.false_colour {
+        let lux = pool.install(|| render_illuminance(&integrator, &view, Some(&report)));
+        let max = args.max_lux.unwrap_or_else(|| auto_max(&lux.lux));
+        false_colour(&lux, max)
+    } else {
+        let image = pool.install(|| render(&integrator, &view, Some(&report)));
+        let tone = ToneMap {
+            exposure: args.luminance.map_or(Exposure::Auto, Exposure::Luminance),
+            compensation: args.exposure,
+        };
+        tone_map(&image, &tone)
+    };
+    bar.finish_and_clear();
+    let render_seconds = render_start.elapsed().as_secs_f64();
+    save_png(&picture, &args.output)?;
+    let stored = map.as_ref().map_or(0, |m| m.len());
+    let radius = map.as_ref().map_or(0.0, |m| m.radius());
+    eprintln!(
+        "{}: {width}×{height}, {} photons → {stored} stored (radius {radius:.4} m) in {map_seconds:.2} s, pixels in {render_seconds:.2} s, {:.2} s in all",
+        args.output.display(),
+        args.photons,
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Writes a PNG, naming the file in the error.
+pub fn save_png(image: &invlight_render::RgbImage, path: &Path) -> anyhow::Result<()> {
+    image
+        .save_with_format(path, invlight_render::image::ImageFormat::Png)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))
+}

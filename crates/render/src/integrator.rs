@@ -1,0 +1,413 @@
+//! Radiance along camera rays (thesis §2.6.3; Jensen 2001 ch. 9): at a diffuse point,
+//! direct light by shadow rays to every light plus indirect light and caustics from the
+//! photon map; at mirrors and glass the ray is followed recursively, glass split by
+//! Fresnel into a reflected and a refracted ray.
+//!
+//! Pixel values are luminances in cd/m² (RGB): a Lambertian surface of reflectance ρ
+//! under illuminance E has radiance ρE/π, so an image is proportional to the
+//! illuminance wherever the reflectance is uniform.
+
+use crate::camera::View;
+use crate::photon_map::PhotonMap;
+use glam::Vec3;
+use invlight_photon::{Rng, fresnel_dielectric, reflect, refract};
+use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use invlight_trace::{Accel, Interaction, Ray};
+use rayon::prelude::*;
+use std::f32::consts::PI;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// How to render.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderSettings {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Camera rays per pixel; one goes through the pixel centre, more are jittered.
+    pub samples: u32,
+    /// Shadow rays to area lights per shading point.
+    pub light_samples: u32,
+    /// Mirror and glass bounces followed.
+    pub max_depth: u32,
+    /// Seed of the pixels' random streams (pixel i uses (seed, i)).
+    pub seed: u64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 640,
+            height: 480,
+            samples: 4,
+            light_samples: 2,
+            max_depth: 8,
+            seed: 1,
+        }
+    }
+}
+
+/// A linear (high dynamic range) image, row-major, top row first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Values per pixel: RGB luminance in cd/m² for renders.
+    pub pixels: Vec<Rgb>,
+}
+
+/// Illuminance seen through every pixel, for false colour.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IlluminanceImage {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Illuminance (luminance of the RGB irradiance) of the surface seen, lx; NaN where
+    /// the pixel sees nothing.
+    pub lux: Vec<f32>,
+    /// |cos| between the view ray and the surface normal, to shade shapes.
+    pub facing: Vec<f32>,
+}
+
+/// An emissive triangle as a light to sample by area.
+#[derive(Debug, Clone, Copy)]
+struct AreaTriangle {
+    p0: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    normal: Vec3,
+    emission: Rgb,
+    area: f32,
+}
+
+/// Every light of a scene, ready for shadow rays.
+#[derive(Debug, Clone)]
+pub struct Lights {
+    triangles: Vec<AreaTriangle>,
+    /// Cumulative emitted luminous power of `triangles`, to choose one ∝ its power.
+    cdf: Vec<f64>,
+}
+
+impl Lights {
+    /// Collects the emissive triangles of `scene` (the point, spot and directional lights
+    /// are read from the scene as they are).
+    pub fn new(scene: &Scene) -> Lights {
+        let mut triangles = Vec::new();
+        let mut cdf = Vec::new();
+        let mut acc = 0.0f64;
+        for inst in &scene.instances {
+            let mesh = &scene.meshes[inst.mesh as usize];
+            for (t, &m) in mesh.materials.iter().enumerate() {
+                let emission = scene.materials[m as usize].emission;
+                if emission.max_element() <= 0.0 {
+                    continue;
+                }
+                let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
+                let cross = (b - a).cross(c - a);
+                let area = 0.5 * cross.length();
+                if area <= 0.0 {
+                    continue;
+                }
+                acc += (luminance(emission) * area) as f64;
+                cdf.push(acc);
+                triangles.push(AreaTriangle {
+                    p0: a,
+                    e1: b - a,
+                    e2: c - a,
+                    normal: cross.normalize(),
+                    emission,
+                    area,
+                });
+            }
+        }
+        Lights { triangles, cdf }
+    }
+
+    /// Picks an emissive triangle ∝ its power: (triangle, probability).
+    #[inline]
+    fn pick(&self, u: f32) -> (&AreaTriangle, f32) {
+        let total = self.cdf[self.cdf.len() - 1];
+        let target = u as f64 * total;
+        let i = self
+            .cdf
+            .partition_point(|&c| c <= target)
+            .min(self.cdf.len() - 1);
+        let below = if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        (&self.triangles[i], ((self.cdf[i] - below) / total) as f32)
+    }
+}
+
+/// Everything needed to shade: the scene, its acceleration structure, its lights and
+/// (optionally) a photon map of indirect light.
+pub struct Integrator<'a> {
+    scene: &'a Scene,
+    accel: &'a Accel,
+    lights: &'a Lights,
+    map: Option<&'a PhotonMap>,
+    settings: RenderSettings,
+}
+
+/// Below this product of reflectances a branch is not followed: it cannot change a
+/// pixel by more than a thousandth of what lies behind it.
+const MIN_WEIGHT: f32 = 1e-3;
+
+impl<'a> Integrator<'a> {
+    /// An integrator over `scene`; without a photon map only direct light and what
+    /// mirrors and glass show of it are rendered.
+    pub fn new(
+        scene: &'a Scene,
+        accel: &'a Accel,
+        lights: &'a Lights,
+        map: Option<&'a PhotonMap>,
+        settings: RenderSettings,
+    ) -> Self {
+        Integrator {
+            scene,
+            accel,
+            lights,
+            map,
+            settings,
+        }
+    }
+
+    /// Direct illuminance (RGB) at `at` on the side `n` faces: point and spot lights
+    /// E = I·f(θ_s)·cos θ/d², the sun E⊥·cos θ, each if its shadow ray is free; area
+    /// lights by `light_samples` points drawn by area (pdf p_tri/A_tri), each adding
+    /// L·cos θ·cos θ_l/(d²·pdf) (pbrt-v4 §12.2, area sampling).
+    pub fn direct(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
+        let mut e = Vec3::ZERO;
+        for light in &self.scene.lights {
+            match light.kind {
+                LightKind::Point {
+                    position,
+                    intensity,
+                } => e += self.punctual(at, n, position, intensity),
+                LightKind::Spot {
+                    position,
+                    direction,
+                    intensity,
+                    inner,
+                    outer,
+                } => {
+                    let wi = (position - at.point).normalize_or_zero();
+                    let f = LightKind::spot_falloff(-wi.dot(direction.normalize()), inner, outer);
+                    if f > 0.0 {
+                        e += self.punctual(at, n, position, intensity * f);
+                    }
+                }
+                LightKind::Directional {
+                    direction,
+                    illuminance,
+                } => {
+                    let wi = -direction.normalize();
+                    let cos = n.dot(wi);
+                    if cos > 0.0 && !self.accel.occluded(&at.spawn(wi)) {
+                        e += illuminance * cos;
+                    }
+                }
+            }
+        }
+        if !self.lights.triangles.is_empty() && self.settings.light_samples > 0 {
+            let mut area = Vec3::ZERO;
+            for _ in 0..self.settings.light_samples {
+                let (tri, p) = self.lights.pick(rng.uniform());
+                let s = rng.uniform().sqrt();
+                let (b1, b2) = (1.0 - s, rng.uniform() * s);
+                let y = tri.p0 + tri.e1 * b1 + tri.e2 * b2;
+                let d = y - at.point;
+                let d2 = d.length_squared();
+                if d2 <= 0.0 {
+                    continue;
+                }
+                let wi = d / d2.sqrt();
+                let (cos_x, cos_l) = (n.dot(wi), -tri.normal.dot(wi));
+                if cos_x <= 0.0 || cos_l <= 0.0 || self.accel.occluded(&at.spawn_to(y)) {
+                    continue;
+                }
+                area += tri.emission * (cos_x * cos_l * tri.area / (d2 * p));
+            }
+            e += area / self.settings.light_samples as f32;
+        }
+        e
+    }
+
+    #[inline]
+    fn punctual(&self, at: &Interaction, n: Vec3, position: Vec3, intensity: Rgb) -> Rgb {
+        let d = position - at.point;
+        let d2 = d.length_squared();
+        let cos = n.dot(d) / d2.sqrt();
+        if cos <= 0.0 || d2 <= 0.0 || self.accel.occluded(&at.spawn_to(position)) {
+            return Vec3::ZERO;
+        }
+        intensity * (cos / d2)
+    }
+
+    /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's.
+    pub fn irradiance(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
+        let mut e = self.direct(at, n, rng);
+        if let Some(map) = self.map {
+            e += map.irradiance(at.point, n);
+        }
+        e
+    }
+
+    /// Radiance (RGB luminance, cd/m²) arriving along `ray`.
+    pub fn radiance(&self, ray: &Ray, rng: &mut Rng) -> Rgb {
+        self.radiance_at_depth(ray, rng, 0, 1.0)
+    }
+
+    fn radiance_at_depth(&self, ray: &Ray, rng: &mut Rng, depth: u32, weight: f32) -> Rgb {
+        let Some(hit) = self.accel.intersect(ray) else {
+            return Vec3::ZERO;
+        };
+        let at = self.accel.interaction(ray, &hit);
+        let m = &self.scene.materials[at.material as usize];
+        let front = at.normal.dot(ray.dir) < 0.0;
+        let n = if front { at.normal } else { -at.normal };
+        let mut l = if front { m.emission } else { Vec3::ZERO };
+        let mut kd = m.diffuse;
+        if let Some(t) = m.texture {
+            kd *= self.scene.textures[t as usize].sample(at.uv);
+        }
+        if kd.max_element() > 0.0 {
+            l += kd / PI * self.irradiance(&at, n, rng);
+        }
+        if depth >= self.settings.max_depth {
+            return l;
+        }
+        let ks = m.specular.max_element();
+        if ks > 0.0 && weight * ks > MIN_WEIGHT {
+            let r = at.spawn(reflect(ray.dir, n));
+            l += m.specular * self.radiance_at_depth(&r, rng, depth + 1, weight * ks);
+        }
+        let t = m.transmission;
+        if t > 0.0 {
+            let eta = if front { 1.0 / m.ior } else { m.ior };
+            let cos_i = -ray.dir.dot(n);
+            let (fr, refracted) = match refract(ray.dir, n, eta) {
+                Some(dir) => (fresnel_dielectric(cos_i, eta), Some(dir)),
+                None => (1.0, None),
+            };
+            if weight * t * fr > MIN_WEIGHT {
+                let r = at.spawn(reflect(ray.dir, n));
+                l += t * fr * self.radiance_at_depth(&r, rng, depth + 1, weight * t * fr);
+            }
+            if let Some(dir) = refracted
+                && weight * t * (1.0 - fr) > MIN_WEIGHT
+            {
+                let w = t * (1.0 - fr);
+                l += w * self.radiance_at_depth(&at.spawn(dir), rng, depth + 1, weight * w);
+            }
+        }
+        l
+    }
+
+    /// Illuminance (lx) and |cos| of the first surface along `ray`, if any.
+    pub fn illuminance(&self, ray: &Ray, rng: &mut Rng) -> Option<(f32, f32)> {
+        let hit = self.accel.intersect(ray)?;
+        let at = self.accel.interaction(ray, &hit);
+        let cos = at.normal.dot(ray.dir);
+        let n = if cos < 0.0 { at.normal } else { -at.normal };
+        Some((luminance(self.irradiance(&at, n, rng)), cos.abs()))
+    }
+}
+
+/// The image point of sample `s` of pixel (x, y): the centre for the first sample,
+/// uniformly jittered for the others.
+#[inline]
+fn sample_point(x: u32, y: u32, s: u32, settings: &RenderSettings, rng: &mut Rng) -> (f32, f32) {
+    let (jx, jy) = if s == 0 {
+        (0.5, 0.5)
+    } else {
+        (rng.uniform(), rng.uniform())
+    };
+    (
+        (x as f32 + jx) / settings.width as f32,
+        (y as f32 + jy) / settings.height as f32,
+    )
+}
+
+/// Stream offset separating the pixels' random numbers from the photons'.
+const PIXEL_STREAM: u64 = 0x5049_5845_4c53;
+
+/// Renders `view` of the integrator's scene: every pixel in parallel (rows handed to
+/// rayon), each from its own random stream, so the image is the same on any number of
+/// threads. `progress` receives the rows done.
+pub fn render(
+    integrator: &Integrator,
+    view: &View,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Image {
+    let s = integrator.settings;
+    let mut pixels = vec![Vec3::ZERO; s.width as usize * s.height as usize];
+    let done = AtomicU64::new(0);
+    pixels
+        .par_chunks_mut(s.width as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, px) in row.iter_mut().enumerate() {
+                let index = y as u64 * s.width as u64 + x as u64;
+                let mut rng = Rng::new(s.seed ^ PIXEL_STREAM, index);
+                let mut sum = Vec3::ZERO;
+                for k in 0..s.samples.max(1) {
+                    let (sx, sy) = sample_point(x as u32, y as u32, k, &s, &mut rng);
+                    sum += integrator.radiance(&view.ray(sx, sy), &mut rng);
+                }
+                *px = sum / s.samples.max(1) as f32;
+            }
+            if let Some(report) = progress {
+                report(done.fetch_add(1, Ordering::Relaxed) + 1);
+            }
+        });
+    Image {
+        width: s.width,
+        height: s.height,
+        pixels,
+    }
+}
+
+/// The illuminance of the surface seen through every pixel (averaged over its samples
+/// that hit something), for false colour. Parallel and deterministic as [`render`].
+pub fn render_illuminance(
+    integrator: &Integrator,
+    view: &View,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> IlluminanceImage {
+    let s = integrator.settings;
+    let n = s.width as usize * s.height as usize;
+    let mut values = vec![(f32::NAN, 0.0f32); n];
+    let done = AtomicU64::new(0);
+    values
+        .par_chunks_mut(s.width as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, px) in row.iter_mut().enumerate() {
+                let index = y as u64 * s.width as u64 + x as u64;
+                let mut rng = Rng::new(s.seed ^ PIXEL_STREAM, index);
+                let (mut lux, mut facing, mut hits) = (0.0f32, 0.0f32, 0u32);
+                for k in 0..s.samples.max(1) {
+                    let (sx, sy) = sample_point(x as u32, y as u32, k, &s, &mut rng);
+                    if let Some((e, c)) = integrator.illuminance(&view.ray(sx, sy), &mut rng) {
+                        lux += e;
+                        facing += c;
+                        hits += 1;
+                    }
+                }
+                if hits > 0 {
+                    *px = (lux / hits as f32, facing / hits as f32);
+                }
+            }
+            if let Some(report) = progress {
+                report(done.fetch_add(1, Ordering::Relaxed) + 1);
+            }
+        });
+    IlluminanceImage {
+        width: s.width,
+        height: s.height,
+        lux: values.iter().map(|v| v.0).collect(),
+        facing: values.iter().map(|v| v.1).collect(),
+    }
+}

@@ -1,0 +1,502 @@
+//! Illuminance grids over a planar surface, as lighting standards ask for them
+//! (EN 12464-1 §4.4: a regular grid of cells, Emin, Eavg, Emax and uniformity
+//! U0 = Emin/Eavg). Each cell's value is the mean illuminance over the cell, measured
+//! like a surface (thesis eq. 3.2): the luminous power of the photons that arrive in it
+//! over its area and N, with the standard error of the per-photon contributions
+//! (DESIGN.md §1), so every value carries its interval.
+//!
+//! Photons are traced in the chunks of `invlight_photon`'s measure, each chunk tallied on
+//! its own and the tallies added in chunk order: the grid is the same on any number of
+//! threads.
+
+use crate::draw;
+use glam::{Vec2, Vec3};
+use image::RgbImage;
+use invlight_photon::{BLOCK, CHUNK, Emitters, Estimate, PathVisitor, Rng, Tally, trace_photon};
+use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
+use invlight_trace::{Accel, Interaction};
+use rayon::prelude::*;
+use std::fmt;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// How to measure a grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapSettings {
+    /// Largest cell side, m: a side of length L gets ⌈L/cell⌉ equal cells (EN 12464-1
+    /// spaces its points so).
+    pub cell: f32,
+    /// Photons emitted, N.
+    pub photons: u64,
+    /// Seed of the photon streams.
+    pub seed: u64,
+    /// Bounce cap of the paths.
+    pub max_bounces: u32,
+}
+
+/// Why a grid cannot be measured.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MapError {
+    /// The surface has no area.
+    Empty,
+    /// A vertex lies this far (m) from the surface's plane.
+    NotPlanar {
+        /// Largest distance of a vertex from the plane, m.
+        deviation: f32,
+    },
+    /// The cell size is not a positive length.
+    BadCell(f32),
+    /// The grid would have this many cells (more than [`MAX_CELLS`]).
+    TooManyCells(u64),
+}
+
+/// The most cells a grid may have: a million cells of a few photons each measure
+/// nothing.
+pub const MAX_CELLS: u64 = 1 << 20;
+
+impl fmt::Display for MapError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MapError::Empty => write!(f, "the surface has no area"),
+            MapError::NotPlanar { deviation } => write!(
+                f,
+                "the surface is not planar: a vertex lies {deviation} m from its plane"
+            ),
+            MapError::BadCell(c) => write!(f, "the cell size {c} is not a positive length"),
+            MapError::TooManyCells(n) => write!(
+                f,
+                "the grid would have {n} cells (at most {MAX_CELLS}): choose larger cells"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MapError {}
+
+/// One cell of a grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapCell {
+    /// Column (along `u`) and row (along `v`).
+    pub index: (u32, u32),
+    /// The cell's centre in the world, m.
+    pub centre: Vec3,
+    /// The part of the cell the surface covers, m².
+    pub area: f64,
+    /// Mean illuminance over the covered part, lx, with its standard error.
+    pub estimate: Estimate,
+    /// Photon arrivals counted.
+    pub hits: u64,
+}
+
+/// Illuminance over a grid of cells on a planar surface.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IlluminanceMap {
+    /// World position of the grid corner (u = v = 0).
+    pub origin: Vec3,
+    /// Unit in-plane axis of the columns.
+    pub u: Vec3,
+    /// Unit in-plane axis of the rows (u × v = normal).
+    pub v: Vec3,
+    /// Number of cells along `u`.
+    pub columns: u32,
+    /// Number of cells along `v`.
+    pub rows: u32,
+    /// Cell side along `u`, m.
+    pub cell_u: f32,
+    /// Cell side along `v`, m.
+    pub cell_v: f32,
+    /// Cells row by row (row 0 at v = 0); `None` where the surface covers no area.
+    pub cells: Vec<Option<MapCell>>,
+    /// Photons emitted.
+    pub photons: u64,
+}
+
+/// The figures of EN 12464-1 for a grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapSummary {
+    /// Smallest cell mean, lx.
+    pub emin: f64,
+    /// Area-weighted mean of the cells: the surface's mean illuminance, lx.
+    pub eavg: f64,
+    /// Largest cell mean, lx.
+    pub emax: f64,
+    /// Uniformity Emin / Eavg (0 when Eavg is 0).
+    pub u0: f64,
+}
+
+/// The surface's plane: a point, unit normal and in-plane axes, with its triangles in
+/// plane coordinates.
+struct Plane {
+    origin: Vec3,
+    u: Vec3,
+    v: Vec3,
+    size: Vec2,
+    triangles: Vec<[Vec2; 3]>,
+}
+
+fn plane_of(scene: &Scene, surface: SurfaceId) -> Result<Plane, MapError> {
+    let mut tris: Vec<[Vec3; 3]> = Vec::new();
+    for &i in &scene.surfaces[surface as usize].instances {
+        let inst = &scene.instances[i as usize];
+        let mesh = &scene.meshes[inst.mesh as usize];
+        for t in 0..mesh.triangles.len() {
+            tris.push(mesh.triangle(t).map(|p| inst.transform.transform_point3(p)));
+        }
+    }
+    let cross = |t: &[Vec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]);
+    let largest = tris
+        .iter()
+        .map(cross)
+        .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+        .filter(|c| c.length_squared() > 0.0)
+        .ok_or(MapError::Empty)?;
+    // Area-weighted normal, every triangle turned to agree with the largest.
+    let sum: Vec3 = tris
+        .iter()
+        .map(|t| {
+            let c = cross(t);
+            if c.dot(largest) < 0.0 { -c } else { c }
+        })
+        .sum();
+    let n = sum.normalize();
+    let p0 = tris[0][0];
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    let mut deviation = 0.0f32;
+    for t in &tris {
+        for &p in t {
+            deviation = deviation.max((p - p0).dot(n).abs());
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    let extent = (hi - lo).length();
+    if deviation > 1e-4 * extent + 1e-6 {
+        return Err(MapError::NotPlanar { deviation });
+    }
+    // Columns along the world axis closest to the plane, so floors and walls get
+    // axis-aligned grids.
+    let axis = [Vec3::X, Vec3::Y, Vec3::Z]
+        .into_iter()
+        .min_by(|a, b| a.dot(n).abs().total_cmp(&b.dot(n).abs()))
+        .unwrap_or(Vec3::X);
+    let u = (axis - n * axis.dot(n)).normalize();
+    let v = n.cross(u);
+    let (mut lo2, mut hi2) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for t in &tris {
+        for &p in t {
+            let q = Vec2::new((p - p0).dot(u), (p - p0).dot(v));
+            lo2 = lo2.min(q);
+            hi2 = hi2.max(q);
+        }
+    }
+    let origin = p0 + u * lo2.x + v * lo2.y;
+    let triangles = tris
+        .iter()
+        .map(|t| t.map(|p| Vec2::new((p - origin).dot(u), (p - origin).dot(v))))
+        .collect();
+    Ok(Plane {
+        origin,
+        u,
+        v,
+        size: hi2 - lo2,
+        triangles,
+    })
+}
+
+/// Area of the part of triangle `t` inside the rectangle [lo, hi] (Sutherland–Hodgman
+/// clipping, then the shoelace formula).
+fn clipped_area(t: &[Vec2; 3], lo: Vec2, hi: Vec2) -> f64 {
+    let mut poly: Vec<Vec2> = t.to_vec();
+    let planes: [(Vec2, f32); 4] = [
+        (Vec2::X, lo.x),
+        (Vec2::NEG_X, -hi.x),
+        (Vec2::Y, lo.y),
+        (Vec2::NEG_Y, -hi.y),
+    ];
+    for (n, d) in planes {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (da, db) = (a.dot(n) - d, b.dot(n) - d);
+            if da >= 0.0 {
+                out.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                out.push(a + (b - a) * (da / (da - db)));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return 0.0;
+        }
+    }
+    let mut twice = 0.0f64;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        twice += a.x as f64 * b.y as f64 - b.x as f64 * a.y as f64;
+    }
+    0.5 * twice.abs()
+}
+
+/// The grid's geometry: which instances count, and how a point maps to a cell.
+struct Grid<'a> {
+    on_surface: &'a [bool],
+    origin: Vec3,
+    u: Vec3,
+    v: Vec3,
+    inv_cell: Vec2,
+    columns: u32,
+    rows: u32,
+}
+
+impl Grid<'_> {
+    #[inline]
+    fn cell(&self, p: Vec3) -> usize {
+        let d = p - self.origin;
+        let c = ((d.dot(self.u) * self.inv_cell.x) as i64).clamp(0, self.columns as i64 - 1);
+        let r = ((d.dot(self.v) * self.inv_cell.y) as i64).clamp(0, self.rows as i64 - 1);
+        (r * self.columns as i64 + c) as usize
+    }
+}
+
+/// One chunk's per-cell tallies, with the current photon's sums in `current`.
+struct CellTally<'a> {
+    grid: &'a Grid<'a>,
+    tallies: Vec<Tally>,
+    current: Vec<f64>,
+    touched: Vec<u32>,
+}
+
+impl PathVisitor for CellTally<'_> {
+    #[inline]
+    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32) {
+        if !self.grid.on_surface[at.instance as usize] {
+            return;
+        }
+        let c = self.grid.cell(at.point);
+        if self.current[c] == 0.0 {
+            self.touched.push(c as u32);
+        }
+        self.current[c] += luminance(power) as f64;
+        self.tallies[c].hits += 1;
+    }
+
+    #[inline]
+    fn escape(&mut self, _power: Rgb) {}
+}
+
+impl CellTally<'_> {
+    #[inline]
+    fn end_photon(&mut self) {
+        for &c in &self.touched {
+            let x = std::mem::take(&mut self.current[c as usize]);
+            let t = &mut self.tallies[c as usize];
+            t.sum += x;
+            t.sum_sq += x * x;
+        }
+        self.touched.clear();
+    }
+}
+
+/// Measures the illuminance over a grid of cells at most `settings.cell` wide on the
+/// planar surface `surface`. Every photon arrival on the surface counts (either side,
+/// every bounce, as in `invlight_photon::trace`). `progress` receives photons traced.
+pub fn illuminance_map(
+    scene: &Scene,
+    accel: &Accel,
+    surface: SurfaceId,
+    settings: &MapSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<IlluminanceMap, MapError> {
+    if !(settings.cell > 0.0 && settings.cell.is_finite()) {
+        return Err(MapError::BadCell(settings.cell));
+    }
+    let plane = plane_of(scene, surface)?;
+    let columns = ((plane.size.x / settings.cell).ceil() as u64).max(1);
+    let rows = ((plane.size.y / settings.cell).ceil() as u64).max(1);
+    if columns * rows > MAX_CELLS {
+        return Err(MapError::TooManyCells(columns * rows));
+    }
+    let (columns, rows) = (columns as u32, rows as u32);
+    let cell = Vec2::new(plane.size.x / columns as f32, plane.size.y / rows as f32)
+        .max(Vec2::splat(f32::MIN_POSITIVE));
+    let n_cells = (columns * rows) as usize;
+    let mut areas = vec![0.0f64; n_cells];
+    for t in &plane.triangles {
+        let lo = t[0].min(t[1]).min(t[2]);
+        let hi = t[0].max(t[1]).max(t[2]);
+        let c0 = ((lo.x / cell.x).floor().max(0.0) as u32).min(columns - 1);
+        let c1 = ((hi.x / cell.x).floor().max(0.0) as u32).min(columns - 1);
+        let r0 = ((lo.y / cell.y).floor().max(0.0) as u32).min(rows - 1);
+        let r1 = ((hi.y / cell.y).floor().max(0.0) as u32).min(rows - 1);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                let a = Vec2::new(c as f32, r as f32) * cell;
+                areas[(r * columns + c) as usize] += clipped_area(t, a, a + cell);
+            }
+        }
+    }
+    let mut on_surface = vec![false; scene.instances.len()];
+    for &i in &scene.surfaces[surface as usize].instances {
+        on_surface[i as usize] = true;
+    }
+    let grid = Grid {
+        on_surface: &on_surface,
+        origin: plane.origin,
+        u: plane.u,
+        v: plane.v,
+        inv_cell: Vec2::ONE / cell,
+        columns,
+        rows,
+    };
+    let mut totals = vec![Tally::default(); n_cells];
+    let emitters = Emitters::new(scene);
+    if !emitters.is_empty() {
+        let chunks = settings.photons.div_ceil(CHUNK);
+        let done = AtomicU64::new(0);
+        let mut block = 0;
+        while block < chunks {
+            let end = (block + BLOCK).min(chunks);
+            let parts: Vec<Vec<Tally>> = (block..end)
+                .into_par_iter()
+                .map(|chunk| {
+                    let first = chunk * CHUNK;
+                    let last = (first + CHUNK).min(settings.photons);
+                    let mut tally = CellTally {
+                        grid: &grid,
+                        tallies: vec![Tally::default(); n_cells],
+                        current: vec![0.0; n_cells],
+                        touched: Vec::new(),
+                    };
+                    for i in first..last {
+                        let mut rng = Rng::new(settings.seed, i);
+                        trace_photon(
+                            scene,
+                            accel,
+                            &emitters,
+                            &mut rng,
+                            settings.max_bounces,
+                            &mut tally,
+                        );
+                        tally.end_photon();
+                    }
+                    if let Some(report) = progress {
+                        report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
+                    }
+                    tally.tallies
+                })
+                .collect();
+            for part in &parts {
+                for (t, p) in totals.iter_mut().zip(part) {
+                    t.sum += p.sum;
+                    t.sum_sq += p.sum_sq;
+                    t.hits += p.hits;
+                }
+            }
+            block = end;
+        }
+    }
+    let cells = (0..n_cells)
+        .map(|i| {
+            let area = areas[i];
+            // A sliver below a millionth of the cell is rounding, not surface.
+            if area <= 1e-6 * (cell.x * cell.y) as f64 {
+                return None;
+            }
+            let (c, r) = (i as u32 % columns, i as u32 / columns);
+            let t = &totals[i];
+            let centre = plane.origin
+                + plane.u * ((c as f32 + 0.5) * cell.x)
+                + plane.v * ((r as f32 + 0.5) * cell.y);
+            Some(MapCell {
+                index: (c, r),
+                centre,
+                area,
+                estimate: Estimate::from_sums(
+                    t.sum / area,
+                    t.sum_sq / (area * area),
+                    settings.photons,
+                ),
+                hits: t.hits,
+            })
+        })
+        .collect();
+    Ok(IlluminanceMap {
+        origin: plane.origin,
+        u: plane.u,
+        v: plane.v,
+        columns,
+        rows,
+        cell_u: cell.x,
+        cell_v: cell.y,
+        cells,
+        photons: settings.photons,
+    })
+}
+
+impl IlluminanceMap {
+    /// Emin, Eavg, Emax and U0 over the cells. Emin and Emax are taken over the cells the
+    /// surface covers at least half of: a sliver's estimate rests on few photons and
+    /// would decide the extremes by noise.
+    pub fn summary(&self) -> MapSummary {
+        let full = (self.cell_u * self.cell_v) as f64;
+        let (mut emin, mut emax) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut sum, mut area) = (0.0, 0.0);
+        for c in self.cells.iter().flatten() {
+            sum += c.estimate.mean * c.area;
+            area += c.area;
+            if c.area >= 0.5 * full {
+                emin = emin.min(c.estimate.mean);
+                emax = emax.max(c.estimate.mean);
+            }
+        }
+        let eavg = if area > 0.0 { sum / area } else { 0.0 };
+        if emin > emax {
+            (emin, emax) = (eavg, eavg);
+        }
+        MapSummary {
+            emin,
+            eavg,
+            emax,
+            u0: if eavg > 0.0 { emin / eavg } else { 0.0 },
+        }
+    }
+
+    /// A heat map: each cell a square block in the scale colour of its mean (rows
+    /// upwards, so v points up as on a plan), uncovered cells dark grey, and the legend
+    /// from 0 to `max_lux` on the right. Blocks are sized so the grid is about 600
+    /// pixels on its longer side.
+    pub fn image(&self, max_lux: f64) -> RgbImage {
+        let side = (600 / self.columns.max(self.rows)).clamp(2, 64);
+        let (w, h) = (self.columns * side, self.rows * side);
+        let scale = crate::false_colour::text_scale(h.max(240));
+        let mut out = RgbImage::new(w + draw::legend_width(scale), h.max(240));
+        for (i, cell) in self.cells.iter().enumerate() {
+            let (c, r) = (i as u32 % self.columns, i as u32 / self.columns);
+            let colour = match cell {
+                Some(cell) => draw::scale_colour((cell.estimate.mean / max_lux) as f32),
+                None => [48, 48, 48],
+            };
+            let y = (self.rows - 1 - r) * side;
+            draw::fill_rect(&mut out, (c * side) as i32, y as i32, side, side, colour);
+        }
+        let height = out.height();
+        draw::legend(&mut out, w as i32, 0, height, max_lux, "lx", scale);
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_gives_the_covered_area() {
+        let t = [Vec2::ZERO, Vec2::new(2.0, 0.0), Vec2::new(0.0, 2.0)];
+        // Whole unit square inside the triangle's corner: area 1.
+        assert!((clipped_area(&t, Vec2::ZERO, Vec2::ONE) - 1.0).abs() < 1e-9);
+        // The square [1,2]² touches the triangle only along its hypotenuse corner.
+        assert!(clipped_area(&t, Vec2::ONE, Vec2::splat(2.0)).abs() < 1e-9);
+        // A square straddling the hypotenuse: half of [0.5,1.5]² lies below x + y = 2.
+        assert!((clipped_area(&t, Vec2::splat(0.5), Vec2::splat(1.5)) - 0.5).abs() < 1e-6);
+    }
+}

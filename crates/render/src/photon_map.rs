@@ -1,0 +1,347 @@
+//! The photon map (thesis §2.6.2–2.6.3; Jensen, *Realistic Image Synthesis Using Photon
+//! Mapping*, 2001): photons stored where they arrive, and the irradiance at a point
+//! estimated from the photons around it (thesis eq. 2.6).
+//!
+//! Only photons that did **not** come straight from a light are stored: direct light is
+//! computed exactly by shadow rays, so the map holds indirect light and caustics (paths
+//! through mirrors and glass), which shadow rays cannot see.
+//!
+//! The spatial structure is a hashed uniform grid of cells 2r wide (Teschner et al. 2003,
+//! "Optimized Spatial Hashing for Collision Detection of Deformable Objects"; the photon
+//! grid of Hachisuka & Jensen 2010): every photon's cell key is computed in parallel and
+//! the photons are placed by a stable counting sort, so building costs O(n) and the
+//! order (hence every sum, hence the image) is independent of the number of threads. A
+//! query of radius r visits the 2×2×2 cells that its ball can touch. A kd-tree would
+//! answer k-nearest queries, but its build is a sequence of dependent median splits; a
+//! fixed radius from the mean photon density suits the grid (BENCHMARKS-render.md).
+
+use glam::Vec3;
+use invlight_photon::{CHUNK, Emitters, PathVisitor, Rng, trace_photon};
+use invlight_scene::{Rgb, Scene};
+use invlight_trace::{Accel, Interaction};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Where photons are stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Store {
+    /// On surfaces with a diffuse part, for rendering: mirrors and glass have no
+    /// view-independent radiance to estimate.
+    Diffuse,
+    /// On every surface, for illuminance (false colour): a mirror is lit too.
+    All,
+}
+
+/// How to build a photon map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhotonSettings {
+    /// Photons emitted, N.
+    pub photons: u64,
+    /// Seed of the photon streams; photon i uses (seed, i).
+    pub seed: u64,
+    /// Bounce cap of the paths.
+    pub max_bounces: u32,
+    /// Which surfaces keep photons.
+    pub store: Store,
+    /// Gather radius, m; `None` chooses it from the mean photon density so that a disc
+    /// holds about `neighbours` photons.
+    pub radius: Option<f32>,
+    /// Photons a gather disc holds on average when the radius is automatic.
+    pub neighbours: u32,
+}
+
+impl Default for PhotonSettings {
+    fn default() -> Self {
+        PhotonSettings {
+            photons: 1_000_000,
+            seed: 1,
+            max_bounces: 32,
+            store: Store::Diffuse,
+            radius: None,
+            neighbours: 100,
+        }
+    }
+}
+
+/// A stored photon: where it arrived, the normal on the side it came from, its power.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Photon {
+    position: Vec3,
+    side: Vec3,
+    power: Rgb,
+}
+
+/// Stored photons in a hashed grid, ready for density estimation.
+#[derive(Debug, Clone)]
+pub struct PhotonMap {
+    photons: Vec<Photon>,
+    /// `photons[start[k]..start[k+1]]` lie in the cells whose hash is k.
+    start: Vec<u32>,
+    mask: u64,
+    radius: f32,
+    inv_cell: f32,
+    /// 1 / (N π r²) times the biweight normalisation, applied to every estimate.
+    scale: f32,
+    emitted: u64,
+}
+
+/// Collects one chunk's photons.
+struct Collector<'a> {
+    scene: &'a Scene,
+    store: Store,
+    photons: Vec<Photon>,
+}
+
+impl PathVisitor for Collector<'_> {
+    #[inline]
+    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32) {
+        if bounce == 0 {
+            return;
+        }
+        let m = &self.scene.materials[at.material as usize];
+        if m.hole || (self.store == Store::Diffuse && m.diffuse.max_element() <= 0.0) {
+            return;
+        }
+        let side = if at.normal.dot(dir) < 0.0 {
+            at.normal
+        } else {
+            -at.normal
+        };
+        self.photons.push(Photon {
+            position: at.point,
+            side,
+            power,
+        });
+    }
+
+    #[inline]
+    fn escape(&mut self, _power: Rgb) {}
+}
+
+/// Total area of the surfaces that store photons under `store`, m².
+fn storing_area(scene: &Scene, store: Store) -> f64 {
+    let mut area = 0.0f64;
+    for inst in &scene.instances {
+        let mesh = &scene.meshes[inst.mesh as usize];
+        for (t, &m) in mesh.materials.iter().enumerate() {
+            let m = &scene.materials[m as usize];
+            if m.hole || (store == Store::Diffuse && m.diffuse.max_element() <= 0.0) {
+                continue;
+            }
+            area += mesh.triangle_area(t, &inst.transform) as f64;
+        }
+    }
+    area
+}
+
+/// Teschner et al.'s spatial hash of an integer cell.
+#[inline]
+fn hash(c: [i32; 3]) -> u64 {
+    ((c[0] as u32 as u64).wrapping_mul(73_856_093)
+        ^ (c[1] as u32 as u64).wrapping_mul(19_349_663)
+        ^ (c[2] as u32 as u64).wrapping_mul(83_492_791))
+    .wrapping_mul(0x9e37_79b9_7f4a_7c15)
+        >> 20
+}
+
+impl PhotonMap {
+    /// Traces `settings.photons` photons from the lights of `scene` (chunks of
+    /// [`CHUNK`] in parallel, concatenated in index order) and builds the grid.
+    /// `progress` receives the photons traced so far.
+    pub fn build(
+        scene: &Scene,
+        accel: &Accel,
+        settings: &PhotonSettings,
+        progress: Option<&(dyn Fn(u64) + Sync)>,
+    ) -> PhotonMap {
+        let emitters = Emitters::new(scene);
+        let mut photons = Vec::new();
+        if !emitters.is_empty() {
+            let done = AtomicU64::new(0);
+            let parts: Vec<Vec<Photon>> = (0..settings.photons.div_ceil(CHUNK))
+                .into_par_iter()
+                .map(|chunk| {
+                    let first = chunk * CHUNK;
+                    let last = (first + CHUNK).min(settings.photons);
+                    let mut collector = Collector {
+                        scene,
+                        store: settings.store,
+                        photons: Vec::new(),
+                    };
+                    for i in first..last {
+                        let mut rng = Rng::new(settings.seed, i);
+                        trace_photon(
+                            scene,
+                            accel,
+                            &emitters,
+                            &mut rng,
+                            settings.max_bounces,
+                            &mut collector,
+                        );
+                    }
+                    if let Some(report) = progress {
+                        report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
+                    }
+                    collector.photons
+                })
+                .collect();
+            photons = parts.concat();
+        }
+        let radius = settings.radius.unwrap_or_else(|| {
+            let area = storing_area(scene, settings.store);
+            let n = photons.len().max(1) as f64;
+            let r = (settings.neighbours.max(1) as f64 * area / (std::f64::consts::PI * n)).sqrt();
+            // Never wider than a tenth of the scene.
+            let extent = scene
+                .bounds()
+                .map(|(lo, hi)| (hi - lo).length() as f64)
+                .unwrap_or(1.0);
+            r.min(0.1 * extent).max(1e-6) as f32
+        });
+        PhotonMap::from_photons(photons, radius, settings.photons)
+    }
+
+    fn from_photons(photons: Vec<Photon>, radius: f32, emitted: u64) -> PhotonMap {
+        let inv_cell = 1.0 / (2.0 * radius);
+        let buckets = (photons.len().max(1) * 2).next_power_of_two();
+        let mask = buckets as u64 - 1;
+        let keys: Vec<u32> = photons
+            .par_iter()
+            .map(|p| (hash(cell_of(p.position, inv_cell)) & mask) as u32)
+            .collect();
+        let mut start = vec![0u32; buckets + 1];
+        for &k in &keys {
+            start[k as usize + 1] += 1;
+        }
+        for k in 0..buckets {
+            start[k + 1] += start[k];
+        }
+        let mut next = start.clone();
+        let mut sorted = vec![
+            Photon {
+                position: Vec3::ZERO,
+                side: Vec3::ZERO,
+                power: Vec3::ZERO,
+            };
+            photons.len()
+        ];
+        for (p, &k) in photons.iter().zip(&keys) {
+            sorted[next[k as usize] as usize] = *p;
+            next[k as usize] += 1;
+        }
+        // Silverman's biweight kernel K(d) = 3/(π r²)·(1 − d²/r²)², which integrates to
+        // one over the disc (Silverman 1986, eq. 4.5; Jensen 2001 §7.2 filters likewise).
+        let scale = 3.0 / (std::f32::consts::PI * radius * radius * emitted.max(1) as f32);
+        PhotonMap {
+            photons: sorted,
+            start,
+            mask,
+            radius,
+            inv_cell,
+            scale,
+            emitted,
+        }
+    }
+
+    /// Photons stored.
+    pub fn len(&self) -> usize {
+        self.photons.len()
+    }
+
+    /// Whether no photon was stored.
+    pub fn is_empty(&self) -> bool {
+        self.photons.is_empty()
+    }
+
+    /// The gather radius, m.
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Photons emitted to build the map, N.
+    pub fn emitted(&self) -> u64 {
+        self.emitted
+    }
+
+    /// Irradiance (RGB, lux when the lights are photometric) at `point` on the side of
+    /// the surface that unit `side` points to, from the photons within the radius whose
+    /// own side agrees (so light on one face of a wall never leaks to the other):
+    /// E ≈ Σ_p Φ_p K(‖x − x_p‖) / N (thesis eq. 2.6 with a smooth kernel).
+    pub fn irradiance(&self, point: Vec3, side: Vec3) -> Rgb {
+        let r2 = self.radius * self.radius;
+        let inv_r2 = 1.0 / r2;
+        // The 2×2×2 cells around the ball: from the cell of (point − r) on.
+        let lo = cell_of(point - Vec3::splat(self.radius), self.inv_cell);
+        let mut sum = Vec3::ZERO;
+        let mut seen = [u64::MAX; 8];
+        for i in 0..8 {
+            let c = [
+                lo[0] + (i & 1) as i32,
+                lo[1] + ((i >> 1) & 1) as i32,
+                lo[2] + ((i >> 2) & 1) as i32,
+            ];
+            let k = hash(c) & self.mask;
+            // Two neighbouring cells may share a bucket: visit each bucket once.
+            if seen[..i].contains(&k) {
+                continue;
+            }
+            seen[i] = k;
+            let (a, b) = (self.start[k as usize], self.start[k as usize + 1]);
+            for p in &self.photons[a as usize..b as usize] {
+                let d2 = (p.position - point).length_squared();
+                if d2 < r2 && p.side.dot(side) > 0.8 {
+                    let w = 1.0 - d2 * inv_r2;
+                    sum += p.power * (w * w);
+                }
+            }
+        }
+        sum * self.scale
+    }
+}
+
+#[inline]
+fn cell_of(p: Vec3, inv_cell: f32) -> [i32; 3] {
+    let c = (p * inv_cell).floor();
+    [c.x as i32, c.y as i32, c.z as i32]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_photons_give_their_density() {
+        // Photons of power 1 on a jittered grid of spacing h on the plane z = 0, emitted
+        // count N: irradiance = (1/h²)/N away from the edges, up to the quadrature error
+        // of the kernel on the grid.
+        let h = 0.01f32;
+        let mut photons = Vec::new();
+        let mut rng = Rng::new(9, 0);
+        for i in 0..200 {
+            for j in 0..200 {
+                photons.push(Photon {
+                    position: Vec3::new(
+                        (i as f32 + rng.uniform()) * h,
+                        (j as f32 + rng.uniform()) * h,
+                        0.0,
+                    ),
+                    side: Vec3::Z,
+                    power: Vec3::ONE,
+                });
+            }
+        }
+        let map = PhotonMap::from_photons(photons, 0.1, 10);
+        let e = map.irradiance(Vec3::new(1.0, 1.0, 0.0), Vec3::Z);
+        let expected = 1.0 / (h * h) / 10.0;
+        // About 314 photons in the disc, jittered: relative noise ≈ sqrt(1.8/314) ≈ 7.6 %.
+        assert!(
+            (e.x - expected).abs() < 4.0 * 0.076 * expected,
+            "{e} vs {expected}"
+        );
+        // The other side of the plane sees nothing.
+        assert_eq!(
+            map.irradiance(Vec3::new(1.0, 1.0, 0.0), Vec3::NEG_Z),
+            Vec3::ZERO
+        );
+    }
+}
