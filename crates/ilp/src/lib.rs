@@ -1,11 +1,18 @@
 //! invlight-ilp: inverse lighting problems (thesis chapters 3–4, DESIGN.md §3–4).
 //!
 //! The core types:
-//! - [`Space`]: the free variables ([`Variable`], [`Domain`]) with their neighbourhoods
-//!   N(x, r) and cells; a [`Configuration`] is a point of it in normalised coordinates.
-//! - [`Search`]: the adapted VNS over a [`Space`], generic over an [`Evaluate`]
-//!   function that returns an [`Estimate`] with its standard error, keeping the
-//!   [`Isoc`] (the indistinguishable set of optimum configurations) and a tabu cache.
+//! - [`Problem`]: an ILPSolver XML problem file, read with located errors and warnings
+//!   (`docs/problem-file.md`).
+//! - [`Binding`]: a problem bound to a [`Scene`](invlight_scene::Scene): the [`Space`]
+//!   of its variables ([`Variable`], [`Domain`]: placement [`Rectangle`]s, sun
+//!   [`Hemisphere`]s, colour segments) with their neighbourhoods N(x, r) and cells, the
+//!   initial [`Configuration`], and [`Binding::apply`], which changes only what moved.
+//! - [`Search`]: the adapted VNS, generic over an [`Evaluate`] function returning an
+//!   [`Estimate`] with its standard error; it keeps the [`Isoc`] (the indistinguishable
+//!   set of optimum configurations) and a tabu cache of evaluated cells, and reports
+//!   every evaluation to an [`Observer`].
+//! - [`PhotonEvaluator`]: the objective by photon tracing; [`Output`]: `solutions.csv`
+//!   and `result.json`, and [`read_solutions`] to resume.
 //!
 //! ```
 //! use invlight_ilp::{Configuration, Domain, Evaluate, Search, Settings, Space, Strategy,

@@ -20,7 +20,7 @@ use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt;
 
-/// A placement parallelogram: P(s, t) = A + s·e1 + t·e2, (s, t) ∈ [0,1]² (thesis §4.4.1).
+/// A placement parallelogram: P(s, t) = A + s·e1 + t·e2, (s, t) ∈ \[0, 1\]² (thesis §4.4.1).
 ///
 /// Its neighbourhood of radius r is the disc of radius r·diagonal around the current
 /// point in the plane's metric coordinates (u along e1, v ⟂ u in the plane), clipped to
