@@ -5,6 +5,7 @@ mod args;
 mod measure;
 mod progress;
 mod scene_info;
+mod solve;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -29,6 +30,10 @@ enum Command {
     /// What a scene file holds: surfaces, lights, cameras, bounds. Run it first to find
     /// the names to measure or to put in a problem file.
     Scene(scene_info::SceneArgs),
+    /// Search a problem's free variables for the configurations that maximise a
+    /// surface's illuminance (the problem file is ILPSolver's XML; see
+    /// docs/problem-file.md). Results are written as they are found.
+    Solve(solve::SolveArgs),
 }
 
 /// An error caused by what the user gave us (a file, a name, a value): exit code 2.
@@ -48,6 +53,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Measure(args) => measure::run(args),
         Command::Scene(args) => scene_info::run(args),
+        Command::Solve(args) => solve::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
