@@ -440,16 +440,19 @@ impl Accel {
         let mut instance = |slot: u32, t_max: &mut f32| {
             let item = &self.items[slot as usize];
             let blas = &self.blas[item.blas as usize];
-            let (node_ray, tri_ray) = if item.identity {
-                (world, world_tri)
+            // The triangle constants only once a leaf is reached: many instances a ray
+            // enters are left at their root.
+            let (node_ray, mut tri_ray, o, d) = if item.identity {
+                (world, Some(world_tri), origin, dir)
             } else {
                 let o = item.object_from_world.transform_point3a(origin);
                 let d = item.object_from_world.transform_vector3a(dir);
-                (NodeRay::new(o, d), TriRay::new(o, d))
+                (NodeRay::new(o, d), None, o, d)
             };
             let mut stop = false;
             wide::traverse::<T, _, _>(&blas.nodes, &blas.tris, &node_ray, t_max, |slot, t_max| {
                 let tri = &blas.tris[slot as usize];
+                let tri_ray = tri_ray.get_or_insert_with(|| TriRay::new(o, d));
                 let Some(h) = tri_ray.intersect(tri, *t_max) else {
                     return false;
                 };
