@@ -336,3 +336,39 @@ fn same_bits_on_one_and_two_threads() {
     assert_eq!(run(1), run(2));
     assert_eq!(run(2), run(3));
 }
+
+#[test]
+fn intervals_cover_the_exact_value_at_their_confidence() {
+    // An honest 95 % interval contains the exact value in 95 % of independent runs. Over
+    // 400 seeds the count of covering runs is Binomial(400, 0.95): mean 380, σ 4.36; the
+    // test accepts 4 σ either side. Interreflection in a closed room gives per-photon
+    // contributions with a long tail, the hard case for a normal interval.
+    let rho = 0.6f32;
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene.lights.push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let accel = Accel::new(&scene);
+    let area = scene.surface_area(0) as f64;
+    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    let runs = 400;
+    let covered = (0..runs)
+        .filter(|&seed| {
+            let s = TraceSettings {
+                photons: 4000,
+                seed,
+                ..TraceSettings::default()
+            };
+            let (low, high) = trace(&scene, &accel, &[0], &s, None)
+                .estimate(0, area)
+                .interval(0.95);
+            low <= exact && exact <= high
+        })
+        .count() as f64;
+    let (mean, sd) = (0.95 * runs as f64, (runs as f64 * 0.95 * 0.05).sqrt());
+    assert!(
+        (covered - mean).abs() < Z * sd,
+        "{covered} of {runs} intervals covered"
+    );
+}
