@@ -503,3 +503,29 @@ fn closest_hit_is_the_nearer_of_stacked_planes() {
     let short = Ray { t_max: 0.4, ..up };
     assert!(!accel.occluded(&short) && accel.intersect(&short).is_none());
 }
+
+#[test]
+fn zero_direction_components_of_either_sign() {
+    // `-Vec3::Z` is (−0, −0, −1): a −0 component has the inverse −∞, and the slab test
+    // must treat it as negative. Every sign combination of the zero components, on a
+    // grid of origins over a rotated-free quad and an instanced copy moved aside.
+    let mut scene = quad_scene(
+        [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
+        Mat4::IDENTITY,
+    );
+    scene.add_instance("Copy", 0, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)));
+    let accel = Accel::new(&scene);
+    for (sx, sy) in [(0.0f32, 0.0f32), (-0.0, 0.0), (0.0, -0.0), (-0.0, -0.0)] {
+        for (x, y) in [(0.5, 0.5), (0.1, 0.9), (3.5, 0.25), (3.99, 0.01)] {
+            let down = Ray::new(Vec3::new(x, y, 2.0), Vec3::new(sx, sy, -1.0));
+            let hit = accel
+                .intersect(&down)
+                .unwrap_or_else(|| panic!("missed {down:?}"));
+            assert!((hit.t - 2.0).abs() < 1e-6);
+            let up = Ray::new(Vec3::new(x, y, -2.0), Vec3::new(sx, sy, 1.0));
+            assert!(accel.occluded(&up), "{up:?}");
+        }
+        let beside = Ray::new(Vec3::new(2.0, 0.5, 2.0), Vec3::new(sx, sy, -1.0));
+        assert!(accel.intersect(&beside).is_none());
+    }
+}
