@@ -508,7 +508,7 @@ fn closest_hit_is_the_nearer_of_stacked_planes() {
 fn zero_direction_components_of_either_sign() {
     // `-Vec3::Z` is (−0, −0, −1): a −0 component has the inverse −∞, and the slab test
     // must treat it as negative. Every sign combination of the zero components, on a
-    // grid of origins over a rotated-free quad and an instanced copy moved aside.
+    // few origins over a quad and over an instanced copy moved aside.
     let mut scene = quad_scene(
         [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
         Mat4::IDENTITY,
