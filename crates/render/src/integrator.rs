@@ -245,13 +245,14 @@ impl<'a> Integrator<'a> {
         intensity * (cos / d2)
     }
 
-    /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's.
+    /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's (only
+    /// the map's when it holds direct light too).
     pub fn irradiance(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
-        let mut e = self.direct(at, n, rng);
-        if let Some(map) = self.map {
-            e += map.irradiance(at.point, n);
+        match self.map {
+            Some(map) if map.includes_direct() => map.irradiance(at.point, n),
+            Some(map) => self.direct(at, n, rng) + map.irradiance(at.point, n),
+            None => self.direct(at, n, rng),
         }
-        e
     }
 
     /// Radiance (RGB luminance, cd/m²) arriving along `ray`.

@@ -36,5 +36,5 @@ pub use integrator::{
 };
 pub use map::{IlluminanceMap, MapCell, MapError, MapSettings, MapSummary, illuminance_map};
 pub use photon_map::{PhotonMap, PhotonSettings, Store};
-pub use plot::{Mark, PlotKind, PlotPoint, SearchPlot, draw_search_plot};
+pub use plot::{Mark, PLOT_SIZE, PlotKind, PlotPoint, SearchPlot, draw_search_plot};
 pub use tonemap::{Exposure, ToneMap, log_average, srgb_encode, tone_map};

@@ -48,6 +48,11 @@ pub struct PhotonSettings {
     pub radius: Option<f32>,
     /// Photons a gather disc holds on average when the radius is automatic.
     pub neighbours: u32,
+    /// Store the first arrivals from the lights too, so the map carries all the light
+    /// and an [`crate::Integrator`] casts no shadow rays (Jensen's "direct
+    /// visualisation" of the global map): slower to converge, but its only error is the
+    /// density estimate's, which makes it the check of the map against closed forms.
+    pub direct: bool,
 }
 
 impl Default for PhotonSettings {
@@ -59,6 +64,7 @@ impl Default for PhotonSettings {
             store: Store::Diffuse,
             radius: None,
             neighbours: 100,
+            direct: false,
         }
     }
 }
@@ -83,19 +89,21 @@ pub struct PhotonMap {
     /// 1 / (N π r²) times the biweight normalisation, applied to every estimate.
     scale: f32,
     emitted: u64,
+    direct: bool,
 }
 
 /// Collects one chunk's photons.
 struct Collector<'a> {
     scene: &'a Scene,
     store: Store,
+    direct: bool,
     photons: Vec<Photon>,
 }
 
 impl PathVisitor for Collector<'_> {
     #[inline]
     fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32) {
-        if bounce == 0 {
+        if bounce == 0 && !self.direct {
             return;
         }
         let m = &self.scene.materials[at.material as usize];
@@ -166,6 +174,7 @@ impl PhotonMap {
                     let mut collector = Collector {
                         scene,
                         store: settings.store,
+                        direct: settings.direct,
                         photons: Vec::new(),
                     };
                     for i in first..last {
@@ -198,7 +207,9 @@ impl PhotonMap {
                 .unwrap_or(1.0);
             r.min(0.1 * extent).max(1e-6) as f32
         });
-        PhotonMap::from_photons(photons, radius, settings.photons)
+        let mut map = PhotonMap::from_photons(photons, radius, settings.photons);
+        map.direct = settings.direct;
+        map
     }
 
     fn from_photons(photons: Vec<Photon>, radius: f32, emitted: u64) -> PhotonMap {
@@ -240,6 +251,7 @@ impl PhotonMap {
             inv_cell,
             scale,
             emitted,
+            direct: false,
         }
     }
 
@@ -256,6 +268,11 @@ impl PhotonMap {
     /// The gather radius, m.
     pub fn radius(&self) -> f32 {
         self.radius
+    }
+
+    /// Whether the map holds direct light too (see [`PhotonSettings::direct`]).
+    pub fn includes_direct(&self) -> bool {
+        self.direct
     }
 
     /// Photons emitted to build the map, N.

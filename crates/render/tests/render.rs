@@ -1,0 +1,516 @@
+//! Renders and grids with closed-form answers: a diffuse plane under point, spot and
+//! sun light; a white furnace; illuminance cells under a point light; images and grids
+//! that do not depend on the number of threads; the plot files.
+
+use glam::{Mat4, Vec3};
+use invlight_photon::{Rng, z_two_sided};
+use invlight_render::{
+    IlluminanceImage, Image, Integrator, Lights, MapError, MapSettings, Mark, PhotonMap,
+    PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
+    render, render_illuminance,
+};
+use invlight_scene::{Camera, Light, LightKind, Material, Mesh, Scene};
+use invlight_trace::Accel;
+use std::f32::consts::PI;
+
+fn camera(position: Vec3, forward: Vec3, up: Vec3, yfov_deg: f32) -> Camera {
+    Camera {
+        name: "cam".into(),
+        position,
+        forward,
+        up,
+        yfov: yfov_deg.to_radians(),
+        aspect: None,
+    }
+}
+
+fn settings(width: u32, height: u32) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        samples: 1,
+        light_samples: 1,
+        max_depth: 8,
+        seed: 7,
+    }
+}
+
+/// A 4 m square plane at z = 0 of reflectance `kd`, lit from above by a point light, a
+/// spot and a sun.
+fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
+    let mut scene = Scene {
+        up: Vec3::Z,
+        ..Scene::default()
+    };
+    let m = scene.add_material(Material::diffuse("grey", Vec3::splat(kd)));
+    let quad = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(-2.0, -2.0, 0.0),
+            Vec3::new(2.0, -2.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(-2.0, 2.0, 0.0),
+        ],
+        m,
+    ));
+    scene.add_instance("Floor", quad, Mat4::IDENTITY);
+    let lights = vec![
+        LightKind::Point {
+            position: Vec3::new(0.3, 0.2, 1.5),
+            intensity: Vec3::splat(100.0),
+        },
+        LightKind::Spot {
+            position: Vec3::new(-0.5, 0.4, 2.0),
+            direction: Vec3::new(0.2, -0.1, -1.0).normalize(),
+            intensity: Vec3::splat(300.0),
+            inner: 0.3,
+            outer: 0.6,
+        },
+        LightKind::Directional {
+            direction: Vec3::new(0.5, 0.0, -1.0).normalize(),
+            illuminance: Vec3::splat(40.0),
+        },
+    ];
+    for (i, kind) in lights.iter().enumerate() {
+        scene.lights.push(Light {
+            name: format!("l{i}"),
+            kind: kind.clone(),
+        });
+    }
+    (scene, lights)
+}
+
+/// Closed-form illuminance at a point of the plane z = 0 (normal +Z), lx.
+fn plane_illuminance(p: Vec3, lights: &[LightKind]) -> f32 {
+    lights
+        .iter()
+        .map(|l| match *l {
+            LightKind::Point {
+                position,
+                intensity,
+            } => {
+                let d = position - p;
+                intensity.x * d.z / d.length().powi(3)
+            }
+            LightKind::Spot {
+                position,
+                direction,
+                intensity,
+                inner,
+                outer,
+            } => {
+                let d = position - p;
+                let f = LightKind::spot_falloff((-d.normalize()).dot(direction), inner, outer);
+                intensity.x * f * d.z / d.length().powi(3)
+            }
+            LightKind::Directional {
+                direction,
+                illuminance,
+            } => illuminance.x * (-direction.z),
+        })
+        .sum()
+}
+
+/// Every pixel of the plane is ρ/π times the closed-form illuminance. With one ray
+/// through each pixel centre, point-like lights and no photon map the estimator has no
+/// noise at all, so the tolerance is the f32 rounding of the geometry (1e-4 relative).
+/// The image has an even size, so no camera ray runs exactly along −Z.
+#[test]
+fn plane_radiance_is_proportional_to_closed_form_illuminance() {
+    let kd = 0.6;
+    let (scene, lights) = lit_plane(kd);
+    let accel = Accel::new(&scene);
+    let sky = Lights::new(&scene);
+    let cam = camera(Vec3::new(0.1, -0.2, 3.0), Vec3::NEG_Z, Vec3::Y, 60.0);
+    let s = settings(40, 30);
+    let view = View::from_camera(&cam, 40.0 / 30.0);
+    let integrator = Integrator::new(&scene, &accel, &sky, None, s);
+    let image = render(&integrator, &view, None);
+    let mut checked = 0;
+    for y in 0..s.height {
+        for x in 0..s.width {
+            let ray = view.ray((x as f32 + 0.5) / 40.0, (y as f32 + 0.5) / 30.0);
+            let t = -ray.origin.z / ray.dir.z;
+            let p = ray.at(t);
+            let px = image.pixels[(y * s.width + x) as usize];
+            if p.x.abs() < 1.99 && p.y.abs() < 1.99 {
+                let expected = kd / PI * plane_illuminance(p, &lights);
+                assert!(
+                    (px.x - expected).abs() <= 1e-4 * expected,
+                    "pixel ({x}, {y}): {} vs {expected}",
+                    px.x
+                );
+                assert_eq!(px.x, px.y);
+                checked += 1;
+            } else if p.x.abs() > 2.01 || p.y.abs() > 2.01 {
+                assert_eq!(px, Vec3::ZERO);
+            }
+        }
+    }
+    assert!(checked > 900);
+}
+
+/// The inside of a sphere of radius `r` as `stacks` × `slices` quads, counter-clockwise
+/// seen from inside (so it emits inwards).
+fn inward_sphere(r: f32, stacks: u32, slices: u32, material: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for i in 0..=stacks {
+        let theta = PI * i as f32 / stacks as f32;
+        for j in 0..slices {
+            let phi = 2.0 * PI * j as f32 / slices as f32;
+            positions.push(
+                r * Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                ),
+            );
+        }
+    }
+    let at = |i: u32, j: u32| i * slices + j % slices;
+    let mut triangles = Vec::new();
+    for i in 0..stacks {
+        for j in 0..slices {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            // Outward winding would be a, d, c; inward reverses it.
+            if i > 0 {
+                triangles.push([a, b, c]);
+            }
+            if i + 1 < stacks {
+                triangles.push([a, c, d]);
+            }
+        }
+    }
+    Mesh {
+        positions,
+        uvs: Vec::new(),
+        materials: vec![material; triangles.len()],
+        triangles,
+    }
+}
+
+/// White furnace: inside a closed sphere that emits L and reflects ρ everywhere, the
+/// radiance is L/(1 − ρ) in every direction. The map holds all the light here (first
+/// arrivals too; shadow rays to a faceted emitter have unbounded variance where facets
+/// meet), so a pixel is L + ρ/π·E with E = πL/(1 − ρ) estimated from the photons. With
+/// M photons expected in a gather disc, all of equal power, the biweight estimate has
+/// relative standard deviation sqrt(E[w²]/E[w]²/M) = sqrt(1.8/M); every pixel must lie
+/// within 5 σ of L/(1 − ρ). The chord-distance disc on a sphere has area exactly πr²
+/// (Archimedes), so curvature adds no bias.
+#[test]
+fn white_furnace_renders_a_uniform_image() {
+    let (le, rho) = (1.0f32, 0.5f32);
+    let mut scene = Scene::default();
+    let m = scene.add_material(Material {
+        diffuse: Vec3::splat(rho),
+        emission: Vec3::splat(le),
+        ..Material::diffuse("furnace", Vec3::ZERO)
+    });
+    let sphere = scene.add_mesh(inward_sphere(1.0, 48, 96, m));
+    scene.add_instance("Sphere", sphere, Mat4::IDENTITY);
+    let accel = Accel::new(&scene);
+    let radius = 0.2f32;
+    let photons = PhotonSettings {
+        photons: 150_000,
+        seed: 3,
+        max_bounces: 64,
+        store: Store::Diffuse,
+        radius: Some(radius),
+        neighbours: 0,
+        direct: true,
+    };
+    let map = PhotonMap::build(&scene, &accel, &photons, None);
+    // Expected arrivals per photon: 1 + ρ + ρ² + … = 1/(1 − ρ).
+    let expected_stored = photons.photons as f32 / (1.0 - rho);
+    let m_disc = expected_stored * PI * radius * radius / (4.0 * PI);
+    let sky = Lights::new(&scene);
+    let s = settings(24, 18);
+    let cam = camera(Vec3::new(0.05, 0.02, -0.03), Vec3::X, Vec3::Z, 90.0);
+    let view = View::from_camera(&cam, 24.0 / 18.0);
+    let integrator = Integrator::new(&scene, &accel, &sky, Some(&map), s);
+    let image = render(&integrator, &view, None);
+    let expected = le / (1.0 - rho);
+    // ρ/π·E = ρL/(1 − ρ) carries all the noise.
+    let sigma = rho * le / (1.0 - rho) * (1.8 / m_disc).sqrt();
+    for (i, px) in image.pixels.iter().enumerate() {
+        assert!(
+            (px.x - expected).abs() < 5.0 * sigma,
+            "pixel {i}: {} vs {expected} ± {sigma}",
+            px.x
+        );
+    }
+}
+
+/// A closed room with coloured walls, a mirror box, an emissive panel and a point light.
+fn small_room() -> Scene {
+    let mut scene = Scene::default();
+    let white = scene.add_material(Material::diffuse("white", Vec3::splat(0.7)));
+    let red = scene.add_material(Material::diffuse("red", Vec3::new(0.7, 0.1, 0.1)));
+    let mirror = scene.add_material(Material::mirror("mirror", Vec3::splat(0.9)));
+    let glass = scene.add_material(Material::glass("glass", 1.5));
+    let lamp = scene.add_material(Material::emitter("lamp", Vec3::splat(50.0)));
+    // Walls: a cuboid seen from inside blocks from both sides; shading flips normals.
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(2.0, 2.0, 2.0), white));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    let wall = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(0.01, 0.0, 0.0),
+            Vec3::new(0.01, 2.0, 0.0),
+            Vec3::new(0.01, 2.0, 2.0),
+            Vec3::new(0.01, 0.0, 2.0),
+        ],
+        red,
+    ));
+    scene.add_instance("Red", wall, Mat4::IDENTITY);
+    let cube = scene.add_mesh(Mesh::cuboid(Vec3::splat(-0.25), Vec3::splat(0.25), mirror));
+    scene.add_instance(
+        "Mirror",
+        cube,
+        Mat4::from_translation(Vec3::new(0.6, 1.2, 0.25)),
+    );
+    let ball = scene.add_mesh(Mesh::cuboid(Vec3::splat(-0.2), Vec3::splat(0.2), glass));
+    scene.add_instance(
+        "Glass",
+        ball,
+        Mat4::from_translation(Vec3::new(1.4, 1.0, 0.2)),
+    );
+    let panel = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(0.8, 0.8, 1.99),
+            Vec3::new(0.8, 1.2, 1.99),
+            Vec3::new(1.2, 1.2, 1.99),
+            Vec3::new(1.2, 0.8, 1.99),
+        ],
+        lamp,
+    ));
+    scene.add_instance("Lamp", panel, Mat4::IDENTITY);
+    scene.lights.push(Light {
+        name: "bulb".into(),
+        kind: LightKind::Point {
+            position: Vec3::new(1.5, 0.5, 1.5),
+            intensity: Vec3::splat(5.0),
+        },
+    });
+    scene.cameras.push(camera(
+        Vec3::new(1.0, -0.0, 1.0) + Vec3::new(0.0, 0.05, 0.0),
+        Vec3::Y,
+        Vec3::Z,
+        70.0,
+    ));
+    scene
+}
+
+fn render_room(threads: usize) -> (Image, IlluminanceImage) {
+    let scene = small_room();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let accel = Accel::new(&scene);
+        let map = PhotonMap::build(
+            &scene,
+            &accel,
+            &PhotonSettings {
+                photons: 30_000,
+                ..PhotonSettings::default()
+            },
+            None,
+        );
+        let sky = Lights::new(&scene);
+        let s = RenderSettings {
+            samples: 2,
+            ..settings(32, 24)
+        };
+        let view = View::from_camera(&scene.cameras[0], 32.0 / 24.0);
+        let integrator = Integrator::new(&scene, &accel, &sky, Some(&map), s);
+        (
+            render(&integrator, &view, None),
+            render_illuminance(&integrator, &view, None),
+        )
+    })
+}
+
+#[test]
+fn images_do_not_depend_on_the_thread_count() {
+    let (a, la) = render_room(1);
+    let (b, lb) = render_room(2);
+    assert!(a.pixels.iter().any(|p| p.x > 0.0));
+    assert_eq!(a, b);
+    assert_eq!(
+        la.lux.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+        lb.lux.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    );
+}
+
+/// A black 2 m square (so only direct arrivals) under a point light: each cell's mean
+/// is the average of E = I·h/d³ over the cell, integrated here by a 64×64 midpoint rule
+/// (error far below the noise). Each of the 16 cells must hold it within 4 standard
+/// errors (a two-sided 95 % interval would miss in one cell of twenty by chance; 4σ
+/// makes a false failure of the test about 1 in 1000).
+#[test]
+fn grid_cells_match_the_closed_form_under_a_point_light() {
+    let mut scene = Scene::default();
+    let black = scene.add_material(Material::diffuse("black", Vec3::ZERO));
+    let quad = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        ],
+        black,
+    ));
+    scene.add_instance("Floor", quad, Mat4::IDENTITY);
+    let (light, intensity) = (Vec3::new(0.7, 1.3, 1.0), 100.0f64);
+    scene.lights.push(Light {
+        name: "bulb".into(),
+        kind: LightKind::Point {
+            position: light,
+            intensity: Vec3::splat(intensity as f32),
+        },
+    });
+    let accel = Accel::new(&scene);
+    let settings = MapSettings {
+        cell: 0.5,
+        photons: 400_000,
+        seed: 11,
+        max_bounces: 4,
+    };
+    let map = illuminance_map(&scene, &accel, 0, &settings, None).unwrap();
+    assert_eq!((map.columns, map.rows), (4, 4));
+    let exact = |x0: f64, y0: f64| {
+        let n = 64;
+        let mut sum = 0.0;
+        for i in 0..n {
+            for j in 0..n {
+                let x = x0 + (i as f64 + 0.5) / n as f64 * 0.5;
+                let y = y0 + (j as f64 + 0.5) / n as f64 * 0.5;
+                let d = (light.as_dvec3() - glam::DVec3::new(x, y, 0.0)).length();
+                sum += intensity * light.z as f64 / d.powi(3);
+            }
+        }
+        sum / (n * n) as f64
+    };
+    let mut total = 0.0;
+    for cell in map.cells.iter().map(|c| c.unwrap()) {
+        assert!((cell.area - 0.25).abs() < 1e-6);
+        let corner =
+            map.origin + map.u * (cell.index.0 as f32 * 0.5) + map.v * (cell.index.1 as f32 * 0.5);
+        let e = exact(corner.x as f64, corner.y as f64);
+        let est = cell.estimate;
+        assert!(
+            (est.mean - e).abs() < 4.0 * est.std_error,
+            "cell {:?}: {} ± {} vs {e}",
+            cell.index,
+            est.mean,
+            est.std_error
+        );
+        // The interval a user sees contains the value at the usual confidence for most.
+        let (low, high) = est.interval(0.95);
+        assert!(low < est.mean && est.mean < high);
+        total += est.mean * cell.area;
+    }
+    let summary = map.summary();
+    assert!((summary.eavg - total / 4.0).abs() < 1e-9 * total);
+    assert!((summary.u0 - summary.emin / summary.eavg).abs() < 1e-12);
+    assert!(summary.emin <= summary.eavg && summary.eavg <= summary.emax);
+    assert!(z_two_sided(0.95) > 1.9);
+    // The heat map has the grid and the legend.
+    let img = map.image(invlight_render::nice_ceil(summary.emax));
+    assert_eq!(img.width(), 4 * 64 + invlight_render::legend_width(1));
+}
+
+#[test]
+fn grids_need_a_plane_and_do_not_depend_on_threads() {
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("grey", Vec3::splat(0.5)));
+    let cube = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::ONE, grey));
+    scene.add_instance("Box", cube, Mat4::IDENTITY);
+    let accel = Accel::new(&scene);
+    let settings = MapSettings {
+        cell: 0.25,
+        photons: 1000,
+        seed: 1,
+        max_bounces: 4,
+    };
+    assert!(matches!(
+        illuminance_map(&scene, &accel, 0, &settings, None),
+        Err(MapError::NotPlanar { .. })
+    ));
+    let room = small_room();
+    let accel = Accel::new(&room);
+    let red = room.surface("Red").unwrap();
+    let settings = MapSettings {
+        photons: 50_000,
+        ..settings
+    };
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| illuminance_map(&room, &accel, red, &settings, None).unwrap())
+    };
+    let (a, b) = (run(1), run(2));
+    assert_eq!(a, b);
+    assert_eq!((a.columns, a.rows), (8, 8));
+}
+
+#[test]
+fn search_plots_are_written_at_their_size() {
+    let dir = std::env::temp_dir().join(format!("invlight-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut rng = Rng::new(5, 0);
+    let mut points = Vec::new();
+    for i in 0..40 {
+        let (u, v) = (rng.uniform() as f64 * 3.0, rng.uniform() as f64 * 2.0);
+        let mean = 100.0 + 50.0 * u;
+        points.push(PlotPoint {
+            coords: [u, v],
+            mean,
+            low: mean - 5.0,
+            high: mean + 5.0,
+            mark: match i {
+                0 => Mark::Start,
+                5 | 12 | 30 => Mark::Improvement,
+                7 => Mark::Invalid,
+                _ => Mark::Visited,
+            },
+            isoc: i == 30 || i == 31,
+        });
+    }
+    let plots = [
+        PlotKind::Position {
+            width: 3.0,
+            height: 2.0,
+        },
+        PlotKind::Direction,
+        PlotKind::Value { min: 0.0, max: 3.0 },
+    ];
+    for (k, kind) in plots.into_iter().enumerate() {
+        let plot = SearchPlot {
+            kind,
+            cell: [0.15, 0.1],
+            points: points
+                .iter()
+                .map(|p| PlotPoint {
+                    coords: if k == 1 {
+                        [p.coords[1] * 45.0, p.coords[0] * 120.0]
+                    } else {
+                        p.coords
+                    },
+                    ..*p
+                })
+                .collect(),
+        };
+        let path = dir.join(format!("search-{k}.png"));
+        plot.write(&path).unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+        let img = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), invlight_render::PLOT_SIZE);
+        // The cells, the path and the ISOC rings leave many distinct colours.
+        let magenta = img.pixels().filter(|p| p.0 == [255, 0, 255]).count();
+        assert!(magenta > 20, "plot {k}: {magenta} ISOC pixels");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
