@@ -169,7 +169,6 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         radius: args.radius,
         ..PhotonSettings::default()
     };
-    let map_start = Instant::now();
     let map = if args.photons > 0 {
         let bar = progress::bar(args.photons, "photons");
         let report = |done: u64| bar.set_position(done);
@@ -180,7 +179,6 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     } else {
         None
     };
-    let map_seconds = map_start.elapsed().as_secs_f64();
     let lights = Lights::new(&scene);
     let settings = RenderSettings {
         width,
@@ -211,8 +209,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     save_png(&picture, &args.output)?;
     let stored = map.as_ref().map_or(0, |m| m.len());
     let radius = map.as_ref().map_or(0.0, |m| m.radius());
+    let (trace_s, grid_s) = map.as_ref().map_or((0.0, 0.0), |m| m.seconds());
     eprintln!(
-        "{}: {width}×{height}, {} photons → {stored} stored (radius {radius:.4} m) in {map_seconds:.2} s, pixels in {render_seconds:.2} s, {:.2} s in all",
+        "{}: {width}×{height}; photon map: {} photons traced in {trace_s:.2} s, {stored} stored, grid built in {grid_s:.3} s (radius {radius:.4} m); pixels in {render_seconds:.2} s; {:.2} s in all",
         args.output.display(),
         args.photons,
         start.elapsed().as_secs_f64()

@@ -298,13 +298,14 @@ pub fn legend(img: &mut RgbImage, x: i32, y: i32, h: u32, max: f64, unit: &str, 
             img,
             bar_x + bar_w as i32,
             row,
-            3 * scale,
+            2 * scale,
             scale,
             [255, 255, 255],
         );
+        // A clear gap after the tick, so that it does not read as a minus sign.
         text(
             img,
-            bar_x + (bar_w + 4 * scale) as i32,
+            bar_x + (bar_w + 6 * scale) as i32,
             row - (text_height(scale) / 2) as i32,
             &label(v, step),
             scale,

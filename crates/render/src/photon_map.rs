@@ -21,6 +21,7 @@ use invlight_scene::{Rgb, Scene};
 use invlight_trace::{Accel, Interaction};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 /// Where photons are stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,6 +91,8 @@ pub struct PhotonMap {
     scale: f32,
     emitted: u64,
     direct: bool,
+    /// Seconds spent tracing photons and building the grid.
+    seconds: (f64, f64),
 }
 
 /// Collects one chunk's photons.
@@ -162,6 +165,7 @@ impl PhotonMap {
         settings: &PhotonSettings,
         progress: Option<&(dyn Fn(u64) + Sync)>,
     ) -> PhotonMap {
+        let start = Instant::now();
         let emitters = Emitters::new(scene);
         let mut photons = Vec::new();
         if !emitters.is_empty() {
@@ -207,8 +211,11 @@ impl PhotonMap {
                 .unwrap_or(1.0);
             r.min(0.1 * extent).max(1e-6) as f32
         });
+        let trace_seconds = start.elapsed().as_secs_f64();
+        let grid_start = Instant::now();
         let mut map = PhotonMap::from_photons(photons, radius, settings.photons);
         map.direct = settings.direct;
+        map.seconds = (trace_seconds, grid_start.elapsed().as_secs_f64());
         map
     }
 
@@ -252,6 +259,7 @@ impl PhotonMap {
             scale,
             emitted,
             direct: false,
+            seconds: (0.0, 0.0),
         }
     }
 
@@ -268,6 +276,11 @@ impl PhotonMap {
     /// The gather radius, m.
     pub fn radius(&self) -> f32 {
         self.radius
+    }
+
+    /// Wall-clock seconds spent (tracing the photons, building the grid).
+    pub fn seconds(&self) -> (f64, f64) {
+        self.seconds
     }
 
     /// Whether the map holds direct light too (see [`PhotonSettings::direct`]).
