@@ -73,7 +73,15 @@ impl<'b> Output<'b> {
         std::fs::create_dir_all(dir)?;
         let path = dir.join("solutions.csv");
         let csv = match resumed {
-            Some(_) => OpenOptions::new().append(true).open(&path)?,
+            Some(_) => {
+                // A row cut short by a hard stop is ignored by `read_solutions`; cut it
+                // off so the next row starts on its own line.
+                let text = std::fs::read(&path)?;
+                let keep = text.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+                let f = OpenOptions::new().append(true).open(&path)?;
+                f.set_len(keep as u64)?;
+                f
+            }
             None => {
                 let mut f = File::create(&path)?;
                 writeln!(f, "{}", csv_header(binding).join(","))?;
@@ -387,7 +395,16 @@ mod tests {
                 .run(&mut Bowl, &mut out, &AtomicBool::new(false))
                 .unwrap();
         }
-        let (records, elapsed) = read_solutions(&dir.join("solutions.csv"), &b, z).unwrap();
+        // A hard stop mid-row: the partial row is ignored, then cut off on resuming.
+        let csv = dir.join("solutions.csv");
+        let mut f = OpenOptions::new().append(true).open(&csv).unwrap();
+        write!(f, "999,0.5,0.").unwrap();
+        drop(f);
+        let (records, elapsed) = read_solutions(&csv, &b, z).unwrap();
+        Output::create(&dir, &b, info.clone(), z, Some(&records), elapsed).unwrap();
+        let text = std::fs::read_to_string(&csv).unwrap();
+        assert!(text.ends_with('\n'));
+        assert_eq!(text.lines().count(), records.len() + 1);
         assert_eq!(records.len() as u64, search.evaluations());
         assert!(elapsed >= 0.0);
         assert!(
