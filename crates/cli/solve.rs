@@ -16,7 +16,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Raised by Ctrl-C; the search stops after the evaluation in progress.
+/// Raised by Ctrl-C; the search stops after the evaluation in progress (a second
+/// Ctrl-C exits at once).
 static STOP: AtomicBool = AtomicBool::new(false);
 
 /// Solve an inverse lighting problem: search the free variables of a problem file for
@@ -157,9 +158,15 @@ pub fn run(args: SolveArgs) -> Result<()> {
         .context("starting the worker threads")?;
     let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces);
     STOP.store(false, Ordering::Relaxed);
-    // A second handler cannot be installed in the same process; the first one sets
-    // the same flag, so that error is harmless.
-    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::Relaxed));
+    // The first Ctrl-C stops after the evaluation in progress; a second one exits at
+    // once, which is safe too: every row is flushed as written and result.json is
+    // replaced atomically. A second handler cannot be installed in the same process;
+    // the first one sets the same flag, so that error is harmless.
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    });
     let mut reporter = Reporter {
         output,
         bar: progress_bar(problem.max_iterations, search.iteration()),

@@ -309,6 +309,14 @@ impl<'s> Search<'s> {
             if rec.iteration == 0 {
                 self.start = config;
             }
+            self.evaluations += 1;
+            self.iteration = self.iteration.max(rec.iteration + 1);
+            self.started = true;
+            // A fast estimate is decided by the full one on the next row; without it
+            // (a hard stop in between) the cell stays open to be drawn again.
+            if rec.verdict == Verdict::Refine {
+                continue;
+            }
             self.cache.insert(
                 cell,
                 Entry {
@@ -316,9 +324,6 @@ impl<'s> Search<'s> {
                     verdict: rec.verdict,
                 },
             );
-            self.evaluations += 1;
-            self.iteration = self.iteration.max(rec.iteration + 1);
-            self.started = true;
         }
         if let Some(done) = rebuilt {
             self.isoc = done;
@@ -586,5 +591,71 @@ impl<'s> Search<'s> {
         observer
             .evaluated(&record, &self.isoc, changed)
             .map_err(SearchError::Output)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::{Domain, Variable};
+
+    struct Slope;
+    impl Evaluate for Slope {
+        type Error = ();
+        fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, ()> {
+            Ok(Estimate {
+                mean: c.coords[0],
+                std_error: 0.5 / (photons as f64).sqrt(),
+                photons,
+            })
+        }
+    }
+
+    struct Log(Vec<Record>);
+    impl Observer for Log {
+        fn evaluated(&mut self, r: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
+            self.0.push(r.clone());
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_refine_row_without_its_full_row_leaves_the_cell_open() {
+        let space = Space::new(
+            vec![Variable {
+                id: "v".into(),
+                domain: Domain::Segment { min: 0.0, max: 1.0 },
+            }],
+            &[50],
+        );
+        let settings = Settings {
+            max_iterations: 100,
+            photons: 4096,
+            fast_quality: 0.25,
+            strategy: Strategy::RefineOnIntersection,
+            confidence: 0.95,
+            cap: None,
+            seed: 3,
+            tries_per_radius: None,
+        };
+        let start = Configuration { coords: vec![0.0] };
+        let mut search = Search::new(&space, settings.clone(), &start);
+        let mut log = Log(Vec::new());
+        search
+            .run(&mut Slope, &mut log, &AtomicBool::new(false))
+            .unwrap();
+        let i = log
+            .0
+            .iter()
+            .position(|r| r.verdict == Verdict::Refine)
+            .expect("an increasing slope refines its improvements");
+        let cell = space.cell(&log.0[i].config);
+        let mut cut = Search::new(&space, settings.clone(), &start);
+        cut.replay(&log.0[..=i]);
+        assert!(cut.cache.get(&cell).is_none());
+        assert_eq!(cut.evaluations(), i as u64 + 1);
+        let mut whole = Search::new(&space, settings, &start);
+        whole.replay(&log.0[..=i + 1]);
+        assert!(whole.cache.get(&cell).is_some());
     }
 }
