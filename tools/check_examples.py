@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Runs every bundled example with a reduced budget and checks that its answer lands in
+the region its README expects (issue 6: "CI runs every example with a reduced budget
+and checks that the answer lands in the expected region").
+
+    python3 tools/check_examples.py [--bin PATH] [--only NAME] [--full]
+
+Python 3 standard library only. `--bin` is the invlight binary (default: `cargo run
+--release --` from the repository); `--full` uses each problem file's own budget. The
+run's files go to a temporary folder. Exit status 0 when every check passes.
+
+The regions are the geometric arguments of the READMEs, with margins of about one cell:
+the check is on the ISOC's best member (highest mean), which the search returns first.
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def cornell_cone(r):
+    # Cone centre = P + (authored centre − A) = P + (−0.752, +0.850); the panel covers
+    # x ∈ [−0.39, 0.86], y ∈ [0.93, 2.17]: under it, within 0.5 m.
+    x, y, _ = r["variables"]["Cone"]["position"]
+    cx, cy = x - 0.752, y + 0.850
+    return -0.89 <= cx <= 1.36 and 0.43 <= cy <= 2.67, "cone centre (%.2f, %.2f)" % (cx, cy)
+
+
+def cornell_light(r):
+    # Panel centre = P + (2.740, −3.607); the cone's centre is (2.26, −7.01): above it,
+    # within 0.75 m horizontally.
+    x, y, _ = r["variables"]["Light"]["position"]
+    cx, cy = x + 2.740, y - 3.607
+    d = math.hypot(cx - 2.26, cy + 7.01)
+    return d <= 0.75, "panel centre (%.2f, %.2f), %.2f m from the cone's axis" % (cx, cy, d)
+
+
+def atrium_skylight(r):
+    # The sun reaches the jar's centre through a hole centred at x = −4.07, z = 0; the
+    # whole jar stays lit within ±0.7 m; one cell (0.99 m in x) of margin.
+    x, _, z = r["variables"]["Hole"]["position"]
+    return abs(x + 4.07) <= 1.0 and abs(z) <= 1.0, "hole centre (%.2f, %.2f)" % (x, z)
+
+
+def atrium_colour(r):
+    # The floor crosses the 35 lx cap at V ≈ 0.735 (README's table); one cell each side.
+    v = r["variables"]["InnerWalls"]["value"]
+    return 0.70 <= v <= 0.76, "V = %.3f" % v
+
+
+def conference_sun(r):
+    # A low sun through the window: travelling toward +x and +z, below 15°, azimuth from
+    # +z toward +x within 10°–60° (the geometric 34° ± about one cell of 18°).
+    d = r["variables"]["Sun"]["direction"]
+    elevation = math.degrees(math.asin(max(-1.0, min(1.0, -d[1]))))
+    azimuth = math.degrees(math.atan2(d[0], d[2]))
+    ok = 0.0 < elevation <= 15.0 and 10.0 <= azimuth <= 60.0
+    return ok, "sun elevation %.1f°, azimuth %.1f° from +z toward +x" % (elevation, azimuth)
+
+
+# name: (check, reduced-budget arguments)
+EXAMPLES = {
+    "cornell-cone": (cornell_cone, ["--iterations", "300"]),
+    "cornell-light": (cornell_light, ["--iterations", "300"]),
+    "atrium-skylight": (atrium_skylight, ["--iterations", "400", "--photons", "400000"]),
+    "atrium-colour": (atrium_colour, ["--photons", "400000"]),
+    "conference-sun": (conference_sun, ["--iterations", "300", "--photons", "400000"]),
+}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", help="the invlight binary (default: cargo run --release --)")
+    ap.add_argument("--only", choices=sorted(EXAMPLES))
+    ap.add_argument("--full", action="store_true", help="the problem files' own budgets")
+    args = ap.parse_args()
+    command = [args.bin] if args.bin else ["cargo", "run", "--quiet", "--release", "--"]
+    failed = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, (check, budget) in EXAMPLES.items():
+            if args.only not in (None, name):
+                continue
+            out = os.path.join(tmp, name)
+            cmd = command + ["solve", os.path.join("examples", name, "problem.xml"),
+                             "--output", out, "--json"] + ([] if args.full else budget)
+            start = time.monotonic()
+            run = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+            seconds = time.monotonic() - start
+            if run.returncode != 0:
+                print("FAIL %s: exit %d\n%s" % (name, run.returncode, run.stderr.decode()[-2000:]))
+                failed += 1
+                continue
+            result = json.loads(run.stdout)
+            best = max(result["isoc"], key=lambda m: m["estimate"]["mean"])
+            ok, what = check(best)
+            print("%s %s: %s; %.4g lx [%.4g, %.4g]; %d evaluations, N = %d photons, %.0f s" % (
+                "ok  " if ok else "FAIL", name, what, best["estimate"]["mean"],
+                best["estimate"]["low"], best["estimate"]["high"], result["evaluations"],
+                result["photons"], seconds))
+            failed += not ok
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
