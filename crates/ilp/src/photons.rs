@@ -50,11 +50,6 @@ impl<'b> PhotonEvaluator<'b> {
     pub fn work(&self) -> (u64, u64) {
         (self.rays, self.photons)
     }
-
-    /// The scene as last configured.
-    pub fn scene(&self) -> &Scene {
-        &self.scene
-    }
 }
 
 impl Evaluate for PhotonEvaluator<'_> {

@@ -115,11 +115,6 @@ impl Rectangle {
         self.metric_to_st(d.dot(u), d.dot(v))
     }
 
-    /// Lengths of the two edges from A, m.
-    pub fn sides(&self) -> (f64, f64) {
-        (self.e1.length(), self.e2.length())
-    }
-
     fn st_to_metric(&self, s: f64, t: f64) -> (f64, f64) {
         (s * self.metric[0] + t * self.metric[1], t * self.metric[2])
     }

@@ -271,11 +271,6 @@ impl<'s> Search<'s> {
         self.evaluations
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &Settings {
-        &self.settings
-    }
-
     /// Continues a stopped run from its records (`solutions.csv`): every evaluated cell
     /// goes back into the cache and the ISOC is rebuilt by offering it the rows that
     /// joined it, in order — the same decisions on the same estimates. The search then
