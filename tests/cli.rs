@@ -1,0 +1,1038 @@
+//! End-to-end tests of the `invlight` binary: what a user sees on the command line.
+//!
+//! One test binary with a module per topic (as ripgrep lays out its integration tests),
+//! so that cargo links one executable. The library crates test their own pieces; these
+//! tests check what only the assembled program can show: exit codes, the JSON the
+//! issues promise (issue 2 item 7, issue 3 item 3), the same answer from the same scene
+//! in three formats (issue 3, "Done when"), and agreement with independent renderers.
+//!
+//! Statistical checks use tolerances built from the standard errors the program reports
+//! and fixed seeds, so they are deterministic and can fail.
+
+use serde_json::Value;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A file under tests/data.
+fn data(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(rel)
+}
+
+/// Runs `invlight` with `args`.
+fn invlight<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_invlight"))
+        .args(args)
+        .output()
+        .expect("the invlight binary runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Runs `invlight` and parses its standard output as JSON, failing the test if the
+/// command failed.
+fn json<I, S>(args: I) -> Value
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    let out = invlight(args);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("stdout is not JSON ({e}): {}", text(&out.stdout)))
+}
+
+/// Runs `invlight` expecting an input error: exit code 2, a message on stderr that
+/// starts with `error:` and mentions each of `mentions`, and no panic. Returns stderr.
+fn input_error<I, S>(args: I, mentions: &[&str]) -> String
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    let out = invlight(args);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.starts_with("error:"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    for m in mentions {
+        assert!(stderr.contains(m), "stderr should mention {m:?}: {stderr}");
+    }
+    assert!(out.stdout.is_empty(), "{}", text(&out.stdout));
+    stderr
+}
+
+/// The entry named `name` of the array `list`.
+fn named<'v>(list: &'v Value, name: &str) -> &'v Value {
+    list.as_array()
+        .expect("an array")
+        .iter()
+        .find(|s| s["name"] == name)
+        .unwrap_or_else(|| panic!("no {name:?} in {list:#}"))
+}
+
+fn f64_of(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("{v} is not a number"))
+}
+
+fn vec3_of(v: &Value) -> [f64; 3] {
+    let a = v
+        .as_array()
+        .unwrap_or_else(|| panic!("{v} is not an array"));
+    assert_eq!(a.len(), 3, "{v}");
+    [f64_of(&a[0]), f64_of(&a[1]), f64_of(&a[2])]
+}
+
+/// Asserts that `a` and `b` agree to `rel` relative error (absolute near zero).
+fn close(a: f64, b: f64, rel: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= rel * a.abs().max(b.abs()).max(1.0),
+        "{what}: {a} vs {b}"
+    );
+}
+
+fn close3(a: [f64; 3], b: [f64; 3], rel: f64, what: &str) {
+    for k in 0..3 {
+        close(a[k], b[k], rel, what);
+    }
+}
+
+/// `invlight measure FILE --surface …` with `extra` options, as JSON.
+fn measure(file: &Path, surfaces: &[&str], extra: &[&str]) -> Value {
+    let mut args: Vec<&OsStr> = vec!["measure".as_ref(), file.as_os_str()];
+    for s in surfaces {
+        args.extend([OsStr::new("--surface"), OsStr::new(s)]);
+    }
+    args.extend(extra.iter().map(OsStr::new));
+    args.push("--json".as_ref());
+    json(args)
+}
+
+/// `invlight scene FILE --json`.
+fn scene(file: &Path) -> Value {
+    json(["scene".as_ref(), file.as_os_str(), "--json".as_ref()])
+}
+
+/// The same room written as glTF, COLLADA and OBJ+MTL by tests/data/triple/make.py
+/// (issue 3, "Done when": the same illuminance from a scene in each format).
+mod triple {
+    use super::*;
+
+    const FORMATS: [&str; 3] = ["room.gltf", "room.dae", "room.obj"];
+
+    fn file(name: &str) -> PathBuf {
+        data("triple").join(name)
+    }
+
+    /// `invlight scene --json` with the surfaces sorted by name, so that loaders that
+    /// list them in different orders compare equal.
+    fn sorted_scene(name: &str) -> Value {
+        let mut s = scene(&file(name));
+        s["surfaces"]
+            .as_array_mut()
+            .unwrap()
+            .sort_by(|a, b| a["name"].as_str().cmp(&b["name"].as_str()));
+        s
+    }
+
+    /// Each file loads to the surfaces, areas, materials, light and bounds make.py
+    /// wrote, and the three summaries are identical.
+    #[test]
+    fn three_formats_load_to_the_same_scene() {
+        let gltf = sorted_scene(FORMATS[0]);
+        // (name, triangles, area m², material) as make.py builds them.
+        let expected = [
+            ("Box", 10, 5.0 * 0.25, "BoxPaint"),
+            ("Ceiling", 2, 12.0, "Wall"),
+            ("Floor", 2, 12.0, "FloorPaint"),
+            ("Lamp", 2, 0.25, "Emitter"),
+            ("Walls", 8, 2.0 * 4.0 * 2.5 + 2.0 * 3.0 * 2.5, "Wall"),
+        ];
+        let surfaces = gltf["surfaces"].as_array().unwrap();
+        assert_eq!(surfaces.len(), expected.len(), "{gltf:#}");
+        for (s, (name, triangles, area, material)) in surfaces.iter().zip(expected) {
+            assert_eq!(s["name"], name);
+            assert_eq!(s["triangles"], triangles, "{name}");
+            close(f64_of(&s["area"]), area, 1e-6, name);
+            assert_eq!(s["material"], material, "{name}");
+            assert_eq!(s["emissive"], name == "Lamp", "{name}");
+            assert_eq!(s["placement"], false, "{name}");
+        }
+        // The panel is the only light: 0.25 m² of 1000 cd/m² emit π·L·A lumens.
+        let lights = gltf["lights"].as_array().unwrap();
+        assert_eq!(lights.len(), 1, "{gltf:#}");
+        let lamp = &lights[0];
+        assert_eq!(lamp["name"], "Lamp");
+        assert_eq!(lamp["kind"], "area");
+        close(
+            f64_of(&lamp["power_lm"]),
+            std::f64::consts::PI * 1000.0 * 0.25,
+            1e-6,
+            "lamp flux",
+        );
+        close3(
+            vec3_of(&lamp["position"]),
+            [2.0, 2.5 - 1.0 / 64.0, 1.5],
+            1e-6,
+            "lamp centre",
+        );
+        close3(vec3_of(&gltf["bounds"][0]), [0.0; 3], 1e-6, "bounds");
+        close3(vec3_of(&gltf["bounds"][1]), [4.0, 2.5, 3.0], 1e-6, "bounds");
+
+        for other in &FORMATS[1..] {
+            assert_eq!(sorted_scene(other), gltf, "{other} differs from room.gltf");
+        }
+    }
+
+    /// `invlight measure FILE --surface Floor --surface Box --photons 400000 --seed S`.
+    fn floor_and_box(name: &str, seed: u64) -> Value {
+        measure(
+            &file(name),
+            &["Floor", "Box"],
+            &["--photons", "400000", "--seed", &seed.to_string()],
+        )
+    }
+
+    /// The three files hold bit-identical world-space triangles in the same order
+    /// (make.py), so with one seed the three estimates are the same numbers; with
+    /// different seeds they are independent, and agree pairwise within
+    /// 4·√(σa² + σb²).
+    #[test]
+    fn three_formats_measure_the_same_illuminance() {
+        let runs: Vec<Value> = FORMATS.iter().map(|f| floor_and_box(f, 3)).collect();
+        for (name, run) in FORMATS.iter().zip(&runs).skip(1) {
+            assert_eq!(run["surfaces"], runs[0]["surfaces"], "{name}, seed 3");
+            assert_eq!(run["rays"], runs[0]["rays"], "{name}, seed 3");
+        }
+        let independent = [
+            runs[0].clone(),
+            floor_and_box(FORMATS[1], 4),
+            floor_and_box(FORMATS[2], 5),
+        ];
+        for surface in ["Floor", "Box"] {
+            let estimates: Vec<(f64, f64)> = independent
+                .iter()
+                .map(|r| {
+                    let s = named(&r["surfaces"], surface);
+                    (f64_of(&s["mean"]), f64_of(&s["std_error"]))
+                })
+                .collect();
+            for a in 0..3 {
+                // The seeds differ, so the three are different numbers.
+                let (ma, sa) = estimates[a];
+                let (mb, sb) = estimates[(a + 1) % 3];
+                assert_ne!(ma, mb, "{surface}");
+                let tolerance = 4.0 * (sa * sa + sb * sb).sqrt();
+                assert!(
+                    (ma - mb).abs() <= tolerance,
+                    "{surface}: {} {ma} ± {sa} vs {} {mb} ± {sb}",
+                    FORMATS[a],
+                    FORMATS[(a + 1) % 3]
+                );
+            }
+        }
+    }
+}
+
+/// `invlight scene --json` on the real files of issue 3 item 4.
+mod scene_files {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// Rec.709 luminance, DESIGN.md §1: the photometric value of an RGB emission.
+    fn y(rgb: [f64; 3]) -> f64 {
+        0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+    }
+
+    /// The JSON shape of issue 3 item 3, checked on every file below.
+    fn check_shape(s: &Value) {
+        for surface in s["surfaces"].as_array().expect("surfaces") {
+            assert!(surface["name"].is_string(), "{surface}");
+            assert!(surface["triangles"].is_u64(), "{surface}");
+            assert!(f64_of(&surface["area"]) > 0.0, "{surface}");
+            assert!(surface["material"].is_string(), "{surface}");
+            assert!(surface["emissive"].is_boolean(), "{surface}");
+            assert!(surface["placement"].is_boolean(), "{surface}");
+        }
+        for light in s["lights"].as_array().expect("lights") {
+            assert!(light["name"].is_string(), "{light}");
+            let kind = light["kind"].as_str().expect("kind");
+            assert!(
+                ["point", "spot", "directional", "area"].contains(&kind),
+                "{light}"
+            );
+            // A sun has a direction and no position or flux; the others have both.
+            let sun = kind == "directional";
+            assert_eq!(light["position"].is_null(), sun, "{light}");
+            assert_eq!(light["power_lm"].is_null(), sun, "{light}");
+            if !sun {
+                vec3_of(&light["position"]);
+                assert!(f64_of(&light["power_lm"]) > 0.0, "{light}");
+            }
+            assert_eq!(
+                light["direction"].is_null(),
+                matches!(kind, "point" | "area"),
+                "{light}"
+            );
+        }
+        for camera in s["cameras"].as_array().expect("cameras") {
+            assert!(camera["name"].is_string(), "{camera}");
+            vec3_of(&camera["position"]);
+        }
+        let (lo, hi) = (vec3_of(&s["bounds"][0]), vec3_of(&s["bounds"][1]));
+        assert!((0..3).all(|k| lo[k] <= hi[k]), "{}", s["bounds"]);
+    }
+
+    /// ILPSolver's Cornell box (the thesis' scene): its `Light` mesh is the only
+    /// emitter, `Cone` and `Cube-Ceiling` exist, `Cone__Geometry` is a placement
+    /// rectangle, and the sphere carries the mirror material.
+    #[test]
+    fn ilpsolver_cornell_dae() {
+        let s = scene(&data("collada/cornell.dae"));
+        check_shape(&s);
+        let surfaces = &s["surfaces"];
+        for name in ["Cone", "Cube-Ceiling", "Sphere_001", "Light"] {
+            assert_eq!(named(surfaces, name)["placement"], false, "{name}");
+        }
+        let emissive: Vec<&str> = surfaces
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|x| x["emissive"] == true)
+            .map(|x| x["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(emissive, ["Light"]);
+        // The unit plane (2 m square) scaled by 0.6223754 in the node matrix.
+        let light_area = (2.0f64 * 0.6223754).powi(2);
+        close(
+            f64_of(&named(surfaces, "Light")["area"]),
+            light_area,
+            1e-5,
+            "Light area",
+        );
+        // Its only light is that mesh: emission 16 16 16 is 16 cd/m², flux π·L·A.
+        let lights = s["lights"].as_array().unwrap();
+        assert_eq!(lights.len(), 1, "{lights:?}");
+        assert_eq!(lights[0]["name"], "Light");
+        assert_eq!(lights[0]["kind"], "area");
+        close(
+            f64_of(&lights[0]["power_lm"]),
+            PI * 16.0 * light_area,
+            1e-5,
+            "Light flux",
+        );
+        close3(
+            vec3_of(&lights[0]["position"]),
+            [0.2338289, 1.549151, 4.33058],
+            1e-5,
+            "Light centre (its node's translation)",
+        );
+
+        let placement = named(surfaces, "Cone__Geometry");
+        assert_eq!(placement["placement"], true);
+        assert_eq!(placement["triangles"], 2);
+        assert_eq!(placement["vertices"].as_array().unwrap().len(), 4);
+        // The mirror sphere: the material a mirror is read from. (`invlight scene`
+        // prints material names only, not what kind each is.)
+        assert_eq!(named(surfaces, "Sphere_001")["material"], "MirrorMat");
+        assert_eq!(named(surfaces, "Sphere_001")["triangles"], 8064);
+
+        let cameras: Vec<&str> = s["cameras"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(cameras, ["Camera", "Camera_001"]);
+        // Blender's Z_UP, declared in <asset>.
+        assert_eq!(vec3_of(&s["up"]), [0.0, 0.0, 1.0]);
+    }
+
+    /// Blender's point, spot and sun lamps; its hemi lamp has no photometric meaning
+    /// and is skipped with a warning, and its area lamp is exported as a point.
+    #[test]
+    fn blender_lights_dae() {
+        let out = invlight([
+            "scene".as_ref(),
+            data("collada/lights.dae").as_os_str(),
+            "--json".as_ref(),
+        ]);
+        assert!(out.status.success());
+        let stderr = text(&out.stderr);
+        assert!(
+            stderr.contains("warning:") && stderr.contains("Hemi"),
+            "{stderr}"
+        );
+        let s: Value = serde_json::from_slice(&out.stdout).unwrap();
+        check_shape(&s);
+        assert!(s["surfaces"].as_array().unwrap().is_empty());
+        let lights = &s["lights"];
+        assert_eq!(lights.as_array().unwrap().len(), 4, "{lights:#}");
+
+        // Colour 1 is 1 cd: 4π lm from a point lamp at its node's translation.
+        let lamp = named(lights, "Lamp");
+        assert_eq!(lamp["kind"], "point");
+        close3(vec3_of(&lamp["position"]), [0.0, 1.0, 1.0], 1e-6, "Lamp");
+        close(f64_of(&lamp["power_lm"]), 4.0 * PI, 1e-6, "Lamp flux");
+        let area = named(lights, "Area");
+        assert_eq!(area["kind"], "point");
+        close(f64_of(&area["power_lm"]), 4.0 * PI, 1e-6, "Area flux");
+
+        // Lights shine along the node's −Z; a sun's colour 1 is 1 lx.
+        let sun = named(lights, "Sun");
+        assert_eq!(sun["kind"], "directional");
+        close3(vec3_of(&sun["direction"]), [0.0, 0.0, -1.0], 1e-6, "Sun");
+        close(f64_of(&sun["illuminance_lx"]), 1.0, 1e-6, "Sun lux");
+
+        // Spot: a 45° cone (spotsize), 1 cd on the axis. Whatever the edge's blend, its
+        // flux lies between those of hard cones at the inner and outer half-angles
+        // (cos inner = cos outer + spotblend·(1 − cos outer), spotblend 0.15).
+        let spot = named(lights, "Spot");
+        assert_eq!(spot["kind"], "spot");
+        close3(
+            vec3_of(&spot["position"]),
+            [8.888217, -5.016863, 5.336025],
+            1e-6,
+            "Spot",
+        );
+        close3(vec3_of(&spot["direction"]), [0.0, 0.0, -1.0], 1e-6, "Spot");
+        let cos_outer = 22.5f64.to_radians().cos();
+        let cos_inner = cos_outer + 0.15 * (1.0 - cos_outer);
+        let flux = f64_of(&spot["power_lm"]);
+        let cone = |c: f64| 2.0 * PI * (1.0 - c);
+        assert!(
+            cone(cos_inner) < flux && flux < cone(cos_outer),
+            "spot flux {flux} outside ({}, {})",
+            cone(cos_inner),
+            cone(cos_outer)
+        );
+    }
+
+    /// McGuire's Cornell box: the light is the `light` group, emitting from `Ke 17 12
+    /// 4`. The file names its short box's group after its faces (`g shortBox` follows
+    /// them), so those faces belong to `leftWall`, as the OBJ specification reads it.
+    #[test]
+    fn mcguire_cornell_obj() {
+        let s = scene(&data("obj/CornellBox-Original.obj"));
+        check_shape(&s);
+        let surfaces = &s["surfaces"];
+        let names: Vec<&str> = surfaces
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "floor",
+                "ceiling",
+                "backWall",
+                "rightWall",
+                "leftWall",
+                "shortBox",
+                "light"
+            ]
+        );
+        let light = named(surfaces, "light");
+        assert_eq!(light["emissive"], true);
+        assert_eq!(light["material"], "light");
+        let lights = s["lights"].as_array().unwrap();
+        assert_eq!(lights.len(), 1, "{lights:?}");
+        assert_eq!(lights[0]["kind"], "area");
+        assert_eq!(lights[0]["name"], "light");
+        close(
+            f64_of(&lights[0]["power_lm"]),
+            PI * y([17.0, 12.0, 4.0]) * f64_of(&light["area"]),
+            1e-5,
+            "flux π·Y(Ke)·A",
+        );
+        // 2 + 2 + 2 + 2 + (2 + 12) + 12 + 2 triangles, all quads split in two.
+        assert_eq!(
+            surfaces
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x["triangles"].as_u64().unwrap())
+                .sum::<u64>(),
+            36
+        );
+        assert_eq!(named(surfaces, "leftWall")["triangles"], 14);
+        assert_eq!(vec3_of(&s["up"]), [0.0, 1.0, 0.0]);
+    }
+
+    /// The measured Cornell data in millimetres (embree's copy). Its `light` material
+    /// has no `Ke` (only `Ka 20 20 20`, an ambient colour), so the file holds no light;
+    /// its front wall's face is commented out, so `front_wall` has no surface.
+    /// `--scale 0.001` reads it in metres.
+    #[test]
+    fn measured_cornell_obj() {
+        let file = data("obj/cornell_box.obj");
+        let mm = scene(&file);
+        check_shape(&mm);
+        let names: Vec<&str> = mm["surfaces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "floor",
+                "light",
+                "ceiling",
+                "back_wall",
+                "green_wall",
+                "red_wall",
+                "short_block",
+                "tall_block"
+            ]
+        );
+        assert!(mm["lights"].as_array().unwrap().is_empty());
+        assert_eq!(named(&mm["surfaces"], "light")["emissive"], false);
+        // The light quad: 130 × 105 mm.
+        close(
+            f64_of(&named(&mm["surfaces"], "light")["area"]),
+            130.0 * 105.0,
+            1e-6,
+            "light area",
+        );
+        close3(vec3_of(&mm["bounds"][0]), [0.0; 3], 1e-6, "bounds");
+        close3(
+            vec3_of(&mm["bounds"][1]),
+            [556.0, 548.8, 559.2],
+            1e-6,
+            "bounds",
+        );
+
+        let m = json([
+            "scene".as_ref(),
+            file.as_os_str(),
+            "--scale".as_ref(),
+            "0.001".as_ref(),
+            "--json".as_ref(),
+        ]);
+        for (a, b) in mm["surfaces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(m["surfaces"].as_array().unwrap())
+        {
+            assert_eq!(a["name"], b["name"]);
+            close(
+                f64_of(&b["area"]),
+                f64_of(&a["area"]) * 1e-6,
+                1e-5,
+                "area in m²",
+            );
+        }
+        close3(
+            vec3_of(&m["bounds"][1]),
+            [0.556, 0.5488, 0.5592],
+            1e-5,
+            "bounds in m",
+        );
+    }
+
+    /// The peer room of ../shared/peers: six walls, a cube and a 100 lm lamp.
+    #[test]
+    fn peer_room_gltf() {
+        let s = scene(&data("gltf/room_area.gltf"));
+        check_shape(&s);
+        let expected = [
+            ("Floor", 6.0),
+            ("Ceiling", 6.0),
+            ("WallXmin", 5.0),
+            ("WallXmax", 5.0),
+            ("WallYmin", 7.5),
+            ("WallYmax", 7.5),
+            ("Box", 1.5),
+            ("Lamp", 0.25),
+        ];
+        let surfaces = s["surfaces"].as_array().unwrap();
+        assert_eq!(surfaces.len(), expected.len());
+        for (x, (name, area)) in surfaces.iter().zip(expected) {
+            assert_eq!(x["name"], name);
+            close(f64_of(&x["area"]), area, 1e-6, name);
+            assert_eq!(x["emissive"], name == "Lamp", "{name}");
+        }
+        let lights = s["lights"].as_array().unwrap();
+        assert_eq!(lights.len(), 1);
+        assert_eq!(lights[0]["kind"], "area");
+        close(f64_of(&lights[0]["power_lm"]), 100.0, 1e-5, "lamp flux");
+        close3(vec3_of(&s["bounds"][1]), [3.0, 2.0, 2.5], 1e-6, "bounds");
+    }
+}
+
+/// `invlight measure` end to end (issue 2 item 7).
+mod measure {
+    use super::*;
+
+    /// The JSON of issue 2: photons, rays, seconds and per surface its name, area, mean,
+    /// interval, standard error and hits, in the order asked.
+    #[test]
+    fn json_shape() {
+        let file = data("triple/room.gltf");
+        let out = measure(
+            &file,
+            &["Box", "Floor"],
+            &["--photons", "20000", "--seed", "5"],
+        );
+        assert_eq!(out["photons"], 20000);
+        assert!(out["rays"].as_u64().unwrap() >= 20000, "{out}");
+        assert!(f64_of(&out["seconds"]) >= 0.0);
+        let surfaces = out["surfaces"].as_array().unwrap();
+        let names: Vec<&str> = surfaces
+            .iter()
+            .map(|s| s["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["Box", "Floor"]);
+        for (s, area) in surfaces.iter().zip([1.25, 12.0]) {
+            close(f64_of(&s["area"]), area, 1e-6, "area");
+            let (mean, low, high) = (f64_of(&s["mean"]), f64_of(&s["low"]), f64_of(&s["high"]));
+            let se = f64_of(&s["std_error"]);
+            assert!(mean > 0.0 && se > 0.0, "{s}");
+            // The default 95 % interval is mean ± 1.96 σ.
+            close(high - mean, 1.959964 * se, 1e-5, "interval half-width");
+            close(mean - low, 1.959964 * se, 1e-5, "interval half-width");
+            let hits = s["hits"].as_u64().unwrap();
+            assert!(hits > 0 && hits <= out["rays"].as_u64().unwrap(), "{s}");
+        }
+    }
+
+    /// The floor of the peer room (../shared/peers/README.md) against Mitsuba 3's
+    /// 5.674 lx (Radiance: 5.707 lx). The references carry their own noise and bias:
+    /// the two agree to 0.6 %, so 0.6 % of the reference is allowed for it, on top of
+    /// 4 of our standard errors for ours.
+    #[test]
+    fn peer_room_floor_matches_mitsuba_and_radiance() {
+        let out = measure(
+            &data("gltf/room_area.gltf"),
+            &["Floor"],
+            &["--photons", "600000", "--seed", "11"],
+        );
+        let floor = named(&out["surfaces"], "Floor");
+        let (mean, se) = (f64_of(&floor["mean"]), f64_of(&floor["std_error"]));
+        let mitsuba = 5.674;
+        let tolerance = 4.0 * se + 0.006 * mitsuba;
+        assert!(
+            (mean - mitsuba).abs() <= tolerance,
+            "floor {mean} ± {se} lx, Mitsuba {mitsuba}, tolerance {tolerance}"
+        );
+        let radiance = 5.707;
+        assert!(
+            (mean - radiance).abs() <= 4.0 * se + 0.006 * radiance,
+            "floor {mean} ± {se} lx, Radiance {radiance}"
+        );
+    }
+
+    /// The output without its timings: `seconds` and any other `*seconds` field.
+    fn without_timings(mut v: Value) -> Value {
+        v.as_object_mut()
+            .unwrap()
+            .retain(|k, _| !k.ends_with("seconds"));
+        v
+    }
+
+    /// Photon i draws from a stream keyed by (seed, i): one and two threads give the
+    /// same numbers, bit for bit.
+    #[test]
+    fn same_result_on_one_and_two_threads() {
+        let file = data("gltf/room_area.gltf");
+        let run = |threads: &str| {
+            without_timings(measure(
+                &file,
+                &["Floor", "Box", "WallXmin"],
+                &["--photons", "60000", "--seed", "7", "--threads", threads],
+            ))
+        };
+        let one = run("1");
+        assert_eq!(one, run("2"));
+        // Another seed gives other numbers (the comparison above can fail).
+        let other = without_timings(measure(
+            &file,
+            &["Floor", "Box", "WallXmin"],
+            &["--photons", "60000", "--seed", "8", "--threads", "2"],
+        ));
+        assert_ne!(one["surfaces"], other["surfaces"]);
+    }
+
+    /// The human table names each surface and ends with the photon count.
+    #[test]
+    fn table_output() {
+        let out = invlight([
+            "measure".as_ref(),
+            data("triple/room.obj").as_os_str(),
+            "-s".as_ref(),
+            "Floor".as_ref(),
+            "-n".as_ref(),
+            "5000".as_ref(),
+        ]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let stdout = text(&out.stdout);
+        let lines: Vec<&str> = stdout.lines().collect();
+        assert_eq!(lines.len(), 3, "{stdout}");
+        assert!(lines[0].starts_with("surface"), "{stdout}");
+        assert!(lines[1].starts_with("Floor"), "{stdout}");
+        assert!(lines[2].starts_with("5000 photons"), "{stdout}");
+    }
+}
+
+/// Bad input: exit code 2, a message that starts with `error:` and names the file and
+/// the problem, never a panic (issue 2 item 7, issue 3 item 4).
+mod errors {
+    use super::*;
+
+    fn measure_args<'a>(file: &'a Path, extra: &[&'a str]) -> Vec<&'a OsStr> {
+        let mut args: Vec<&OsStr> = vec!["measure".as_ref(), file.as_os_str()];
+        args.extend(extra.iter().map(|a| OsStr::new(*a)));
+        args
+    }
+
+    /// A near miss is suggested; a far one lists the scene's names.
+    #[test]
+    fn unknown_surface() {
+        let file = data("triple/room.gltf");
+        let shown = file.to_str().unwrap();
+        let stderr = input_error(
+            measure_args(&file, &["--surface", "Flor"]),
+            &[shown, "'Flor'", "did you mean 'Floor'"],
+        );
+        assert!(!stderr.contains("'Box'"), "{stderr}");
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--surface", "Nothing"]),
+            &[
+                shown,
+                "'Nothing'",
+                "'Floor', 'Ceiling', 'Walls', 'Box', 'Lamp'",
+            ],
+        );
+        // A placement rectangle is not lit, and the message says so.
+        let cornell = data("collada/cornell.dae");
+        input_error(
+            measure_args(&cornell, &["--surface", "Cone__Geometry"]),
+            &[cornell.to_str().unwrap(), "placement rectangle"],
+        );
+    }
+
+    #[test]
+    fn missing_file_and_unknown_extension() {
+        let missing = data("triple/no-such-room.gltf");
+        input_error(
+            measure_args(&missing, &["--surface", "Floor"]),
+            &[missing.to_str().unwrap(), "no such file"],
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let odd = dir.path().join("room.fbx");
+        std::fs::copy(data("triple/room.gltf"), &odd).unwrap();
+        input_error(
+            measure_args(&odd, &["--surface", "Floor"]),
+            &[odd.to_str().unwrap(), "'.fbx'", ".gltf", ".dae", ".obj"],
+        );
+        input_error(
+            ["scene".as_ref(), odd.as_os_str()],
+            &[odd.to_str().unwrap(), "'.fbx'"],
+        );
+    }
+
+    /// Every broken file of tests/data, through `invlight scene` and `invlight
+    /// measure`: each error names the file at fault and the place in it.
+    #[test]
+    fn malformed_files_of_each_format() {
+        let cases = [
+            (
+                "gltf/malformed.gltf",
+                "gltf/malformed.gltf",
+                "malformed JSON",
+            ),
+            ("gltf/truncated.glb", "gltf/truncated.glb", "cut short"),
+            (
+                "gltf/bad_accessor.gltf",
+                "gltf/bad_accessor.gltf",
+                "accessor 99",
+            ),
+            ("gltf/bad_index.gltf", "gltf/bad_index.gltf", "indices"),
+            ("gltf/bad_mode.gltf", "gltf/bad_mode.gltf", "mode"),
+            ("gltf/cycle.gltf", "gltf/cycle.gltf", "reached twice"),
+            (
+                "gltf/missing_bin.gltf",
+                "gltf/missing_bin.gltf",
+                "missing_bin.bin",
+            ),
+            (
+                "collada/malformed/bad-number.dae",
+                "bad-number.dae",
+                "line 8: <float_array",
+            ),
+            (
+                "collada/malformed/dangling-url.dae",
+                "dangling-url.dae",
+                "'circle'",
+            ),
+            (
+                "collada/malformed/index-out-of-range.dae",
+                "index-out-of-range.dae",
+                "line 14: <triangles>",
+            ),
+            (
+                "collada/malformed/truncated.dae",
+                "truncated.dae",
+                "malformed XML",
+            ),
+            ("obj/malformed/bad-number.obj", "bad-number.obj", "line 4"),
+            (
+                "obj/malformed/index-out-of-range.obj",
+                "index-out-of-range.obj",
+                "line 5",
+            ),
+            ("obj/malformed/short-face.obj", "short-face.obj", "line 5"),
+            ("obj/malformed/truncated.obj", "truncated.obj", "line 4"),
+            // The fault is in the material library the OBJ file names.
+            (
+                "obj/malformed/bad-mtl.obj",
+                "bad-colour.mtl",
+                "line 3: 'Kd'",
+            ),
+        ];
+        for (rel, shown, place) in cases {
+            let file = data(rel);
+            input_error(["scene".as_ref(), file.as_os_str()], &[shown, place]);
+            input_error(
+                measure_args(&file, &["--surface", "x", "--json"]),
+                &[shown, place],
+            );
+        }
+    }
+
+    /// roxmltree reports "unexpected end of stream" at line 1, column 1, which the
+    /// COLLADA loader passes on: a truncated file is blamed on its first line.
+    #[test]
+    #[ignore = "crates/scene/src/collada.rs:57-63 reports roxmltree's UnexpectedEndOfStream \
+                at line 1, column 1 (roxmltree's placeholder), not where the file ends"]
+    fn truncated_collada_is_located_at_its_end() {
+        let file = data("collada/malformed/truncated.dae");
+        let stderr = input_error(["scene".as_ref(), file.as_os_str()], &["truncated.dae"]);
+        assert!(!stderr.contains("line 1,"), "{stderr}");
+    }
+
+    /// A missing material library is not fatal: a warning, and grey faces.
+    #[test]
+    fn missing_mtl_warns() {
+        let out = invlight([
+            "scene".as_ref(),
+            data("obj/malformed/missing-mtl.obj").as_os_str(),
+            "--json".as_ref(),
+        ]);
+        assert!(out.status.success());
+        let stderr = text(&out.stderr);
+        assert!(
+            stderr.starts_with("warning:") && stderr.contains("nowhere.mtl"),
+            "{stderr}"
+        );
+    }
+
+    #[test]
+    fn bad_option_values() {
+        let file = data("triple/room.gltf");
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--confidence", "1.5"]),
+            &["--confidence 1.5"],
+        );
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--confidence", "0"]),
+            &["--confidence"],
+        );
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--photons", "0"]),
+            &["--photons"],
+        );
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--scale=-1"]),
+            &["--scale"],
+        );
+        // Clap's own usage errors share the exit code.
+        input_error(
+            measure_args(&file, &["--surface", "Floor", "--photons", "many"]),
+            &["--photons"],
+        );
+        input_error(measure_args(&file, &[]), &["--surface"]);
+    }
+
+    /// A scene whose only "light" is an ambient colour (`Ka`) has nothing to trace.
+    #[test]
+    fn scene_without_light() {
+        let file = data("obj/cornell_box.obj");
+        input_error(
+            measure_args(&file, &["--surface", "floor"]),
+            &[file.to_str().unwrap(), "no light"],
+        );
+    }
+}
+
+/// `invlight solve` at the command line: exit codes and the two output files. The
+/// search itself is tested in crates/ilp/tests and crates/cli/solve.rs.
+mod solve {
+    use super::*;
+
+    #[test]
+    fn writes_solutions_and_result() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let problem = data("ilp/lamp-room.xml");
+        let printed = json([
+            "solve".as_ref(),
+            problem.as_os_str(),
+            "--output".as_ref(),
+            out.as_os_str(),
+            "--photons".as_ref(),
+            "4000".as_ref(),
+            "--iterations".as_ref(),
+            "20".as_ref(),
+            "--json".as_ref(),
+        ]);
+        let csv = std::fs::read_to_string(out.join("solutions.csv")).unwrap();
+        let rows: Vec<&str> = csv.lines().collect();
+        assert_eq!(
+            rows[0],
+            "iteration,Lamp.x,Lamp.y,Lamp.z,low,mean,high,photons,seconds,elapsed,verdict"
+        );
+        assert!(rows.len() > 1, "{csv}");
+        for row in &rows[1..] {
+            let cells: Vec<&str> = row.split(',').collect();
+            assert_eq!(cells.len(), 11, "{row}");
+            // low ≤ mean ≤ high, all numbers.
+            let [low, mean, high] = [4, 5, 6].map(|i| cells[i].parse::<f64>().unwrap());
+            assert!(low <= mean && mean <= high, "{row}");
+        }
+        let file: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("result.json")).unwrap())
+                .unwrap();
+        assert_eq!(file["evaluations"], rows.len() as u64 - 1);
+        assert_eq!(file["objective"]["surface"], "Desk");
+        assert!(!file["isoc"].as_array().unwrap().is_empty());
+        // --json prints result.json's content (its timing aside).
+        let strip = |mut v: Value| {
+            v.as_object_mut().unwrap().remove("seconds");
+            v
+        };
+        assert_eq!(strip(printed), strip(file));
+    }
+
+    #[test]
+    fn input_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let missing = dir.path().join("no-such-problem.xml");
+        input_error(
+            ["solve".as_ref(), missing.as_os_str()],
+            &["no-such-problem.xml"],
+        );
+        let problem = data("ilp/lamp-room.xml");
+        for (option, value) in [("--confidence", "1.5"), ("--photons", "0")] {
+            input_error(
+                [
+                    "solve".as_ref(),
+                    problem.as_os_str(),
+                    "--output".as_ref(),
+                    dir.path().as_os_str(),
+                    option.as_ref(),
+                    value.as_ref(),
+                ],
+                &[option],
+            );
+        }
+        assert!(!dir.path().join("solutions.csv").exists());
+    }
+}
+
+/// `--help` of every subcommand exits 0 and documents every option the issues name.
+mod help {
+    use super::*;
+
+    fn help(args: &[&str]) -> String {
+        let out = invlight(args);
+        assert!(out.status.success(), "{args:?}: {}", text(&out.stderr));
+        text(&out.stdout)
+    }
+
+    /// The subcommands the top-level help lists.
+    fn subcommands() -> Vec<String> {
+        let top = help(&["--help"]);
+        top.lines()
+            .skip_while(|l| !l.starts_with("Commands:"))
+            .skip(1)
+            .take_while(|l| !l.trim().is_empty())
+            .filter(|l| l.starts_with("  ") && !l.starts_with("   "))
+            .map(|l| l.split_whitespace().next().unwrap().to_string())
+            .filter(|c| c != "help")
+            .collect()
+    }
+
+    #[test]
+    fn every_subcommand_documents_its_options() {
+        let expected: [(&str, &[&str]); 3] = [
+            (
+                "measure",
+                &[
+                    "<SCENE>",
+                    "--surface",
+                    "--photons",
+                    "--seed",
+                    "--max-bounces",
+                    "--confidence",
+                    "--threads",
+                    "--json",
+                    "--scale",
+                    "--up",
+                ],
+            ),
+            ("scene", &["<SCENE>", "--json", "--scale", "--up"]),
+            (
+                "solve",
+                &[
+                    "<PROBLEM>",
+                    "--output",
+                    "--photons",
+                    "--iterations",
+                    "--seed",
+                    "--max-bounces",
+                    "--confidence",
+                    "--json",
+                    "--resume",
+                    "--threads",
+                ],
+            ),
+        ];
+        let listed = subcommands();
+        for (command, options) in expected {
+            assert!(listed.iter().any(|c| c == command), "{listed:?}");
+            let text = help(&[command, "--help"]);
+            for option in options {
+                assert!(text.contains(option), "`{command} --help` lacks {option}");
+            }
+        }
+        // Subcommands added since (render, map…): their help works too.
+        for command in &listed {
+            let text = help(&[command, "--help"]);
+            assert!(text.contains("Usage: invlight"), "{text}");
+        }
+        assert!(help(&["--version"]).starts_with("invlight "));
+    }
+
+    /// No subcommand is a usage error (exit code 2), with the usage on stderr.
+    #[test]
+    fn no_subcommand() {
+        let out = invlight::<[&str; 0], &str>([]);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(text(&out.stderr).contains("Usage: invlight"));
+    }
+}
