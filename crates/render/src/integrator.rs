@@ -10,7 +10,7 @@
 use crate::camera::View;
 use crate::photon_map::PhotonMap;
 use glam::Vec3;
-use invlight_photon::{Rng, fresnel_dielectric, reflect, refract};
+use invlight_photon::{Rng, cosine_hemisphere, fresnel_dielectric, reflect, refract};
 use invlight_scene::{LightKind, Rgb, Scene, luminance};
 use invlight_trace::{Accel, Interaction, Ray};
 use rayon::prelude::*;
@@ -148,6 +148,7 @@ pub struct Integrator<'a> {
     lights: &'a Lights,
     map: Option<&'a PhotonMap>,
     settings: RenderSettings,
+    gather: Option<(&'a PhotonMap, u32)>,
 }
 
 /// Below this product of reflectances a branch is not followed: it cannot change a
@@ -170,7 +171,55 @@ impl<'a> Integrator<'a> {
             lights,
             map,
             settings,
+            gather: None,
         }
+    }
+
+    /// Adds a final gather (Jensen 2001 §9.4; thesis §2.6.3): the indirect light at a
+    /// visible diffuse point is gathered by `rays` cosine-distributed rays, each worth
+    /// the radiance ρ/π·E of the diffuse point it reaches, with E from `global` (a map
+    /// of [`crate::Paths::All`]); E_ind ≈ π/G·Σ L_g. Blotches of the density estimate
+    /// are then averaged over many secondary points. The integrator's own map should
+    /// then hold caustics only ([`crate::Paths::Caustic`]): a gather ray that meets a
+    /// mirror or glass counts nothing, as that light is the caustic map's.
+    pub fn with_final_gather(mut self, global: &'a PhotonMap, rays: u32) -> Self {
+        self.gather = (rays > 0).then_some((global, rays));
+        self
+    }
+
+    /// The gathered indirect illuminance at `at` on side `n`.
+    fn gather(
+        &self,
+        global: &PhotonMap,
+        rays: u32,
+        at: &Interaction,
+        n: Vec3,
+        rng: &mut Rng,
+    ) -> Rgb {
+        let mut sum = Vec3::ZERO;
+        for _ in 0..rays {
+            let dir = cosine_hemisphere(n, rng.uniform(), rng.uniform());
+            let ray = at.spawn(dir);
+            let Some(hit) = self.accel.intersect(&ray) else {
+                continue;
+            };
+            let y = self.accel.interaction(&ray, &hit);
+            let m = &self.scene.materials[y.material as usize];
+            let mut kd = m.diffuse;
+            if let Some(t) = m.texture {
+                kd *= self.scene.textures[t as usize].sample(y.uv);
+            }
+            if kd.max_element() > 0.0 {
+                let ny = if y.normal.dot(dir) < 0.0 {
+                    y.normal
+                } else {
+                    -y.normal
+                };
+                sum += kd * global.irradiance(y.point, ny);
+            }
+        }
+        // Each ray carries π/G of the cosine-weighted integral of L = ρE/π.
+        sum / rays as f32
     }
 
     /// Direct illuminance (RGB) at `at` on the side `n` faces: point and spot lights
@@ -245,14 +294,18 @@ impl<'a> Integrator<'a> {
         intensity * (cos / d2)
     }
 
-    /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's (only
-    /// the map's when it holds direct light too).
+    /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's plus
+    /// the final gather's (only the map's when it holds direct light too).
     pub fn irradiance(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
-        match self.map {
-            Some(map) if map.includes_direct() => map.irradiance(at.point, n),
+        let mut e = match self.map {
+            Some(map) if map.includes_direct() => return map.irradiance(at.point, n),
             Some(map) => self.direct(at, n, rng) + map.irradiance(at.point, n),
             None => self.direct(at, n, rng),
+        };
+        if let Some((global, rays)) = self.gather {
+            e += self.gather(global, rays, at, n, rng);
         }
+        e
     }
 
     /// Radiance (RGB luminance, cd/m²) arriving along `ray`.

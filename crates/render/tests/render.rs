@@ -5,7 +5,7 @@
 use glam::{Mat4, Vec3};
 use invlight_photon::{Rng, z_two_sided};
 use invlight_render::{
-    IlluminanceImage, Image, Integrator, Lights, MapError, MapSettings, Mark, PhotonMap,
+    IlluminanceImage, Image, Integrator, Lights, MapError, MapSettings, Mark, Paths, PhotonMap,
     PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
     render, render_illuminance,
 };
@@ -216,7 +216,7 @@ fn white_furnace_renders_a_uniform_image() {
         store: Store::Diffuse,
         radius: Some(radius),
         neighbours: 0,
-        direct: true,
+        paths: Paths::All,
     };
     let map = PhotonMap::build(&scene, &accel, &photons, None);
     // Expected arrivals per photon: 1 + ρ + ρ² + … = 1/(1 − ρ).
@@ -299,7 +299,7 @@ fn small_room() -> Scene {
     scene
 }
 
-fn render_room(threads: usize) -> (Image, IlluminanceImage) {
+fn render_room(threads: usize) -> (Image, IlluminanceImage, Image) {
     let scene = small_room();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -323,19 +323,47 @@ fn render_room(threads: usize) -> (Image, IlluminanceImage) {
         };
         let view = View::from_camera(&scene.cameras[0], 32.0 / 24.0);
         let integrator = Integrator::new(&scene, &accel, &sky, Some(&map), s);
+        // A final gather over a global map, with caustics from their own map.
+        let global = PhotonMap::build(
+            &scene,
+            &accel,
+            &PhotonSettings {
+                photons: 30_000,
+                paths: Paths::All,
+                ..PhotonSettings::default()
+            },
+            None,
+        )
+        .precompute(4);
+        let caustics = PhotonMap::build(
+            &scene,
+            &accel,
+            &PhotonSettings {
+                photons: 30_000,
+                paths: Paths::Caustic,
+                radius: Some(global.radius()),
+                ..PhotonSettings::default()
+            },
+            None,
+        );
+        let gathering =
+            Integrator::new(&scene, &accel, &sky, Some(&caustics), s).with_final_gather(&global, 4);
         (
             render(&integrator, &view, None),
             render_illuminance(&integrator, &view, None),
+            render(&gathering, &view, None),
         )
     })
 }
 
 #[test]
 fn images_do_not_depend_on_the_thread_count() {
-    let (a, la) = render_room(1);
-    let (b, lb) = render_room(2);
+    let (a, la, ga) = render_room(1);
+    let (b, lb, gb) = render_room(2);
     assert!(a.pixels.iter().any(|p| p.x > 0.0));
     assert_eq!(a, b);
+    assert_eq!(ga, gb);
+    assert!(ga.pixels.iter().any(|p| p.x > 0.0));
     assert_eq!(
         la.lux.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
         lb.lux.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
