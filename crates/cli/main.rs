@@ -2,8 +2,10 @@
 //! reports. Everything that computes lives in the crates under `crates/`.
 
 mod args;
+mod map;
 mod measure;
 mod progress;
+mod render;
 mod scene_info;
 mod solve;
 
@@ -34,6 +36,12 @@ enum Command {
     /// surface's illuminance (the problem file is ILPSolver's XML; see
     /// docs/problem-file.md). Results are written as they are found.
     Solve(solve::SolveArgs),
+    /// Render a picture from a scene camera by photon mapping, or a false-colour
+    /// illuminance picture with a lux scale.
+    Render(render::RenderArgs),
+    /// Illuminance on a regular grid over a planar surface (CSV and a heat map), with
+    /// Emin, Eavg, Emax and uniformity U0 as lighting standards ask.
+    Map(map::MapArgs),
 }
 
 /// An error caused by what the user gave us (a file, a name, a value): exit code 2.
@@ -54,6 +62,8 @@ fn main() -> ExitCode {
         Command::Measure(args) => measure::run(args),
         Command::Scene(args) => scene_info::run(args),
         Command::Solve(args) => solve::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Map(args) => map::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

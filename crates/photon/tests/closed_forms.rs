@@ -348,7 +348,9 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
     let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
     scene.add_instance("Room", room, Mat4::IDENTITY);
-    scene.lights.push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
     let accel = Accel::new(&scene);
     let area = scene.surface_area(0) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
