@@ -667,6 +667,34 @@ mod measure {
         assert_ne!(one["surfaces"], other["surfaces"]);
     }
 
+    /// `--scale 2` doubles every length: areas grow fourfold, and so does the flux of
+    /// the lamp, whose luminance is fixed, so illuminance is unchanged. Different seeds
+    /// make the two estimates independent: they agree within 4·√(σa² + σb²).
+    #[test]
+    fn scale_keeps_illuminance() {
+        let file = data("triple/room.dae");
+        let one = measure(&file, &["Floor"], &["--photons", "150000", "--seed", "21"]);
+        let two = measure(
+            &file,
+            &["Floor"],
+            &["--photons", "150000", "--seed", "22", "--scale", "2"],
+        );
+        close(
+            f64_of(&two["flux_lm"]),
+            4.0 * f64_of(&one["flux_lm"]),
+            1e-6,
+            "flux",
+        );
+        let (a, b) = (&one["surfaces"][0], &two["surfaces"][0]);
+        close(f64_of(&b["area"]), 4.0 * 12.0, 1e-6, "area");
+        let (ma, sa) = (f64_of(&a["mean"]), f64_of(&a["std_error"]));
+        let (mb, sb) = (f64_of(&b["mean"]), f64_of(&b["std_error"]));
+        assert!(
+            (ma - mb).abs() <= 4.0 * (sa * sa + sb * sb).sqrt(),
+            "{ma} ± {sa} vs {mb} ± {sb}"
+        );
+    }
+
     /// The human table names each surface and ends with the photon count.
     #[test]
     fn table_output() {
