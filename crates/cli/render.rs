@@ -43,9 +43,9 @@ pub struct RenderArgs {
     #[arg(long, value_name = "R")]
     pub radius: Option<f32>,
     /// Final gather: rays per visible diffuse point that collect its indirect light from
-    /// the photons where they land (smooth, slower); 0 shows the photon density at the
-    /// point itself (fast, blotchy).
-    #[arg(long, default_value_t = 0, value_name = "G")]
+    /// the photons where they land (smooth; the cost grows with G); 0 shows the photon
+    /// density at the point itself (about twice as fast, blotchy).
+    #[arg(long, default_value_t = 8, value_name = "G")]
     pub final_gather: u32,
     /// Camera rays per pixel (anti-aliasing; also averages area-light noise).
     #[arg(long, default_value_t = 4, value_name = "S")]
