@@ -344,6 +344,8 @@ mod scene_files {
         // The mirror sphere: the material a mirror is read from. (`invlight scene`
         // prints material names only, not what kind each is.)
         assert_eq!(named(surfaces, "Sphere_001")["material"], "MirrorMat");
+        assert_eq!(named(surfaces, "Sphere_001")["kind"], "mirror");
+        assert_eq!(named(surfaces, "Light")["kind"], "emitter");
         assert_eq!(named(surfaces, "Sphere_001")["triangles"], 8064);
 
         let cameras: Vec<&str> = s["cameras"]
@@ -842,15 +844,14 @@ mod errors {
         }
     }
 
-    /// roxmltree reports "unexpected end of stream" at line 1, column 1, which the
-    /// COLLADA loader passes on: a truncated file is blamed on its first line.
+    /// roxmltree reports "unexpected end of stream" at its placeholder 1:1; the loader
+    /// must blame the file's end instead.
     #[test]
-    #[ignore = "crates/scene/src/collada.rs:57-63 reports roxmltree's UnexpectedEndOfStream \
-                at line 1, column 1 (roxmltree's placeholder), not where the file ends"]
     fn truncated_collada_is_located_at_its_end() {
         let file = data("collada/malformed/truncated.dae");
         let stderr = input_error(["scene".as_ref(), file.as_os_str()], &["truncated.dae"]);
         assert!(!stderr.contains("line 1,"), "{stderr}");
+        assert!(stderr.contains("(end of file)"), "{stderr}");
     }
 
     /// A missing material library is not fatal: a warning, and grey faces.

@@ -23,9 +23,11 @@ fn v(p: Vec3) -> Value {
     json!([p.x, p.y, p.z])
 }
 
-/// The distinct material names of a surface's triangles, and whether any emits.
-fn materials_of(scene: &Scene, surface: usize) -> (String, bool) {
+/// The distinct material names of a surface's triangles, their kinds (`diffuse`,
+/// `mirror`, `glass`, `emitter`, `hole`), and whether any emits.
+fn materials_of(scene: &Scene, surface: usize) -> (String, String, bool) {
     let mut names = BTreeSet::new();
+    let mut kinds = BTreeSet::new();
     let mut emissive = false;
     for &i in &scene.surfaces[surface].instances {
         let mesh = &scene.meshes[scene.instances[i as usize].mesh as usize];
@@ -33,6 +35,7 @@ fn materials_of(scene: &Scene, surface: usize) -> (String, bool) {
             let m = &scene.materials[m as usize];
             emissive |= m.is_emissive();
             names.insert(m.name.as_str());
+            kinds.insert(m.kind_name());
         }
     }
     let list: Vec<&str> = names.iter().copied().take(3).collect();
@@ -40,7 +43,11 @@ fn materials_of(scene: &Scene, surface: usize) -> (String, bool) {
     if names.len() > 3 {
         s += &format!(" +{} more", names.len() - 3);
     }
-    (s, emissive)
+    (
+        s,
+        kinds.into_iter().collect::<Vec<_>>().join(", "),
+        emissive,
+    )
 }
 
 /// Area of a placement rectangle from its first four vertices (A, B, C, D in order
@@ -59,17 +66,17 @@ pub fn run(args: SceneArgs) -> anyhow::Result<()> {
     let scene = args.load.load(&args.scene)?;
     let mut surfaces = Vec::new();
     for (i, s) in scene.surfaces.iter().enumerate() {
-        let (material, emissive) = materials_of(&scene, i);
+        let (material, kind, emissive) = materials_of(&scene, i);
         surfaces.push(
             json!({"name": s.name, "triangles": scene.surface_triangles(i as u32),
-            "area": scene.surface_area(i as u32), "material": material, "emissive": emissive,
-            "placement": false}),
+            "area": scene.surface_area(i as u32), "material": material, "kind": kind,
+            "emissive": emissive, "placement": false}),
         );
     }
     for p in &scene.placements {
         surfaces.push(
             json!({"name": p.name, "triangles": 2, "area": placement_area(&p.vertices),
-            "material": "", "emissive": false, "placement": true, "vertices":
+            "material": "", "kind": "placement", "emissive": false, "placement": true, "vertices":
             p.vertices.iter().map(|&x| v(x)).collect::<Vec<_>>()}),
         );
     }
@@ -154,10 +161,11 @@ fn print_tables(out: &Value) {
         "surface", "triangles", "area m²"
     );
     for s in surfaces {
-        let mut material = s["material"].as_str().unwrap_or("").to_string();
-        if s["emissive"].as_bool() == Some(true) {
-            material += " (emissive)";
-        }
+        let mut material = format!(
+            "{} ({})",
+            s["material"].as_str().unwrap_or(""),
+            s["kind"].as_str().unwrap_or("")
+        );
         if s["placement"].as_bool() == Some(true) {
             material = "placement rectangle (not lit)".into();
         }

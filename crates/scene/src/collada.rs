@@ -55,12 +55,16 @@ fn parse(path: &Path, text: &str) -> Result<Scene, LoadError> {
         ..Default::default()
     };
     let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
-        let pos = e.pos();
-        LoadError::at(
-            path,
-            format!("line {}, column {}", pos.row, pos.col),
-            format!("malformed XML: {e}"),
-        )
+        // roxmltree reports the end of the input at its placeholder position 1:1; the
+        // place to look at is where the file stops.
+        let location = if matches!(e, roxmltree::Error::UnexpectedEndOfStream) {
+            format!("line {} (end of file)", text.lines().count().max(1))
+        } else {
+            let pos = e.pos();
+            format!("line {}, column {}", pos.row, pos.col)
+        };
+        LoadError::at(path, location, format!("malformed XML: {e}"))
+            .with_hint("the file looks cut short or has an unclosed element")
     })?;
     let root = doc.root_element();
     if root.tag_name().name() != "COLLADA" {

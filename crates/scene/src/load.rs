@@ -50,6 +50,10 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase())
         .unwrap_or_default();
+    if path.is_dir() {
+        return Err(LoadError::new(path, "is a folder, not a scene file")
+            .with_hint("name the .gltf, .glb, .dae or .obj file inside it"));
+    }
     if !path.is_file() {
         return Err(LoadError::new(path, "no such file")
             .with_hint("check the path; relative paths are taken from the current directory"));
