@@ -5,6 +5,8 @@ use crate::InputError;
 use crate::args::LoadArgs;
 use crate::progress;
 use clap::Args;
+use glam::DVec3;
+use invlight_ilp::{Binding, Configuration, Domain, Problem};
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_render::{
     Exposure, Integrator, Lights, Paths, PhotonMap, PhotonSettings, RenderSettings, Store, ToneMap,
@@ -18,8 +20,14 @@ use std::time::Instant;
 /// Options of `invlight render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file: glTF 2.0 (.gltf, .glb), COLLADA (.dae) or Wavefront OBJ (.obj).
+    /// Scene file: glTF 2.0 (.gltf, .glb), COLLADA (.dae) or Wavefront OBJ (.obj); with
+    /// --config, the problem file (.xml) the solve read.
     pub scene: PathBuf,
+    /// Render a configuration a solve found: RESULT#K is member K (from 0) of the ISOC
+    /// in RESULT (a result.json written by `invlight solve`). SCENE must then be the
+    /// problem file, whose scene is loaded and changed as the configuration says.
+    #[arg(long, value_name = "RESULT#K")]
+    pub config: Option<String>,
     /// PNG file to write.
     #[arg(long, short = 'o', value_name = "FILE")]
     pub output: PathBuf,
@@ -155,7 +163,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     {
         return Err(InputError(format!("--radius {r} must be a positive length")).into());
     }
-    let scene = args.load.load(&args.scene)?;
+    let scene = match &args.config {
+        Some(config) => configured_scene(&args, config)?,
+        None => args.load.load(&args.scene)?,
+    };
     let (view, width, height) = view_of(&args, &scene)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
@@ -247,6 +258,79 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// The scene of the problem file `args.scene` with ISOC member K of `config`
+/// ("RESULT#K") applied: each variable's world value in result.json (placement point,
+/// sun direction or colour value) is turned back into the problem's coordinates and
+/// applied as `invlight solve` applies it.
+fn configured_scene(args: &RenderArgs, config: &str) -> anyhow::Result<Scene> {
+    let (file, member) = match config.rsplit_once('#') {
+        Some((f, k)) => (
+            PathBuf::from(f),
+            k.parse::<usize>().map_err(|_| {
+                InputError(format!(
+                    "--config {config}: '{k}' is not an ISOC member number"
+                ))
+            })?,
+        ),
+        None => (PathBuf::from(config), 0),
+    };
+    let problem = Problem::read(&args.scene).map_err(|e| InputError(e.to_string()))?;
+    let mut scene = args.load.load(&problem.scene)?;
+    let binding = Binding::new(&problem, &mut scene).map_err(|e| InputError(e.to_string()))?;
+    let text = std::fs::read_to_string(&file)
+        .map_err(|e| InputError(format!("cannot read {}: {e}", file.display())))?;
+    let json: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| InputError(format!("{}: not JSON: {e}", file.display())))?;
+    let members = json["isoc"].as_array().map_or(0, |a| a.len());
+    let variables = &json["isoc"][member]["variables"];
+    if !variables.is_object() {
+        return Err(InputError(format!(
+            "{}: no ISOC member {member} (it has {members})",
+            file.display()
+        ))
+        .into());
+    }
+    let vector = |v: &serde_json::Value| -> Option<DVec3> {
+        let a = v.as_array()?;
+        Some(DVec3::new(
+            a.first()?.as_f64()?,
+            a.get(1)?.as_f64()?,
+            a.get(2)?.as_f64()?,
+        ))
+    };
+    let mut coords = Vec::new();
+    for var in binding.space.variables() {
+        let value = &variables[&var.id];
+        let missing = || {
+            InputError(format!(
+                "{}: ISOC member {member} has no usable value for variable '{}'",
+                file.display(),
+                var.id
+            ))
+        };
+        match &var.domain {
+            Domain::Rectangle(r) => {
+                let (s, t) = r.coords(vector(&value["position"]).ok_or_else(missing)?);
+                coords.extend([s, t]);
+            }
+            Domain::Hemisphere(h) => {
+                let (phi, theta) = h.coords(vector(&value["direction"]).ok_or_else(missing)?);
+                coords.extend([phi, theta]);
+            }
+            Domain::Segment { min, max } => {
+                let v = value["value"].as_f64().ok_or_else(missing)?;
+                coords.push(if max > min {
+                    (v - min) / (max - min)
+                } else {
+                    0.0
+                });
+            }
+        }
+    }
+    binding.apply(&mut scene, &Configuration { coords });
+    Ok(scene)
 }
 
 /// Writes a PNG, naming the file in the error.
