@@ -265,7 +265,8 @@ pub fn label(value: f64, step: f64) -> String {
     }
 }
 
-/// Width of the legend panel [`legend`] draws, pixels, at text `scale`.
+/// Width of the legend panel (bar and labels) drawn beside pictures, pixels, at text
+/// `scale`.
 pub fn legend_width(scale: u32) -> u32 {
     24 * scale + text_width("00000", scale) + 6 * scale
 }

@@ -34,7 +34,9 @@ pub use image::RgbImage;
 pub use integrator::{
     IlluminanceImage, Image, Integrator, Lights, RenderSettings, render, render_illuminance,
 };
-pub use map::{IlluminanceMap, MapCell, MapError, MapSettings, MapSummary, illuminance_map};
+pub use map::{
+    IlluminanceMap, MAX_CELLS, MapCell, MapError, MapSettings, MapSummary, illuminance_map,
+};
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use plot::{Mark, PLOT_SIZE, PlotKind, PlotPoint, SearchPlot, draw_search_plot};
 pub use tonemap::{Exposure, ToneMap, log_average, srgb_encode, tone_map};
