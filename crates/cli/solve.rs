@@ -1,7 +1,10 @@
 //! `invlight solve`: reads a problem file, loads its scene, runs the noisy VNS with
 //! photon-traced estimates, and reports the ISOC. The files (`solutions.csv`,
 //! `result.json`) are written as the search goes; Ctrl-C stops it cleanly and
-//! `--resume` continues it.
+//! `--resume` continues it. At the end (also after Ctrl-C) every ISOC member is
+//! rendered (`isoc-NN.png`) and the visited configurations plotted (`search.png`).
+
+mod images;
 
 use crate::InputError;
 use anyhow::{Context, Result};
@@ -26,7 +29,9 @@ static STOP: AtomicBool = AtomicBool::new(false);
 /// The problem file is ILPSolver's XML format (docs/problem-file.md). Results go to the
 /// output folder as the search goes: solutions.csv (one row per photon trace) and
 /// result.json (the best configurations, rewritten whenever they change). Ctrl-C stops
-/// cleanly; --resume continues from solutions.csv.
+/// cleanly; --resume continues from solutions.csv. At the end, isoc-01.png, isoc-02.png,
+/// … render the ISOC's configurations from the scene's camera and search.png plots the
+/// configurations evaluated.
 #[derive(clap::Args, Debug)]
 pub struct SolveArgs {
     /// The problem file (.xml).
@@ -65,6 +70,15 @@ pub struct SolveArgs {
     /// Worker threads [default: one per core].
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Width of the ISOC pictures, pixels; the height follows the camera's aspect.
+    #[arg(long, default_value_t = 480, value_name = "W")]
+    pub image_width: u32,
+    /// Photons of each ISOC picture's photon map (its indirect light).
+    #[arg(long, default_value_t = 300_000, value_name = "N")]
+    pub image_photons: u64,
+    /// Write neither the ISOC pictures nor search.png.
+    #[arg(long)]
+    pub no_images: bool,
 }
 
 fn input(e: impl std::fmt::Display) -> anyhow::Error {
@@ -110,6 +124,14 @@ pub fn run(args: SolveArgs) -> Result<()> {
     for w in &binding.warnings {
         eprintln!("warning: {w}");
     }
+    if !args.no_images && !(1..=16384).contains(&args.image_width) {
+        return Err(input(format!(
+            "--image-width {} must be between 1 and 16384 pixels",
+            args.image_width
+        )));
+    }
+    // The evaluator owns and changes its scene; the pictures start from this copy.
+    let pictured = (!args.no_images).then(|| scene.clone());
     let settings = problem.settings();
     let z = z_two_sided(problem.confidence);
 
@@ -171,6 +193,7 @@ pub fn run(args: SolveArgs) -> Result<()> {
         output,
         bar: progress_bar(problem.max_iterations, search.iteration()),
         z,
+        records: resumed.map(|(r, _)| r).unwrap_or_default(),
     };
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter, &STOP))
@@ -181,9 +204,42 @@ pub fn run(args: SolveArgs) -> Result<()> {
         .write_result(search.isoc())
         .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
 
-    // 5. Report.
     let (rays, photons) = eval.work();
     let secs = reporter.output.elapsed();
+
+    // 5. Pictures of the ISOC and of the search.
+    if let Some(scene) = &pictured {
+        let members: Vec<_> = search
+            .isoc()
+            .members()
+            .iter()
+            .map(|m| m.config.clone())
+            .collect();
+        let start = std::time::Instant::now();
+        let settings = images::ImageSettings {
+            width: args.image_width,
+            photons: args.image_photons,
+            samples: 2,
+            seed: problem.seed,
+            max_bounces,
+        };
+        let mut written =
+            pool.install(|| images::write_isoc_images(&dir, scene, &binding, &members, &settings))?;
+        written.extend(images::write_search_plots(
+            &dir,
+            &binding,
+            &reporter.records,
+            search.isoc(),
+            z,
+        )?);
+        eprintln!(
+            "{} pictures in {:.1} s",
+            written.len(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+
+    // 6. Report.
     match outcome {
         Outcome::Interrupted => eprintln!(
             "interrupted: the files are complete up to the last evaluation; continue with --resume"
@@ -217,11 +273,14 @@ struct Reporter<'b> {
     output: Output<'b>,
     bar: ProgressBar,
     z: f64,
+    /// Every evaluation so far, for search.png.
+    records: Vec<Record>,
 }
 
 impl Observer for Reporter<'_> {
     fn evaluated(&mut self, record: &Record, isoc: &Isoc, changed: bool) -> std::io::Result<()> {
         self.output.evaluated(record, isoc, changed)?;
+        self.records.push(record.clone());
         if let Some(best) = best(isoc) {
             let i = Interval::of(&best.estimate, self.z);
             self.bar.set_message(format!(
@@ -331,6 +390,9 @@ mod tests {
             json: false,
             resume: false,
             threads: Some(2),
+            image_width: 64,
+            image_photons: 2000,
+            no_images: true,
         }
     }
 
@@ -342,14 +404,32 @@ mod tests {
             .collect()
     }
 
-    /// Solving writes a row per evaluation and a result.json; --resume goes on from
-    /// the rows without tracing a cell twice; an interruption leaves valid files.
+    /// The PNG files in `out`, by name, with their sizes.
+    fn pngs(out: &Path) -> Vec<(String, (u32, u32))> {
+        let mut found: Vec<_> = std::fs::read_dir(out)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "png"))
+            .map(|p| {
+                let size = invlight_render::image::image_dimensions(&p).unwrap();
+                (p.file_name().unwrap().to_string_lossy().into_owned(), size)
+            })
+            .collect();
+        found.sort();
+        found
+    }
+
+    /// Solving writes a row per evaluation, a result.json, a picture per ISOC member
+    /// and search.png; --resume goes on from the rows without tracing a cell twice; an
+    /// interruption leaves valid files; --no-images writes no picture.
     /// (One test: Ctrl-C's flag is process-wide.)
     #[test]
     fn solve_resume_and_interrupt() {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");
-        run(args("lamp-room.xml", &out)).unwrap();
+        let mut with_images = args("lamp-room.xml", &out);
+        with_images.no_images = false;
+        run(with_images).unwrap();
         let first = rows(&out);
         assert_eq!(
             first[0],
@@ -361,6 +441,14 @@ mod tests {
         assert_eq!(json["evaluations"].as_u64(), Some(first.len() as u64 - 1));
         assert_eq!(json["objective"]["surface"], "Desk");
         assert!(!json["isoc"].as_array().unwrap().is_empty());
+        // The lamp room has no camera: the default view is 4:3, 64×48 pixels (of the
+        // closed room from outside, so dark: the check is of the files, not the light).
+        let members = json["isoc"].as_array().unwrap().len();
+        let mut expected: Vec<_> = (1..=members)
+            .map(|k| (format!("isoc-{k:02}.png"), (64, 48)))
+            .collect();
+        expected.push(("search.png".to_string(), invlight_render::PLOT_SIZE));
+        assert_eq!(pngs(&out), expected);
 
         let mut more = args("lamp-room.xml", &out);
         more.iterations = Some(120);
@@ -401,6 +489,7 @@ mod tests {
             serde_json::from_str(&std::fs::read_to_string(out2.join("result.json")).unwrap())
                 .unwrap();
         assert_eq!(json["evaluations"].as_u64(), Some(cut.len() as u64 - 1));
+        assert!(pngs(&out2).is_empty(), "--no-images wrote pictures");
     }
 
     #[test]
