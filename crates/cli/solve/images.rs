@@ -131,30 +131,27 @@ pub fn search_plot(
     let first = (0..i)
         .map(|j| space.variables()[j].domain.dimensions())
         .sum::<usize>();
-    let (kind, cell, at): (PlotKind, [f64; 2], Box<dyn Fn(&[f64]) -> [f64; 2]>) =
-        match &space.variables()[i].domain {
-            Domain::Rectangle(r) => {
-                let (w, h) = (r.e1.length(), r.e2.length());
-                (
-                    PlotKind::Position {
-                        width: w,
-                        height: h,
-                    },
-                    [w / cells[first] as f64, h / cells[first + 1] as f64],
-                    Box::new(move |x| [x[0] * w, x[1] * h]),
-                )
-            }
-            Domain::Hemisphere(_) => (
-                PlotKind::Direction,
-                [90.0 / cells[first + 1] as f64, 360.0 / cells[first] as f64],
-                Box::new(|x| [x[1] * 90.0, x[0] * 360.0]),
-            ),
-            &Domain::Segment { min, max } => (
-                PlotKind::Value { min, max },
-                [(max - min) / cells[first] as f64, 0.0],
-                Box::new(move |x| [min + x[0] * (max - min), 0.0]),
-            ),
-        };
+    let domain = &space.variables()[i].domain;
+    let (kind, cell) = match domain {
+        Domain::Rectangle(r) => {
+            let (w, h) = (r.e1.length(), r.e2.length());
+            (
+                PlotKind::Position {
+                    width: w,
+                    height: h,
+                },
+                [w / cells[first] as f64, h / cells[first + 1] as f64],
+            )
+        }
+        Domain::Hemisphere(_) => (
+            PlotKind::Direction,
+            [90.0 / cells[first + 1] as f64, 360.0 / cells[first] as f64],
+        ),
+        &Domain::Segment { min, max } => (
+            PlotKind::Value { min, max },
+            [(max - min) / cells[first] as f64, 0.0],
+        ),
+    };
     let mut points: Vec<PlotPoint> = Vec::new();
     let mut index: HashMap<Vec<u64>, usize> = HashMap::new();
     for r in records.iter().filter(|r| r.verdict != Verdict::Refine) {
@@ -167,7 +164,7 @@ pub fn search_plot(
             _ => Mark::Visited,
         };
         let point = PlotPoint {
-            coords: at(space.slice(&r.config, i)),
+            coords: plot_coords(domain, space.slice(&r.config, i)),
             mean: r.estimate.mean,
             low: interval.low,
             high: interval.high,
@@ -203,6 +200,16 @@ pub fn search_plot(
         points[*p].mark = Mark::Start;
     }
     SearchPlot { kind, cell, points }
+}
+
+/// A variable's normalised coordinates `x` in the units of its [`PlotKind`]: metres
+/// from vertex A along AB and AD; (θ, φ) in degrees; the colour value V.
+fn plot_coords(domain: &Domain, x: &[f64]) -> [f64; 2] {
+    match domain {
+        Domain::Rectangle(r) => [x[0] * r.e1.length(), x[1] * r.e2.length()],
+        Domain::Hemisphere(_) => [x[1] * 90.0, x[0] * 360.0],
+        Domain::Segment { min, max } => [min + x[0] * (max - min), 0.0],
+    }
 }
 
 /// Writes `search.png` for the first variable and `search-<id>.png` for each further
