@@ -927,6 +927,7 @@ mod solve {
             "4000".as_ref(),
             "--iterations".as_ref(),
             "20".as_ref(),
+            "--no-images".as_ref(),
             "--json".as_ref(),
         ]);
         let csv = std::fs::read_to_string(out.join("solutions.csv")).unwrap();

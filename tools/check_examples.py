@@ -89,7 +89,7 @@ def main():
                 continue
             out = os.path.join(tmp, name)
             cmd = command + ["solve", os.path.join("examples", name, "problem.xml"),
-                             "--output", out, "--json"] + ([] if args.full else budget)
+                             "--output", out, "--json", "--no-images"] + ([] if args.full else budget)
             start = time.monotonic()
             run = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
             seconds = time.monotonic() - start
