@@ -88,10 +88,19 @@ pub struct TraceResult {
 impl TraceResult {
     /// Mean illuminance of target `i` of area `area` m², in lux, with its standard
     /// error: F_N = Σ_i X_i / (A·N) (thesis eq. 3.2).
+    ///
+    /// A target no photon reached has a sample variance of zero, which would claim the
+    /// mean 0 exact and let a comparison rule the surface out on no evidence. Its standard
+    /// error is then taken as the illuminance one arrival would have given, Φ/(A·N): the
+    /// binomial σ with the hit probability 1/N, the smallest that is not ruled out.
     pub fn estimate(&self, i: usize, area: f64) -> Estimate {
         let t = &self.tallies[i];
         let inv = 1.0 / area;
-        Estimate::from_sums(t.sum * inv, t.sum_sq * inv * inv, self.photons)
+        let mut e = Estimate::from_sums(t.sum * inv, t.sum_sq * inv * inv, self.photons);
+        if t.hits == 0 && self.photons > 0 {
+            e.std_error = self.flux * inv / self.photons as f64;
+        }
+        e
     }
 }
 

@@ -166,6 +166,48 @@ fn closed_room_interreflection() {
 }
 
 #[test]
+fn saturated_colour_room_keeps_an_honest_interval() {
+    // A closed room of red walls K_d = (0.9, 0.05, 0.05) under a white lamp: each channel
+    // interreflects on its own, E_c = Φ/(A(1 − ρ_c)), and the reported value is their
+    // luminance. Roulette on mean(K_d) has infinite variance here (the red channel's
+    // second moment grows 2.7× per bounce); on the photon's luminance it is finite.
+    let kd = Vec3::new(0.9, 0.05, 0.05);
+    let mut scene = Scene::default();
+    let red = scene.add_material(Material::diffuse("Red", kd));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), red));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let e = measure(&scene, &["Room"], 400_000);
+    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
+    let flux = 4.0 * PI * 100.0;
+    let per_channel = |rho: f32| flux / (area * (1.0 - rho as f64));
+    let exact =
+        0.2126 * per_channel(kd.x) + 0.7152 * per_channel(kd.y) + 0.0722 * per_channel(kd.z);
+    assert_close(&e[0], exact, "red room");
+}
+
+#[test]
+fn a_surface_no_photon_reaches_is_not_exactly_dark() {
+    // Zero arrivals give a sample variance of 0; the reported error is one arrival's worth.
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let floor = scene.add_mesh(rect(-1.0, 1.0, -1.0, 1.0, 0.0, grey));
+    let hidden = scene.add_mesh(rect(-1.0, 1.0, -1.0, 1.0, -1.0, grey));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    scene.add_instance("Below", hidden, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.0, 0.0, 1.0), 10.0));
+    let e = measure(&scene, &["Below"], 1000);
+    assert_eq!(e[0].mean, 0.0);
+    let one_arrival = 4.0 * PI * 10.0 / (4.0 * 1000.0);
+    // The flux is summed in f32 by the emitters: equal to f32 rounding.
+    assert!((e[0].std_error - one_arrival).abs() < 1e-6 * one_arrival);
+}
+
+#[test]
 fn thesis_bounce_cap_under_counts_a_bright_room() {
     // With at most 4 bounces after the first hit the room gets Φ(1 − ρ⁵)/(A(1 − ρ)).
     let rho = 0.8f32;

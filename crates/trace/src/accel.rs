@@ -82,6 +82,11 @@ struct Placed {
     world_from_object: Affine3A,
     object_from_world: Affine3A,
     mesh: u32,
+    /// −1 when the transform mirrors (negative determinant), else 1. The front face is
+    /// the counter-clockwise side *in world space*, as emission (`photon::Emitters`) and
+    /// the loaders (glTF re-winds mirrored meshes) take it; the inverse transpose alone
+    /// would give the opposite side for a mirrored instance.
+    front_sign: f32,
 }
 
 /// Ray casting against a [`Scene`]: closest hit, any hit (shadow rays) and surface
@@ -284,6 +289,11 @@ impl Accel {
                     world_from_object,
                     object_from_world: world_from_object.inverse(),
                     mesh: inst.mesh,
+                    front_sign: if world_from_object.matrix3.determinant() < 0.0 {
+                        -1.0
+                    } else {
+                        1.0
+                    },
                 }
             })
             .collect();
@@ -500,9 +510,10 @@ impl Accel {
         let local = w * p0 + hit.u * p1 + hit.v * p2;
         let point = placed.world_from_object.transform_point3(local);
         let n_local = (p1 - p0).cross(p2 - p0);
-        let normal =
-            Vec3::from(placed.object_from_world.matrix3.transpose() * Vec3A::from(n_local))
-                .normalize_or_zero();
+        let normal = Vec3::from(
+            placed.object_from_world.matrix3.transpose() * Vec3A::from(n_local * placed.front_sign),
+        )
+        .normalize_or_zero();
         // A sliver so thin its normal vanishes in rounding still faces the ray.
         let normal = if normal == Vec3::ZERO {
             -ray.dir

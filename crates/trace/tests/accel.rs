@@ -529,3 +529,32 @@ fn zero_direction_components_of_either_sign() {
         assert!(accel.intersect(&beside).is_none());
     }
 }
+
+/// The front of a mirrored instance is the counter-clockwise side in world space, the
+/// side its emission leaves from (regression: the inverse transpose alone flipped it).
+#[test]
+fn mirrored_instance_front_is_the_world_winding() {
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let corners = [
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
+    let quad = scene.add_mesh(Mesh::quad(corners, grey));
+    let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+    scene.add_instance("Mirrored", quad, mirror);
+    let [a, b, c] = [corners[0], corners[1], corners[2]].map(|p| mirror.transform_point3(p));
+    let front = (b - a).cross(c - a).normalize();
+    for accel in [Accel::new(&scene), Accel::with_movable(&scene, &[])] {
+        let ray = Ray::new(Vec3::new(-0.3, 0.4, 2.0), -Vec3::Z);
+        let hit = accel.intersect(&ray).expect("the quad is below");
+        let at = accel.interaction(&ray, &hit);
+        assert!(
+            (at.normal - front).length() < 1e-6,
+            "{} vs {front}",
+            at.normal
+        );
+    }
+}
