@@ -3,7 +3,7 @@
 //! that do not depend on the number of threads; the plot files.
 
 use glam::{Mat4, Vec3};
-use invlight_photon::{Rng, z_two_sided};
+use invlight_photon::Rng;
 use invlight_render::{
     IlluminanceImage, Image, Integrator, Lights, MapError, MapSettings, Mark, Paths, PhotonMap,
     PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
@@ -433,16 +433,14 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
             est.mean,
             est.std_error
         );
-        // The interval a user sees contains the value at the usual confidence for most.
-        let (low, high) = est.interval(0.95);
-        assert!(low < est.mean && est.mean < high);
+        // The check above means something only if the interval is informative.
+        assert!(est.std_error < 0.05 * e, "cell {:?}: σ {}", cell.index, est.std_error);
         total += est.mean * cell.area;
     }
     let summary = map.summary();
     assert!((summary.eavg - total / 4.0).abs() < 1e-9 * total);
     assert!((summary.u0 - summary.emin / summary.eavg).abs() < 1e-12);
     assert!(summary.emin <= summary.eavg && summary.eavg <= summary.emax);
-    assert!(z_two_sided(0.95) > 1.9);
     // The heat map has the grid and the legend.
     let img = map.image(invlight_render::nice_ceil(summary.emax));
     assert_eq!(img.width(), 4 * 64 + invlight_render::legend_width(1));
