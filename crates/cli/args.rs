@@ -51,6 +51,14 @@ impl LoadArgs {
 /// Finds the surface `name`, or explains which names exist.
 pub fn find_surface(scene: &Scene, path: &Path, name: &str) -> anyhow::Result<SurfaceId> {
     if let Some(id) = scene.surface(name) {
+        // Illuminance is flux over area: a surface without area has none.
+        if scene.surface_area(id) <= 0.0 {
+            return Err(InputError(format!(
+                "{}: the surface '{name}' has no area (its triangles are degenerate)",
+                path.display()
+            ))
+            .into());
+        }
         return Ok(id);
     }
     let mut msg = format!("{}: no surface named '{name}'", path.display());

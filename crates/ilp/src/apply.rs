@@ -222,6 +222,17 @@ impl Binding {
                 "surfaces",
             ))
         })?;
+        // Illuminance is flux over area: a surface without area has none.
+        if scene.surface_area(objective) <= 0.0 {
+            return Err(ProblemError::at(
+                path,
+                problem.objective.line,
+                format!(
+                    "the surface '{}' has no area, expected a surface to light",
+                    problem.objective.surface
+                ),
+            ));
+        }
         Ok(Binding {
             space: Space::new(variables, &problem.mesh),
             initial: Configuration { coords: initial },
