@@ -93,7 +93,7 @@ struct Solved {
     evaluations: u64,
 }
 
-/// Solves and prints one line of figures (shown with `--nocapture`; BENCHMARKS-ilp.md).
+/// Solves and prints one line of figures (shown with `--nocapture`; BENCHMARKS.md).
 fn solve(name: &str, problem: &Problem, mut scene: Scene) -> Solved {
     let start = std::time::Instant::now();
     let binding = Binding::new(problem, &mut scene).unwrap();

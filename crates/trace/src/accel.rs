@@ -116,7 +116,7 @@ pub struct Accel {
 /// The build quality of both levels: obvhs's "medium" preset (PLOC with search radius
 /// and reinsertion, up to 3 triangles per leaf). Its "fast", "slow" (spatial pre-splits)
 /// and "very slow" presets traced Sponza within ±10 % of it, inside the noise, while
-/// "slow" took twice and "very slow" six times as long to build (BENCHMARKS-trace.md).
+/// "slow" took twice and "very slow" six times as long to build (BENCHMARKS.md, "Ray casting").
 fn build_params() -> BvhBuildParams {
     BvhBuildParams::medium_build()
 }
@@ -150,7 +150,7 @@ impl Accel {
     /// holes a problem's variables place): a ray that starts inside the boxes of many
     /// overlapping static instances then walks one tree instead of entering each of them
     /// (Sponza's 34 groups as separate instances trace at 0.6–0.7× the single-tree rate;
-    /// BENCHMARKS-trace.md). [`Accel::update_instances`] still rebuilds only the top
+    /// BENCHMARKS.md, "Ray casting"). [`Accel::update_instances`] still rebuilds only the top
     /// level while just the movable instances move; if a baked instance's transform
     /// changed, it rebuilds everything, correct but slow.
     pub fn with_movable(scene: &Scene, movable: &[InstanceId]) -> Accel {

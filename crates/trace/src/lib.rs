@@ -9,7 +9,7 @@
 //!
 //! - [`Accel::with_movable`] bakes every instance the caller will not move into one
 //!   world-space BVH and keeps only the movable ones as instances: many overlapping
-//!   static instances otherwise cost a third of the ray rate (BENCHMARKS-trace.md).
+//!   static instances otherwise cost a third of the ray rate (BENCHMARKS.md, "Ray casting").
 //! - Every triangle blocks from both sides; [`Interaction::normal`] still tells the front
 //!   (counter-clockwise) side, which emitters emit from.
 //! - Holes (thesis §4.1, fig. 4.2): instances of hole materials are not traced; each
