@@ -434,7 +434,12 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
             est.std_error
         );
         // The check above means something only if the interval is informative.
-        assert!(est.std_error < 0.05 * e, "cell {:?}: σ {}", cell.index, est.std_error);
+        assert!(
+            est.std_error < 0.05 * e,
+            "cell {:?}: σ {}",
+            cell.index,
+            est.std_error
+        );
         total += est.mean * cell.area;
     }
     let summary = map.summary();
