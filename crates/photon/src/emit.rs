@@ -23,6 +23,49 @@ pub struct EmitSample {
     pub power: Rgb,
 }
 
+/// An emissive triangle of a scene, in world space: an area light that emits from its
+/// front, counter-clockwise face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EmissiveTriangle {
+    /// Corners, counter-clockwise seen from the front.
+    pub corners: [Vec3; 3],
+    /// Unit front normal: the normalized cross product of the world-space edges, so a
+    /// mirrored instance keeps its counter-clockwise front (as `invlight_trace` does).
+    pub normal: Vec3,
+    /// Luminance of the emission, RGB cd/m².
+    pub emission: Rgb,
+    /// Area, m² (positive: degenerate triangles are left out).
+    pub area: f32,
+}
+
+/// Every emissive triangle of `scene`, instance by instance in scene order. The photon
+/// emitters and the renderer's shadow-ray lights both read the lights here, so they
+/// cannot disagree about where a light is or which way it faces.
+pub fn emissive_triangles(scene: &Scene) -> impl Iterator<Item = EmissiveTriangle> + '_ {
+    scene.instances.iter().flat_map(move |inst| {
+        let mesh = &scene.meshes[inst.mesh as usize];
+        mesh.materials
+            .iter()
+            .enumerate()
+            .filter_map(move |(t, &m)| {
+                let emission = scene.materials[m as usize].emission;
+                if emission.max_element() <= 0.0 {
+                    return None;
+                }
+                let corners = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
+                let [a, b, c] = corners;
+                let cross = (b - a).cross(c - a);
+                let area = 0.5 * cross.length();
+                (area > 0.0).then(|| EmissiveTriangle {
+                    corners,
+                    normal: cross.normalize(),
+                    emission,
+                    area,
+                })
+            })
+    })
+}
+
 /// One emitting thing, with the RGB power a photon carries when it is chosen.
 #[derive(Debug, Clone)]
 enum Source {
@@ -117,29 +160,17 @@ impl Emitters {
             }
             flux_rgb.push(flux);
         }
-        for inst in &scene.instances {
-            let mesh = &scene.meshes[inst.mesh as usize];
-            for (t, &m) in mesh.materials.iter().enumerate() {
-                let emission = scene.materials[m as usize].emission;
-                if emission.max_element() <= 0.0 {
-                    continue;
-                }
-                let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
-                let cross = (b - a).cross(c - a);
-                let area = 0.5 * cross.length();
-                if area <= 0.0 {
-                    continue;
-                }
-                sources.push(Source::Triangle {
-                    p0: a,
-                    e1: b - a,
-                    e2: c - a,
-                    normal: cross.normalize(),
-                    power: Vec3::ZERO,
-                });
-                // A Lambertian emitter of radiance L sends π·L per unit area.
-                flux_rgb.push(emission * (PI * area));
-            }
+        for t in emissive_triangles(scene) {
+            let [a, b, c] = t.corners;
+            sources.push(Source::Triangle {
+                p0: a,
+                e1: b - a,
+                e2: c - a,
+                normal: t.normal,
+                power: Vec3::ZERO,
+            });
+            // A Lambertian emitter of radiance L sends π·L per unit area.
+            flux_rgb.push(t.emission * (PI * t.area));
         }
         let total: f64 = flux_rgb.iter().map(|&f| luminance(f) as f64).sum();
         let mut cdf = Vec::with_capacity(sources.len());

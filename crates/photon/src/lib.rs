@@ -6,10 +6,13 @@
 //!   [`TraceResult::estimate`] gives the mean illuminance in lux with its standard error.
 //! - [`trace_photon`] follows one photon and reports its arrivals to a [`PathVisitor`];
 //!   rendering stores photons through it.
+//! - [`trace_chunks`] is the parallel driver of every trace: chunks of photons, each with
+//!   its own visitor, folded in index order.
 //! - [`Rng`] streams are keyed by (seed, photon index): results are bit-identical for any
 //!   thread count.
 #![deny(missing_docs)]
 
+mod chunks;
 mod emit;
 mod estimate;
 mod measure;
@@ -17,9 +20,10 @@ mod path;
 mod rng;
 mod sampling;
 
-pub use emit::{EmitSample, Emitters};
+pub use chunks::{BLOCK, CHUNK, trace_chunks};
+pub use emit::{EmissiveTriangle, EmitSample, Emitters, emissive_triangles};
 pub use estimate::{Estimate, normal_quantile, z_two_sided};
-pub use measure::{BLOCK, CHUNK, DEFAULT_MAX_BOUNCES, Tally, TraceResult, TraceSettings, trace};
+pub use measure::{DEFAULT_MAX_BOUNCES, PhotonTallies, Tally, TraceResult, TraceSettings, trace};
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use rng::Rng;
 pub use sampling::{basis, cosine_hemisphere};

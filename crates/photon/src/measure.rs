@@ -2,26 +2,17 @@
 //! accumulated without storing photons, in parallel, with results that do not depend on
 //! the number of threads.
 //!
-//! Photons are traced in chunks of [`CHUNK`] consecutive indices, each chunk tallied on
-//! its own, and the chunk tallies summed in index order, [`BLOCK`] chunks at a time. The
-//! sum order is therefore fixed by the photon count alone: the same seed gives the same
-//! bits on one thread or many, and memory stays constant however many photons are traced.
+//! Photons are traced by [`trace_chunks`], each chunk tallied on its own and the chunk
+//! tallies summed in index order: the same seed gives the same bits on one thread or
+//! many, and memory stays constant however many photons are traced.
 
+use crate::chunks::trace_chunks;
 use crate::emit::Emitters;
 use crate::estimate::Estimate;
-use crate::path::{PathVisitor, trace_photon};
-use crate::rng::Rng;
+use crate::path::PathVisitor;
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
 use invlight_trace::{Accel, Interaction};
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
-
-/// Photons per chunk: large enough that a chunk's bookkeeping is negligible, small
-/// enough to balance two to a hundred threads.
-pub const CHUNK: u64 = 4096;
-/// Chunks reduced at a time: bounds memory, keeps all threads busy.
-pub const BLOCK: u64 = 256;
 
 /// How to trace.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,6 +58,59 @@ impl Tally {
         self.sum += other.sum;
         self.sum_sq += other.sum_sq;
         self.hits += other.hits;
+    }
+}
+
+/// One chunk's tallies of many targets, built photon by photon: a photon's arrivals on a
+/// target are summed first (X_i is the photon's whole contribution, all arrivals added,
+/// so that Σ X_i² is the variance's), and folded in at [`PhotonTallies::end_photon`].
+/// Only the targets the photon touched are visited then, so a photon costs its arrivals,
+/// not the number of targets.
+#[derive(Debug, Clone)]
+pub struct PhotonTallies {
+    tallies: Vec<Tally>,
+    current: Vec<f64>,
+    touched: Vec<u32>,
+}
+
+impl PhotonTallies {
+    /// Empty tallies of `targets` targets.
+    pub fn new(targets: usize) -> PhotonTallies {
+        PhotonTallies {
+            tallies: vec![Tally::default(); targets],
+            current: vec![0.0; targets],
+            touched: Vec::new(),
+        }
+    }
+
+    /// The current photon arrived on `target` carrying `lumens`.
+    #[inline]
+    pub fn arrive(&mut self, target: u32, lumens: f64) {
+        let t = target as usize;
+        if self.current[t] == 0.0 {
+            self.touched.push(target);
+        }
+        self.current[t] += lumens;
+        self.tallies[t].hits += 1;
+    }
+
+    /// The current photon ended: its sums join the tallies.
+    #[inline]
+    pub fn end_photon(&mut self) {
+        for &t in &self.touched {
+            let x = std::mem::take(&mut self.current[t as usize]);
+            let tally = &mut self.tallies[t as usize];
+            tally.sum += x;
+            tally.sum_sq += x * x;
+        }
+        self.touched.clear();
+    }
+
+    /// Adds these tallies to `totals`, target by target.
+    pub fn add_to(&self, totals: &mut [Tally]) {
+        for (total, t) in totals.iter_mut().zip(&self.tallies) {
+            total.merge(t);
+        }
     }
 }
 
@@ -138,13 +182,10 @@ impl TargetMap {
     }
 }
 
-/// Tallies one chunk of photons: per-photon sums in `current`, folded into `tallies`
-/// when the photon ends.
+/// Tallies one chunk of photons on the measured targets.
 struct ChunkTally<'a> {
     map: &'a TargetMap,
-    tallies: Vec<Tally>,
-    current: Vec<f64>,
-    touched: Vec<u32>,
+    tallies: PhotonTallies,
     escaped: f64,
 }
 
@@ -152,11 +193,7 @@ impl PathVisitor for ChunkTally<'_> {
     #[inline]
     fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32) {
         for &t in self.map.of(at.instance) {
-            if self.current[t as usize] == 0.0 {
-                self.touched.push(t);
-            }
-            self.current[t as usize] += luminance(power) as f64;
-            self.tallies[t as usize].hits += 1;
+            self.tallies.arrive(t, luminance(power) as f64);
         }
     }
 
@@ -164,18 +201,10 @@ impl PathVisitor for ChunkTally<'_> {
     fn escape(&mut self, power: Rgb) {
         self.escaped += luminance(power) as f64;
     }
-}
 
-impl ChunkTally<'_> {
     #[inline]
     fn end_photon(&mut self) {
-        for &t in &self.touched {
-            let x = std::mem::take(&mut self.current[t as usize]);
-            let tally = &mut self.tallies[t as usize];
-            tally.sum += x;
-            tally.sum_sq += x * x;
-        }
-        self.touched.clear();
+        self.tallies.end_photon();
     }
 }
 
@@ -198,53 +227,21 @@ pub fn trace(
         escaped: 0.0,
         flux: emitters.total_flux(),
     };
-    if emitters.is_empty() {
-        return result;
-    }
-    let chunks = settings.photons.div_ceil(CHUNK);
-    let done = AtomicU64::new(0);
-    let mut block_start = 0;
-    while block_start < chunks {
-        let block_end = (block_start + BLOCK).min(chunks);
-        let parts: Vec<(ChunkTally, u64)> = (block_start..block_end)
-            .into_par_iter()
-            .map(|chunk| {
-                let first = chunk * CHUNK;
-                let last = (first + CHUNK).min(settings.photons);
-                let mut tally = ChunkTally {
-                    map: &map,
-                    tallies: vec![Tally::default(); targets.len()],
-                    current: vec![0.0; targets.len()],
-                    touched: Vec::with_capacity(targets.len()),
-                    escaped: 0.0,
-                };
-                let mut rays = 0;
-                for i in first..last {
-                    let mut rng = Rng::new(settings.seed, i);
-                    rays += trace_photon(
-                        scene,
-                        accel,
-                        &emitters,
-                        &mut rng,
-                        settings.max_bounces,
-                        &mut tally,
-                    );
-                    tally.end_photon();
-                }
-                if let Some(report) = progress {
-                    report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
-                }
-                (tally, rays)
-            })
-            .collect();
-        for (part, rays) in &parts {
-            for (total, t) in result.tallies.iter_mut().zip(&part.tallies) {
-                total.merge(t);
-            }
+    result.rays = trace_chunks(
+        scene,
+        accel,
+        &emitters,
+        settings,
+        || ChunkTally {
+            map: &map,
+            tallies: PhotonTallies::new(targets.len()),
+            escaped: 0.0,
+        },
+        |part| {
+            part.tallies.add_to(&mut result.tallies);
             result.escaped += part.escaped;
-            result.rays += rays;
-        }
-        block_start = block_end;
-    }
+        },
+        progress,
+    );
     result
 }

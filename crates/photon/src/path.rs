@@ -19,6 +19,10 @@ pub trait PathVisitor {
     fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32);
     /// A photon carrying `power` left the scene.
     fn escape(&mut self, power: Rgb);
+    /// The photon's path has ended (called by [`crate::trace_chunks`], not by
+    /// [`trace_photon`]): the place to fold per-photon sums into a tally.
+    #[inline]
+    fn end_photon(&mut self) {}
 }
 
 /// What happens to a photon at a surface, with the factor its power is multiplied by.

@@ -10,7 +10,9 @@
 use crate::camera::View;
 use crate::photon_map::PhotonMap;
 use glam::Vec3;
-use invlight_photon::{Rng, cosine_hemisphere, fresnel_dielectric, reflect, refract};
+use invlight_photon::{
+    Rng, cosine_hemisphere, emissive_triangles, fresnel_dielectric, reflect, refract,
+};
 use invlight_scene::{LightKind, Rgb, Scene, luminance};
 use invlight_trace::{Accel, Interaction, Ray};
 use rayon::prelude::*;
@@ -98,30 +100,18 @@ impl Lights {
         let mut triangles = Vec::new();
         let mut cdf = Vec::new();
         let mut acc = 0.0f64;
-        for inst in &scene.instances {
-            let mesh = &scene.meshes[inst.mesh as usize];
-            for (t, &m) in mesh.materials.iter().enumerate() {
-                let emission = scene.materials[m as usize].emission;
-                if emission.max_element() <= 0.0 {
-                    continue;
-                }
-                let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
-                let cross = (b - a).cross(c - a);
-                let area = 0.5 * cross.length();
-                if area <= 0.0 {
-                    continue;
-                }
-                acc += (luminance(emission) * area) as f64;
-                cdf.push(acc);
-                triangles.push(AreaTriangle {
-                    p0: a,
-                    e1: b - a,
-                    e2: c - a,
-                    normal: cross.normalize(),
-                    emission,
-                    area,
-                });
-            }
+        for t in emissive_triangles(scene) {
+            let [a, b, c] = t.corners;
+            acc += (luminance(t.emission) * t.area) as f64;
+            cdf.push(acc);
+            triangles.push(AreaTriangle {
+                p0: a,
+                e1: b - a,
+                e2: c - a,
+                normal: t.normal,
+                emission: t.emission,
+                area: t.area,
+            });
         }
         Lights { triangles, cdf }
     }

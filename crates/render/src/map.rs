@@ -5,19 +5,18 @@
 //! over its area and N, with the standard error of the per-photon contributions
 //! (DESIGN.md §1), so every value carries its interval.
 //!
-//! Photons are traced in the chunks of `invlight_photon`'s measure, each chunk tallied on
-//! its own and the tallies added in chunk order: the grid is the same on any number of
-//! threads.
+//! Photons are traced by `invlight_photon::trace_chunks`, each chunk tallied on its own
+//! and the tallies added in chunk order: the grid is the same on any number of threads.
 
 use crate::draw;
 use glam::{Vec2, Vec3};
 use image::RgbImage;
-use invlight_photon::{BLOCK, CHUNK, Emitters, Estimate, PathVisitor, Rng, Tally, trace_photon};
+use invlight_photon::{
+    Emitters, Estimate, PathVisitor, PhotonTallies, Tally, TraceSettings, trace_chunks,
+};
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
 use invlight_trace::{Accel, Interaction};
-use rayon::prelude::*;
 use std::fmt;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// How to measure a grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -258,12 +257,10 @@ impl Grid<'_> {
     }
 }
 
-/// One chunk's per-cell tallies, with the current photon's sums in `current`.
+/// One chunk's per-cell tallies.
 struct CellTally<'a> {
     grid: &'a Grid<'a>,
-    tallies: Vec<Tally>,
-    current: Vec<f64>,
-    touched: Vec<u32>,
+    tallies: PhotonTallies,
 }
 
 impl PathVisitor for CellTally<'_> {
@@ -273,27 +270,15 @@ impl PathVisitor for CellTally<'_> {
             return;
         }
         let c = self.grid.cell(at.point);
-        if self.current[c] == 0.0 {
-            self.touched.push(c as u32);
-        }
-        self.current[c] += luminance(power) as f64;
-        self.tallies[c].hits += 1;
+        self.tallies.arrive(c as u32, luminance(power) as f64);
     }
 
     #[inline]
     fn escape(&mut self, _power: Rgb) {}
-}
 
-impl CellTally<'_> {
     #[inline]
     fn end_photon(&mut self) {
-        for &c in &self.touched {
-            let x = std::mem::take(&mut self.current[c as usize]);
-            let t = &mut self.tallies[c as usize];
-            t.sum += x;
-            t.sum_sq += x * x;
-        }
-        self.touched.clear();
+        self.tallies.end_photon();
     }
 }
 
@@ -349,52 +334,23 @@ pub fn illuminance_map(
         rows,
     };
     let mut totals = vec![Tally::default(); n_cells];
-    let emitters = Emitters::new(scene);
-    if !emitters.is_empty() {
-        let chunks = settings.photons.div_ceil(CHUNK);
-        let done = AtomicU64::new(0);
-        let mut block = 0;
-        while block < chunks {
-            let end = (block + BLOCK).min(chunks);
-            let parts: Vec<Vec<Tally>> = (block..end)
-                .into_par_iter()
-                .map(|chunk| {
-                    let first = chunk * CHUNK;
-                    let last = (first + CHUNK).min(settings.photons);
-                    let mut tally = CellTally {
-                        grid: &grid,
-                        tallies: vec![Tally::default(); n_cells],
-                        current: vec![0.0; n_cells],
-                        touched: Vec::new(),
-                    };
-                    for i in first..last {
-                        let mut rng = Rng::new(settings.seed, i);
-                        trace_photon(
-                            scene,
-                            accel,
-                            &emitters,
-                            &mut rng,
-                            settings.max_bounces,
-                            &mut tally,
-                        );
-                        tally.end_photon();
-                    }
-                    if let Some(report) = progress {
-                        report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
-                    }
-                    tally.tallies
-                })
-                .collect();
-            for part in &parts {
-                for (t, p) in totals.iter_mut().zip(part) {
-                    t.sum += p.sum;
-                    t.sum_sq += p.sum_sq;
-                    t.hits += p.hits;
-                }
-            }
-            block = end;
-        }
-    }
+    let trace = TraceSettings {
+        photons: settings.photons,
+        seed: settings.seed,
+        max_bounces: settings.max_bounces,
+    };
+    trace_chunks(
+        scene,
+        accel,
+        &Emitters::new(scene),
+        &trace,
+        || CellTally {
+            grid: &grid,
+            tallies: PhotonTallies::new(n_cells),
+        },
+        |part| part.tallies.add_to(&mut totals),
+        progress,
+    );
     let cells = (0..n_cells)
         .map(|i| {
             let area = areas[i];

@@ -16,14 +16,13 @@
 //! order (hence every sum, hence the image) is independent of the number of threads. A
 //! query of radius r visits the 2×2×2 cells that its ball can touch. A kd-tree would
 //! answer k-nearest queries, but its build is a sequence of dependent median splits; a
-//! fixed radius from the mean photon density suits the grid (BENCHMARKS-render.md).
+//! fixed radius from the mean photon density suits the grid (BENCHMARKS.md, "Rendering benchmarks").
 
 use glam::Vec3;
-use invlight_photon::{CHUNK, Emitters, PathVisitor, Rng, trace_photon};
+use invlight_photon::{Emitters, PathVisitor, TraceSettings, trace_chunks};
 use invlight_scene::{Rgb, Scene};
 use invlight_trace::{Accel, Interaction};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 /// Where photons are stored.
@@ -187,8 +186,8 @@ fn hash(c: [i32; 3]) -> u64 {
 }
 
 impl PhotonMap {
-    /// Traces `settings.photons` photons from the lights of `scene` (chunks of
-    /// [`CHUNK`] in parallel, concatenated in index order) and builds the grid.
+    /// Traces `settings.photons` photons from the lights of `scene` (by
+    /// [`trace_chunks`], chunks in parallel, concatenated in index order) and builds the grid.
     /// `progress` receives the photons traced so far.
     pub fn build(
         scene: &Scene,
@@ -197,41 +196,27 @@ impl PhotonMap {
         progress: Option<&(dyn Fn(u64) + Sync)>,
     ) -> PhotonMap {
         let start = Instant::now();
-        let emitters = Emitters::new(scene);
+        let trace = TraceSettings {
+            photons: settings.photons,
+            seed: settings.seed,
+            max_bounces: settings.max_bounces,
+        };
         let mut photons = Vec::new();
-        if !emitters.is_empty() {
-            let done = AtomicU64::new(0);
-            let parts: Vec<Vec<Photon>> = (0..settings.photons.div_ceil(CHUNK))
-                .into_par_iter()
-                .map(|chunk| {
-                    let first = chunk * CHUNK;
-                    let last = (first + CHUNK).min(settings.photons);
-                    let mut collector = Collector {
-                        scene,
-                        store: settings.store,
-                        paths: settings.paths,
-                        specular_only: true,
-                        photons: Vec::new(),
-                    };
-                    for i in first..last {
-                        let mut rng = Rng::new(settings.seed, i);
-                        trace_photon(
-                            scene,
-                            accel,
-                            &emitters,
-                            &mut rng,
-                            settings.max_bounces,
-                            &mut collector,
-                        );
-                    }
-                    if let Some(report) = progress {
-                        report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
-                    }
-                    collector.photons
-                })
-                .collect();
-            photons = parts.concat();
-        }
+        trace_chunks(
+            scene,
+            accel,
+            &Emitters::new(scene),
+            &trace,
+            || Collector {
+                scene,
+                store: settings.store,
+                paths: settings.paths,
+                specular_only: true,
+                photons: Vec::new(),
+            },
+            |collector| photons.extend(collector.photons),
+            progress,
+        );
         let radius = settings.radius.unwrap_or_else(|| {
             let area = storing_area(scene, settings.store);
             let n = photons.len().max(1) as f64;
@@ -411,6 +396,7 @@ fn cell_of(p: Vec3, inv_cell: f32) -> [i32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use invlight_photon::Rng;
 
     #[test]
     fn uniform_photons_give_their_density() {

@@ -1,0 +1,82 @@
+//! The parallel driver every photon trace runs on: photons in chunks of [`CHUNK`]
+//! consecutive indices, each chunk followed by a visitor of its own, and the chunks'
+//! visitors folded in index order, [`BLOCK`] chunks at a time.
+//!
+//! Why results do not depend on the number of threads: photon i draws from the stream
+//! (seed, i) whatever thread traces it ([`Rng`]); a chunk's photons are traced in index
+//! order by one visitor; and the chunks' visitors are handed to the fold in chunk order.
+//! Every sum is therefore taken in an order fixed by the photon count alone, and the same
+//! seed gives the same bits on one thread or many. Folding a block at a time keeps the
+//! memory of pending chunks constant however many photons are traced.
+
+use crate::emit::Emitters;
+use crate::measure::TraceSettings;
+use crate::path::{PathVisitor, trace_photon};
+use crate::rng::Rng;
+use invlight_scene::Scene;
+use invlight_trace::Accel;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Photons per chunk: large enough that a chunk's bookkeeping is negligible, small
+/// enough to balance two to a hundred threads.
+pub const CHUNK: u64 = 4096;
+/// Chunks reduced at a time: bounds memory, keeps all threads busy.
+pub const BLOCK: u64 = 256;
+
+/// Traces `settings.photons` photons from `emitters`: each chunk gets a visitor from
+/// `new_visitor`, which sees its photons' arrivals and, after each photon,
+/// [`PathVisitor::end_photon`]; `fold` then receives the chunks' visitors in chunk
+/// order. `progress` is called from worker threads with the photons traced so far.
+/// Returns the rays cast (none when the scene has no light).
+pub fn trace_chunks<V: PathVisitor + Send>(
+    scene: &Scene,
+    accel: &Accel,
+    emitters: &Emitters,
+    settings: &TraceSettings,
+    new_visitor: impl Fn() -> V + Sync,
+    mut fold: impl FnMut(V),
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> u64 {
+    if emitters.is_empty() {
+        return 0;
+    }
+    let chunks = settings.photons.div_ceil(CHUNK);
+    let done = AtomicU64::new(0);
+    let mut rays = 0;
+    let mut block_start = 0;
+    while block_start < chunks {
+        let block_end = (block_start + BLOCK).min(chunks);
+        let parts: Vec<(V, u64)> = (block_start..block_end)
+            .into_par_iter()
+            .map(|chunk| {
+                let first = chunk * CHUNK;
+                let last = (first + CHUNK).min(settings.photons);
+                let mut visitor = new_visitor();
+                let mut chunk_rays = 0;
+                for i in first..last {
+                    let mut rng = Rng::new(settings.seed, i);
+                    chunk_rays += trace_photon(
+                        scene,
+                        accel,
+                        emitters,
+                        &mut rng,
+                        settings.max_bounces,
+                        &mut visitor,
+                    );
+                    visitor.end_photon();
+                }
+                if let Some(report) = progress {
+                    report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
+                }
+                (visitor, chunk_rays)
+            })
+            .collect();
+        for (visitor, chunk_rays) in parts {
+            fold(visitor);
+            rays += chunk_rays;
+        }
+        block_start = block_end;
+    }
+    rays
+}
