@@ -2,6 +2,7 @@
 
 use crate::InputError;
 use clap::{Args, ValueEnum};
+use invlight_photon::{DEFAULT_MAX_BOUNCES, Emitters, TraceSettings};
 use invlight_scene::{LoadOptions, Scene, SurfaceId, UpAxis};
 use std::path::Path;
 
@@ -123,6 +124,65 @@ fn quoted(names: &[&str]) -> String {
         .map(|n| format!("'{n}'"))
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// Options of every command that traces photons.
+#[derive(Args, Debug, Clone)]
+pub struct TraceArgs {
+    /// Seed of the random streams: the same seed gives the same numbers on any number
+    /// of threads.
+    #[arg(long, default_value_t = 1, value_name = "S")]
+    pub seed: u64,
+    /// Surface interactions followed after the first hit. Russian roulette ends paths
+    /// without bias; this is a safety cap. 4 reproduces the thesis, which under-counts
+    /// light in bright rooms.
+    #[arg(long, default_value_t = DEFAULT_MAX_BOUNCES, value_name = "K")]
+    pub max_bounces: u32,
+    /// Confidence level of the reported intervals.
+    #[arg(long, default_value_t = 0.95, value_name = "C")]
+    pub confidence: f64,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "T")]
+    pub threads: Option<usize>,
+}
+
+impl TraceArgs {
+    /// Checks the options together with the photon count, before anything is loaded.
+    pub fn check(&self, photons: u64) -> anyhow::Result<()> {
+        check_confidence(self.confidence)?;
+        if photons == 0 {
+            return Err(InputError("--photons must be at least 1".into()).into());
+        }
+        Ok(())
+    }
+
+    /// The tracing settings for `photons` photons.
+    pub fn settings(&self, photons: u64) -> TraceSettings {
+        TraceSettings {
+            photons,
+            seed: self.seed,
+            max_bounces: self.max_bounces,
+        }
+    }
+
+    /// The thread pool to trace in.
+    pub fn pool(&self) -> anyhow::Result<rayon::ThreadPool> {
+        Ok(rayon::ThreadPoolBuilder::new()
+            .num_threads(self.threads.unwrap_or(0))
+            .build()?)
+    }
+}
+
+/// Refuses a scene that has nothing to trace photons from.
+pub fn require_light(scene: &Scene, path: &Path) -> anyhow::Result<()> {
+    if Emitters::new(scene).is_empty() {
+        return Err(InputError(format!(
+            "{}: the scene has no light: no point, spot or directional light and no emissive surface",
+            path.display()
+        ))
+        .into());
+    }
+    Ok(())
 }
 
 /// Checks a confidence level.

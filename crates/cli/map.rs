@@ -2,11 +2,10 @@
 //! cell with its interval, and the EN 12464-1 figures Emin, Eavg, Emax, U0.
 
 use crate::InputError;
-use crate::args::{LoadArgs, check_confidence, find_surface};
+use crate::args::{LoadArgs, TraceArgs, find_surface, require_light};
 use crate::progress;
 use crate::render::save_png;
 use clap::Args;
-use invlight_photon::{DEFAULT_MAX_BOUNCES, Emitters};
 use invlight_render::{MapError, MapSettings, illuminance_map, nice_ceil};
 use invlight_trace::Accel;
 use serde_json::json;
@@ -28,16 +27,6 @@ pub struct MapArgs {
     /// Photons to emit. Each cell's standard error falls as 1/√N.
     #[arg(long, short = 'n', default_value_t = 4_000_000, value_name = "N")]
     pub photons: u64,
-    /// Seed of the random streams: the same seed gives the same grid on any number of
-    /// threads.
-    #[arg(long, default_value_t = 1, value_name = "S")]
-    pub seed: u64,
-    /// Surface interactions followed after the first hit (a safety cap).
-    #[arg(long, default_value_t = DEFAULT_MAX_BOUNCES, value_name = "K")]
-    pub max_bounces: u32,
-    /// Confidence level of each cell's interval.
-    #[arg(long, default_value_t = 0.95, value_name = "C")]
-    pub confidence: f64,
     /// Top of the heat map's colour scale, lx (default: the largest cell, rounded up).
     #[arg(long, value_name = "LX")]
     pub max_lux: Option<f64>,
@@ -49,19 +38,15 @@ pub struct MapArgs {
     /// u0) instead of a summary.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "T")]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub trace: TraceArgs,
     #[command(flatten)]
     pub load: LoadArgs,
 }
 
 /// Runs `invlight map`.
 pub fn run(args: MapArgs) -> anyhow::Result<()> {
-    check_confidence(args.confidence)?;
-    if args.photons == 0 {
-        return Err(InputError("--photons must be at least 1".into()).into());
-    }
+    args.trace.check(args.photons)?;
     if let Some(m) = args.max_lux
         && !(m > 0.0 && m.is_finite())
     {
@@ -69,23 +54,15 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
     }
     let scene = args.load.load(&args.scene)?;
     let surface = find_surface(&scene, &args.scene, &args.surface)?;
-    if Emitters::new(&scene).is_empty() {
-        return Err(InputError(format!(
-            "{}: the scene has no light: no point, spot or directional light and no emissive surface",
-            args.scene.display()
-        ))
-        .into());
-    }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()?;
+    require_light(&scene, &args.scene)?;
+    let pool = args.trace.pool()?;
     let start = Instant::now();
     let accel = Accel::new(&scene);
     let settings = MapSettings {
         cell: args.grid,
         photons: args.photons,
-        seed: args.seed,
-        max_bounces: args.max_bounces,
+        seed: args.trace.seed,
+        max_bounces: args.trace.max_bounces,
     };
     let bar = progress::bar(args.photons, "photons");
     let report = |done: u64| bar.set_position(done);
@@ -104,7 +81,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
     let summary = map.summary();
-    let z = invlight_photon::z_two_sided(args.confidence);
+    let z = invlight_photon::z_two_sided(args.trace.confidence);
 
     let prefix = args.output.clone().unwrap_or_else(|| {
         let safe: String = args
@@ -154,7 +131,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
         let out = json!({
             "surface": args.surface, "cell": args.grid,
             "cell_size": [map.cell_u, map.cell_v], "cells": [map.columns, map.rows],
-            "photons": map.photons, "confidence": args.confidence, "seconds": seconds,
+            "photons": map.photons, "confidence": args.trace.confidence, "seconds": seconds,
             "points": points,
             "emin": summary.emin, "eavg": summary.eavg, "emax": summary.emax, "u0": summary.u0,
         });

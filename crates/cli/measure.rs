@@ -1,10 +1,9 @@
 //! `invlight measure`: mean illuminance of named surfaces.
 
-use crate::InputError;
-use crate::args::{LoadArgs, check_confidence, find_surface};
+use crate::args::{LoadArgs, TraceArgs, find_surface, require_light};
 use crate::progress;
 use clap::Args;
-use invlight_photon::{DEFAULT_MAX_BOUNCES, Emitters, TraceSettings, trace};
+use invlight_photon::trace;
 use invlight_trace::Accel;
 use serde_json::json;
 use std::path::PathBuf;
@@ -22,21 +21,8 @@ pub struct MeasureArgs {
     /// Photons to emit. The standard error falls as 1/√N.
     #[arg(long, short = 'n', default_value_t = 1_000_000, value_name = "N")]
     pub photons: u64,
-    /// Seed of the random streams: the same seed gives the same numbers on any number
-    /// of threads.
-    #[arg(long, default_value_t = 1, value_name = "S")]
-    pub seed: u64,
-    /// Surface interactions followed after the first hit. Russian roulette ends paths
-    /// without bias; this is a safety cap. 4 reproduces the thesis, which under-counts
-    /// light in bright rooms.
-    #[arg(long, default_value_t = DEFAULT_MAX_BOUNCES, value_name = "K")]
-    pub max_bounces: u32,
-    /// Confidence level of the reported intervals.
-    #[arg(long, default_value_t = 0.95, value_name = "C")]
-    pub confidence: f64,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "T")]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub trace: TraceArgs,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -46,36 +32,21 @@ pub struct MeasureArgs {
 
 /// Runs `invlight measure`.
 pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
-    check_confidence(args.confidence)?;
-    if args.photons == 0 {
-        return Err(InputError("--photons must be at least 1".into()).into());
-    }
+    args.trace.check(args.photons)?;
     let scene = args.load.load(&args.scene)?;
     let ids = args
         .surfaces
         .iter()
         .map(|name| find_surface(&scene, &args.scene, name))
         .collect::<anyhow::Result<Vec<_>>>()?;
-    if Emitters::new(&scene).is_empty() {
-        return Err(InputError(format!(
-            "{}: the scene has no light: no point, spot or directional light and no emissive surface",
-            args.scene.display()
-        ))
-        .into());
-    }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()?;
+    require_light(&scene, &args.scene)?;
+    let pool = args.trace.pool()?;
     let start = Instant::now();
     // Nothing moves: every instance is baked into one world-space tree, which traces
     // faster than a top level over overlapping instances (BENCHMARKS.md).
     let accel = Accel::with_movable(&scene, &[]);
     let build_seconds = start.elapsed().as_secs_f64();
-    let settings = TraceSettings {
-        photons: args.photons,
-        seed: args.seed,
-        max_bounces: args.max_bounces,
-    };
+    let settings = args.trace.settings(args.photons);
     let bar = progress::bar(args.photons, "photons");
     let report = |done: u64| bar.set_position(done);
     let result = pool.install(|| trace(&scene, &accel, &ids, &settings, Some(&report)));
@@ -90,7 +61,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
         .map(|(i, (name, &id))| {
             let area = scene.surface_area(id) as f64;
             let e = result.estimate(i, area);
-            let (low, high) = e.interval(args.confidence);
+            let (low, high) = e.interval(args.trace.confidence);
             (name, area, e, low, high, result.tallies[i].hits)
         })
         .collect();
@@ -103,8 +74,8 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
             })
             .collect();
         let out = json!({"photons": result.photons, "rays": result.rays, "seconds": seconds,
-                         "build_seconds": build_seconds, "confidence": args.confidence, "seed": args.seed,
-                         "max_bounces": args.max_bounces, "flux_lm": result.flux,
+                         "build_seconds": build_seconds, "confidence": args.trace.confidence, "seed": args.trace.seed,
+                         "max_bounces": args.trace.max_bounces, "flux_lm": result.flux,
                          "surfaces": surfaces});
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
@@ -114,7 +85,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
             "surface",
             "area m²",
             "mean lx",
-            format!("{:.0} % interval lx", args.confidence * 100.0),
+            format!("{:.0} % interval lx", args.trace.confidence * 100.0),
             "hits"
         );
         for (name, area, e, low, high, hits) in &rows {
