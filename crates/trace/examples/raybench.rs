@@ -26,7 +26,10 @@ use obvhs::{
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
-const CORNELL: &str = "/work/shared/scenes/cornell-box/cornell_box.obj";
+const CORNELL: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../tests/data/obj/cornell_box.obj"
+);
 
 /// Groups (`o`/`g`) of an OBJ file as triangle meshes: positions and fan-triangulated
 /// faces only.
