@@ -182,9 +182,9 @@ fn point_on_square(l: DVec3, cd: f64, c: DVec3, side: f64) -> f64 {
     sum / (n * n) as f64
 }
 
-/// A lamp on a 4 m × 4 m ceiling, 1.1 m above an off-centre 0.5 m desk: the best place
-/// is right above the desk.
-fn lamp_scene() -> (Scene, Problem) {
+/// A black 4 × 1.2 × 4 m room with an off-centre 0.5 m black desk on its floor, centred
+/// at (3, 0.01, 1.25).
+fn desk_room() -> Scene {
     let mut s = Scene::default();
     let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
     room(&mut s, 4.0, 1.2, 4.0, black, black, black);
@@ -200,6 +200,14 @@ fn lamp_scene() -> (Scene, Problem) {
         ],
         black,
     );
+    s
+}
+
+/// A lamp on a 4 m × 4 m ceiling, 1.1 m above an off-centre 0.5 m desk: the best place
+/// is right above the desk.
+fn lamp_scene() -> (Scene, Problem) {
+    let mut s = desk_room();
+    let p = Vec3::new;
     rectangle(
         &mut s,
         "Ceiling__Geometry",
@@ -239,21 +247,8 @@ fn lamp_on_ceiling_goes_above_the_desk() {
 #[test]
 fn emissive_panel_on_ceiling_goes_above_the_desk() {
     // The same with a 0.2 m emissive panel (ILPSolver's area lights) instead of a lamp.
-    let mut s = Scene::default();
-    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
-    room(&mut s, 4.0, 1.2, 4.0, black, black, black);
+    let mut s = desk_room();
     let p = Vec3::new;
-    quad(
-        &mut s,
-        "Desk",
-        [
-            p(2.75, 0.01, 1.0),
-            p(3.25, 0.01, 1.0),
-            p(3.25, 0.01, 1.5),
-            p(2.75, 0.01, 1.5),
-        ],
-        black,
-    );
     rectangle(
         &mut s,
         "Ceiling__Geometry",

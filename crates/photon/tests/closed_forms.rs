@@ -68,6 +68,19 @@ fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: u32) -> Mesh {
     )
 }
 
+/// A closed 4 × 3 × 2.5 m room (the surface "Room", area 79 m²) of reflectance `kd`
+/// with a 100 cd lamp inside: every photon stays until it is absorbed.
+fn closed_room(kd: Vec3) -> Scene {
+    let mut scene = Scene::default();
+    let m = scene.add_material(Material::diffuse("Walls", kd));
+    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), m));
+    scene.add_instance("Room", room, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    scene
+}
+
 /// Solid angle of the rectangle [0,x]×[0,y] at z = 0 seen from (0,0,h), signed by x·y.
 fn corner_solid_angle(x: f64, y: f64, h: f64) -> f64 {
     (x * y / (h * (x * x + y * y + h * h).sqrt())).atan()
@@ -152,13 +165,7 @@ fn parallel_lambertian_area_source() {
 fn closed_room_interreflection() {
     // Every photon arrives on the walls 1/(1 − ρ) times on average: E = Φ/(A(1 − ρ)).
     let rho = 0.8f32;
-    let mut scene = Scene::default();
-    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
-    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
-    scene.add_instance("Room", room, Mat4::IDENTITY);
-    scene
-        .lights
-        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let scene = closed_room(Vec3::splat(rho));
     let e = measure(&scene, &["Room"], 200_000);
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
@@ -172,13 +179,7 @@ fn saturated_colour_room_keeps_an_honest_interval() {
     // luminance. Roulette on mean(K_d) has infinite variance here (the red channel's
     // second moment grows 2.7× per bounce); on the photon's luminance it is finite.
     let kd = Vec3::new(0.9, 0.05, 0.05);
-    let mut scene = Scene::default();
-    let red = scene.add_material(Material::diffuse("Red", kd));
-    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), red));
-    scene.add_instance("Room", room, Mat4::IDENTITY);
-    scene
-        .lights
-        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let scene = closed_room(kd);
     let e = measure(&scene, &["Room"], 400_000);
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let flux = 4.0 * PI * 100.0;
@@ -211,13 +212,7 @@ fn a_surface_no_photon_reaches_is_not_exactly_dark() {
 fn thesis_bounce_cap_under_counts_a_bright_room() {
     // With at most 4 bounces after the first hit the room gets Φ(1 − ρ⁵)/(A(1 − ρ)).
     let rho = 0.8f32;
-    let mut scene = Scene::default();
-    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
-    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
-    scene.add_instance("Room", room, Mat4::IDENTITY);
-    scene
-        .lights
-        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let scene = closed_room(Vec3::splat(rho));
     let accel = Accel::new(&scene);
     let s = TraceSettings {
         max_bounces: 4,
@@ -386,13 +381,7 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     // test accepts 4 σ either side. Interreflection in a closed room gives per-photon
     // contributions with a long tail, the hard case for a normal interval.
     let rho = 0.6f32;
-    let mut scene = Scene::default();
-    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(rho)));
-    let room = scene.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::new(4.0, 3.0, 2.5), grey));
-    scene.add_instance("Room", room, Mat4::IDENTITY);
-    scene
-        .lights
-        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
+    let scene = closed_room(Vec3::splat(rho));
     let accel = Accel::new(&scene);
     let area = scene.surface_area(0) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));

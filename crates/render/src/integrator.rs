@@ -377,16 +377,16 @@ fn sample_point(x: u32, y: u32, s: u32, settings: &RenderSettings, rng: &mut Rng
 /// Stream offset separating the pixels' random numbers from the photons'.
 const PIXEL_STREAM: u64 = 0x5049_5845_4c53;
 
-/// Renders `view` of the integrator's scene: every pixel in parallel (rows handed to
-/// rayon), each from its own random stream, so the image is the same on any number of
-/// threads. `progress` receives the rows done.
-pub fn render(
-    integrator: &Integrator,
-    view: &View,
+/// Computes every pixel in parallel (rows handed to rayon), each from its own random
+/// stream keyed by its index, so the result is the same on any number of threads.
+/// `pixel(x, y, rng)` gives one pixel's value; `progress` receives the rows done.
+fn per_pixel<T: Send + Clone>(
+    s: &RenderSettings,
+    empty: T,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> Image {
-    let s = integrator.settings;
-    let mut pixels = vec![Vec3::ZERO; s.width as usize * s.height as usize];
+    pixel: impl Fn(u32, u32, &mut Rng) -> T + Sync,
+) -> Vec<T> {
+    let mut pixels = vec![empty; s.width as usize * s.height as usize];
     let done = AtomicU64::new(0);
     pixels
         .par_chunks_mut(s.width as usize)
@@ -395,17 +395,33 @@ pub fn render(
             for (x, px) in row.iter_mut().enumerate() {
                 let index = y as u64 * s.width as u64 + x as u64;
                 let mut rng = Rng::new(s.seed ^ PIXEL_STREAM, index);
-                let mut sum = Vec3::ZERO;
-                for k in 0..s.samples.max(1) {
-                    let (sx, sy) = sample_point(x as u32, y as u32, k, &s, &mut rng);
-                    sum += integrator.radiance(&view.ray(sx, sy), &mut rng);
-                }
-                *px = sum / s.samples.max(1) as f32;
+                *px = pixel(x as u32, y as u32, &mut rng);
             }
             if let Some(report) = progress {
                 report(done.fetch_add(1, Ordering::Relaxed) + 1);
             }
         });
+    pixels
+}
+
+/// Renders `view` of the integrator's scene: every pixel in parallel, each from its own
+/// random stream, so the image is the same on any number of threads. `progress`
+/// receives the rows done.
+pub fn render(
+    integrator: &Integrator,
+    view: &View,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Image {
+    let s = integrator.settings;
+    let samples = s.samples.max(1);
+    let pixels = per_pixel(&s, Vec3::ZERO, progress, |x, y, rng| {
+        let mut sum = Vec3::ZERO;
+        for k in 0..samples {
+            let (sx, sy) = sample_point(x, y, k, &s, rng);
+            sum += integrator.radiance(&view.ray(sx, sy), rng);
+        }
+        sum / samples as f32
+    });
     Image {
         width: s.width,
         height: s.height,
@@ -421,33 +437,22 @@ pub fn render_illuminance(
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> IlluminanceImage {
     let s = integrator.settings;
-    let n = s.width as usize * s.height as usize;
-    let mut values = vec![(f32::NAN, 0.0f32); n];
-    let done = AtomicU64::new(0);
-    values
-        .par_chunks_mut(s.width as usize)
-        .enumerate()
-        .for_each(|(y, row)| {
-            for (x, px) in row.iter_mut().enumerate() {
-                let index = y as u64 * s.width as u64 + x as u64;
-                let mut rng = Rng::new(s.seed ^ PIXEL_STREAM, index);
-                let (mut lux, mut facing, mut hits) = (0.0f32, 0.0f32, 0u32);
-                for k in 0..s.samples.max(1) {
-                    let (sx, sy) = sample_point(x as u32, y as u32, k, &s, &mut rng);
-                    if let Some((e, c)) = integrator.illuminance(&view.ray(sx, sy), &mut rng) {
-                        lux += e;
-                        facing += c;
-                        hits += 1;
-                    }
-                }
-                if hits > 0 {
-                    *px = (lux / hits as f32, facing / hits as f32);
-                }
+    let values = per_pixel(&s, (f32::NAN, 0.0f32), progress, |x, y, rng| {
+        let (mut lux, mut facing, mut hits) = (0.0f32, 0.0f32, 0u32);
+        for k in 0..s.samples.max(1) {
+            let (sx, sy) = sample_point(x, y, k, &s, rng);
+            if let Some((e, c)) = integrator.illuminance(&view.ray(sx, sy), rng) {
+                lux += e;
+                facing += c;
+                hits += 1;
             }
-            if let Some(report) = progress {
-                report(done.fetch_add(1, Ordering::Relaxed) + 1);
-            }
-        });
+        }
+        if hits > 0 {
+            (lux / hits as f32, facing / hits as f32)
+        } else {
+            (f32::NAN, 0.0)
+        }
+    });
     IlluminanceImage {
         width: s.width,
         height: s.height,
