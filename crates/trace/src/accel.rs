@@ -420,47 +420,89 @@ impl Accel {
     #[inline(always)]
     fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
         let mut best = None;
-        self.trace::<T, _>(ray, |hit| {
-            best = Some(hit);
-            false
-        });
+        self.trace::<T, _>(
+            ray,
+            #[inline(always)]
+            |hit| {
+                best = Some(hit);
+                false
+            },
+        );
         best
     }
 
     #[inline(always)]
     fn any<T: NodeTest>(&self, ray: &Ray) -> bool {
         let mut blocked = false;
-        self.trace::<T, _>(ray, |_| {
-            blocked = true;
-            true
-        });
+        self.trace::<T, _>(
+            ray,
+            #[inline(always)]
+            |_| {
+                blocked = true;
+                true
+            },
+        );
         blocked
     }
 
     /// Walks both levels; `accept` receives each hit nearer than every earlier accepted
     /// one (the ray is shortened to it) and returns `true` to stop.
+    ///
+    /// Every closure on this path is `#[inline(always)]`: a closure does not inherit the
+    /// target features of the function it is inlined into, so one left out of line
+    /// would be compiled without AVX2 and call the node test out of line for every node
+    /// (it did: 1.6 M rays per second in the photon loop instead of BENCHMARKS.md's figure).
     #[inline(always)]
     fn trace<T: NodeTest, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
-        let origin = Vec3A::from(ray.origin);
-        let dir = Vec3A::from(ray.dir);
-        let world = NodeRay::new(origin, dir);
-        let world_tri = TriRay::new(origin, dir);
+        let world = WorldRay::new(ray);
         let mut t_max = ray.t_max;
+        if self.items.len() == 1 {
+            // A single entry (one instance, or everything baked): its own root test
+            // suffices.
+            self.trace_instance::<T, F>(0, &world, &mut t_max, &mut accept);
+        } else {
+            wide::traverse::<T, _, _>(
+                &self.tlas,
+                &self.items,
+                &world.node,
+                &mut t_max,
+                #[inline(always)]
+                |slot, t_max| self.trace_instance::<T, F>(slot, &world, t_max, &mut accept),
+            );
+        }
+    }
+
+    /// Walks the bottom level of the top level's entry `slot`; returns `true` when
+    /// `accept` asked to stop.
+    #[inline(always)]
+    fn trace_instance<T: NodeTest, F: FnMut(Hit) -> bool>(
+        &self,
+        slot: u32,
+        world: &WorldRay,
+        t_max: &mut f32,
+        accept: &mut F,
+    ) -> bool {
+        let item = &self.items[slot as usize];
+        let blas = &self.blas[item.blas as usize];
         let holes = &self.holes[..];
-        let mut instance = |slot: u32, t_max: &mut f32| {
-            let item = &self.items[slot as usize];
-            let blas = &self.blas[item.blas as usize];
-            // The triangle constants only once a leaf is reached: many instances a ray
-            // enters are left at their root.
-            let (node_ray, mut tri_ray, o, d) = if item.identity {
-                (world, Some(world_tri), origin, dir)
-            } else {
-                let o = item.object_from_world.transform_point3a(origin);
-                let d = item.object_from_world.transform_vector3a(dir);
-                (NodeRay::new(o, d), None, o, d)
-            };
-            let mut stop = false;
-            wide::traverse::<T, _, _>(&blas.nodes, &blas.tris, &node_ray, t_max, |slot, t_max| {
+        let (origin, dir) = (world.origin, world.dir);
+        // The triangle constants only once a leaf is reached: many instances a ray
+        // enters are left at their root.
+        let (node_ray, mut tri_ray, o, d) = if item.identity {
+            (world.node, Some(world.tri), origin, dir)
+        } else {
+            let o = item.object_from_world.transform_point3a(origin);
+            let d = item.object_from_world.transform_vector3a(dir);
+            (NodeRay::new(o, d), None, o, d)
+        };
+        let mut stop = false;
+        wide::traverse::<T, _, _>(
+            &blas.nodes,
+            &blas.tris,
+            &node_ray,
+            t_max,
+            #[inline(always)]
+            |slot, t_max| {
                 let tri = &blas.tris[slot as usize];
                 let tri_ray = tri_ray.get_or_insert_with(|| TriRay::new(o, d));
                 let Some(h) = tri_ray.intersect(tri, *t_max) else {
@@ -485,16 +527,9 @@ impl Accel {
                     v: h.v,
                 });
                 stop
-            });
-            stop
-        };
-        if self.items.len() == 1 {
-            // A single entry (one instance, or everything baked): its own root test
-            // suffices.
-            instance(0, &mut t_max);
-        } else {
-            wide::traverse::<T, _, _>(&self.tlas, &self.items, &world, &mut t_max, instance);
-        }
+            },
+        );
+        stop
     }
 
     /// The surface at `hit` (a hit of `ray` returned by [`Accel::intersect`]): point
@@ -532,6 +567,30 @@ impl Accel {
             uv,
             instance: hit.instance,
             triangle: hit.triangle,
+        }
+    }
+}
+
+/// A world-space ray's constants for both the node and the triangle test, computed once
+/// per ray and shared by every identity-transformed instance it enters.
+#[derive(Clone, Copy)]
+struct WorldRay {
+    origin: Vec3A,
+    dir: Vec3A,
+    node: NodeRay,
+    tri: TriRay,
+}
+
+impl WorldRay {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let origin = Vec3A::from(ray.origin);
+        let dir = Vec3A::from(ray.dir);
+        WorldRay {
+            origin,
+            dir,
+            node: NodeRay::new(origin, dir),
+            tri: TriRay::new(origin, dir),
         }
     }
 }
