@@ -3,7 +3,7 @@
 //! visitors folded in index order, [`BLOCK`] chunks at a time.
 //!
 //! Why results do not depend on the number of threads: photon i draws from the stream
-//! (seed, i) whatever thread traces it ([`Rng`]); a chunk's photons are traced in index
+//! (seed, i) whatever thread traces it ([`Sampler`]); a chunk's photons are traced in index
 //! order by one visitor; and the chunks' visitors are handed to the fold in chunk order.
 //! Every sum is therefore taken in an order fixed by the photon count alone, and the same
 //! seed gives the same bits on one thread or many. Folding a block at a time keeps the
@@ -12,22 +12,23 @@
 use crate::emit::Emitters;
 use crate::measure::TraceSettings;
 use crate::path::{PathVisitor, trace_photon};
-use crate::rng::Rng;
+use crate::sampler::{GROUP, Sampler};
 use invlight_scene::Scene;
 use invlight_trace::Accel;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Photons per chunk: large enough that a chunk's bookkeeping is negligible, small
-/// enough to balance two to a hundred threads.
+/// enough to balance two to a hundred threads; whole stratified groups.
 pub const CHUNK: u64 = 4096;
+const _: () = assert!(CHUNK.is_multiple_of(GROUP));
 /// Chunks reduced at a time: bounds memory, keeps all threads busy.
 pub const BLOCK: u64 = 256;
 
 /// Traces `settings.photons` photons from `emitters`: each chunk gets a visitor from
-/// `new_visitor`, which sees its photons' arrivals and, after each photon,
-/// [`PathVisitor::end_photon`]; `fold` then receives the chunks' visitors in chunk
-/// order. `progress` is called from worker threads with the photons traced so far.
+/// `new_visitor`, which sees its photons' arrivals and, after each stratified group of
+/// photons, [`PathVisitor::end_group`]; `fold` then receives the chunks' visitors in
+/// chunk order. `progress` is called from worker threads with the photons traced so far.
 /// Returns the rays cast (none when the scene has no light).
 pub fn trace_chunks<V: PathVisitor + Send>(
     scene: &Scene,
@@ -55,16 +56,18 @@ pub fn trace_chunks<V: PathVisitor + Send>(
                 let mut visitor = new_visitor();
                 let mut chunk_rays = 0;
                 for i in first..last {
-                    let mut rng = Rng::new(settings.seed, i);
+                    let mut sampler = Sampler::new(settings.seed, i);
                     chunk_rays += trace_photon(
                         scene,
                         accel,
                         emitters,
-                        &mut rng,
+                        &mut sampler,
                         settings.max_bounces,
                         &mut visitor,
                     );
-                    visitor.end_photon();
+                    if (i + 1).is_multiple_of(GROUP) || i + 1 == last {
+                        visitor.end_group();
+                    }
                 }
                 if let Some(report) = progress {
                     report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));

@@ -4,7 +4,7 @@
 //! luminous power: the scene's total flux. Equal powers keep the per-photon variance, and
 //! so the reported intervals, as small as this estimator allows.
 
-use crate::rng::Rng;
+use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
 use invlight_scene::{LightKind, Rgb, Scene, luminance};
@@ -206,11 +206,14 @@ impl Emitters {
         self.total_flux() <= 0.0
     }
 
-    /// Draws a photon. Must not be called when [`Emitters::is_empty`].
+    /// Draws a photon. Must not be called when [`Emitters::is_empty`]. Every light kind
+    /// draws the same dimensions (which light, then two pairs), so the photons of a
+    /// stratified group stay aligned dimension by dimension whichever light they leave.
     #[inline]
-    pub fn sample(&self, rng: &mut Rng) -> EmitSample {
-        let source = &self.sources[sampling::pick(&self.cdf, rng.uniform())];
-        let (u1, u2, u3) = (rng.uniform(), rng.uniform(), rng.uniform());
+    pub fn sample(&self, sampler: &mut Sampler) -> EmitSample {
+        let source = &self.sources[sampling::pick(&self.cdf, sampler.uniform())];
+        let (u1, u2) = sampler.uniform2();
+        let (u3, u4) = sampler.uniform2();
         match *source {
             Source::Point { position, power } => EmitSample {
                 origin: position,
@@ -263,7 +266,6 @@ impl Emitters {
                 power,
             } => {
                 let (b1, b2) = sampling::triangle(u1, u2);
-                let u4 = rng.uniform();
                 EmitSample {
                     origin: p0 + e1 * b1 + e2 * b2,
                     dir: sampling::cosine_hemisphere(normal, u3, u4),

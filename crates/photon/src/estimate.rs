@@ -1,10 +1,14 @@
 //! Estimates with their uncertainty (thesis §3.3.2, appendix C; DESIGN.md §1).
 //!
-//! A surface's mean illuminance F_N is the mean of N independent per-photon
-//! contributions X_i (the illuminance one photon brings, all its hits on the surface
-//! summed). Its standard error is `sqrt((mean(X²) − mean(X)²)/N)`; with equal photon
+//! A surface's mean illuminance F_N is the mean of N per-photon contributions X_i (the
+//! illuminance one photon brings, all its hits on the surface summed). For independent
+//! photons its standard error is `sqrt((mean(X²) − mean(X)²)/N)`; with equal photon
 //! powers this is the thesis' binomial formula (eq. 3.4), and unlike it stays right after
-//! Russian roulette and coloured surfaces.
+//! Russian roulette and coloured surfaces. Photons are traced in stratified groups
+//! ([`crate::Sampler`]); the groups are the independent samples, and
+//! [`Estimate::from_groups`] takes the same formula over them.
+
+use crate::sampler::GROUP;
 
 /// A noisy estimate of a mean: its value, standard error and sample count.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +38,26 @@ impl Estimate {
             mean,
             std_error: (var / nf).sqrt(),
             photons: n,
+        }
+    }
+
+    /// The estimate of a per-photon mean from N photons traced in stratified groups of
+    /// [`GROUP`] (the last one possibly smaller; see [`crate::Sampler`]): `sum` and
+    /// `sum_sq` are Σ X_g and Σ X_g² over the groups' totals X_g. The mean is Σ X_g / N;
+    /// its standard error is that of a mean of G = ⌈N/GROUP⌉ independent group totals,
+    /// scaled to photons: sqrt(var(X_g) · G) / N. With groups of one photon this is
+    /// [`Estimate::from_sums`].
+    pub fn from_groups(sum: f64, sum_sq: f64, photons: u64) -> Estimate {
+        let groups = photons.div_ceil(GROUP);
+        let per_group = Estimate::from_sums(sum, sum_sq, groups);
+        if groups == 0 {
+            return per_group;
+        }
+        let scale = groups as f64 / photons as f64;
+        Estimate {
+            mean: per_group.mean * scale,
+            std_error: per_group.std_error * scale,
+            photons,
         }
     }
 

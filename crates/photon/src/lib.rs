@@ -9,7 +9,7 @@
 //! - [`trace_chunks`] is the parallel driver of every trace: chunks of photons, each with
 //!   its own visitor, folded in index order.
 //! - [`Rng`] streams are keyed by (seed, photon index): results are bit-identical for any
-//!   thread count.
+//!   thread count. [`Sampler`] stratifies them over groups of [`GROUP`] photons.
 #![deny(missing_docs)]
 
 mod chunks;
@@ -18,6 +18,7 @@ mod estimate;
 mod measure;
 mod path;
 mod rng;
+mod sampler;
 mod sampling;
 
 pub use chunks::{BLOCK, CHUNK, trace_chunks};
@@ -26,4 +27,5 @@ pub use estimate::{Estimate, normal_quantile, z_two_sided};
 pub use measure::{DEFAULT_MAX_BOUNCES, PhotonTallies, Tally, TraceResult, TraceSettings, trace};
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use rng::Rng;
+pub use sampler::{GROUP, Sampler};
 pub use sampling::{basis, cosine_hemisphere};

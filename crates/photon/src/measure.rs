@@ -41,13 +41,14 @@ impl Default for TraceSettings {
 /// between perfect mirrors.
 pub const DEFAULT_MAX_BOUNCES: u32 = 1000;
 
-/// Sums over photons of one target's per-photon contributions X_i, in lm (the luminous
-/// power a photon brings to the target, all its arrivals added).
+/// Sums over stratified groups of one target's per-group contributions X_g, in lm (the
+/// luminous power a group of [`crate::GROUP`] photons brings to the target, all their
+/// arrivals added): groups are the independent samples (see [`crate::Sampler`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Tally {
-    /// Σ X_i.
+    /// Σ X_g.
     pub sum: f64,
-    /// Σ X_i².
+    /// Σ X_g².
     pub sum_sq: f64,
     /// Number of arrivals.
     pub hits: u64,
@@ -61,10 +62,10 @@ impl Tally {
     }
 }
 
-/// One chunk's tallies of many targets, built photon by photon: a photon's arrivals on a
-/// target are summed first (X_i is the photon's whole contribution, all arrivals added,
-/// so that Σ X_i² is the variance's), and folded in at [`PhotonTallies::end_photon`].
-/// Only the targets the photon touched are visited then, so a photon costs its arrivals,
+/// One chunk's tallies of many targets, built photon by photon: a group's arrivals on a
+/// target are summed first (X_g is the group's whole contribution, all arrivals added,
+/// so that Σ X_g² is the variance's), and folded in at [`PhotonTallies::end_group`].
+/// Only the targets the group touched are visited then, so a photon costs its arrivals,
 /// not the number of targets.
 #[derive(Debug, Clone)]
 pub struct PhotonTallies {
@@ -94,9 +95,9 @@ impl PhotonTallies {
         self.tallies[t].hits += 1;
     }
 
-    /// The current photon ended: its sums join the tallies.
+    /// The current group ended: its sums join the tallies.
     #[inline]
-    pub fn end_photon(&mut self) {
+    pub fn end_group(&mut self) {
         for &t in &self.touched {
             let x = std::mem::take(&mut self.current[t as usize]);
             let tally = &mut self.tallies[t as usize];
@@ -131,7 +132,8 @@ pub struct TraceResult {
 
 impl TraceResult {
     /// Mean illuminance of target `i` of area `area` m², in lux, with its standard
-    /// error: F_N = Σ_i X_i / (A·N) (thesis eq. 3.2).
+    /// error: F_N = Σ_g X_g / (A·N) (thesis eq. 3.2, the photons summed group by group),
+    /// the standard error from the spread of the groups' sums.
     ///
     /// A target no photon reached has a sample variance of zero, which would claim the
     /// mean 0 exact and let a comparison rule the surface out on no evidence. Its standard
@@ -140,7 +142,7 @@ impl TraceResult {
     pub fn estimate(&self, i: usize, area: f64) -> Estimate {
         let t = &self.tallies[i];
         let inv = 1.0 / area;
-        let mut e = Estimate::from_sums(t.sum * inv, t.sum_sq * inv * inv, self.photons);
+        let mut e = Estimate::from_groups(t.sum * inv, t.sum_sq * inv * inv, self.photons);
         if t.hits == 0 && self.photons > 0 {
             e.std_error = self.flux * inv / self.photons as f64;
         }
@@ -203,8 +205,8 @@ impl PathVisitor for ChunkTally<'_> {
     }
 
     #[inline]
-    fn end_photon(&mut self) {
-        self.tallies.end_photon();
+    fn end_group(&mut self) {
+        self.tallies.end_group();
     }
 }
 

@@ -5,7 +5,7 @@
 //! are unbiased when the cap is not reached.
 
 use crate::emit::{EmitSample, Emitters};
-use crate::rng::Rng;
+use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, luminance};
@@ -19,10 +19,12 @@ pub trait PathVisitor {
     fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32);
     /// A photon carrying `power` left the scene.
     fn escape(&mut self, power: Rgb);
-    /// The photon's path has ended (called by [`crate::trace_chunks`], not by
-    /// [`trace_photon`]): the place to fold per-photon sums into a tally.
+    /// A stratified group of photons ([`crate::GROUP`] consecutive ones, fewer at the
+    /// end) has been traced (called by [`crate::trace_chunks`], not by [`trace_photon`]):
+    /// the group is one independent sample, and this the place to fold its sums into a
+    /// tally.
     #[inline]
-    fn end_photon(&mut self) {}
+    fn end_group(&mut self) {}
 }
 
 /// What happens to a photon at a surface, with the factor its power is multiplied by.
@@ -33,13 +35,13 @@ enum Event {
     Absorbed,
 }
 
-/// Traces one photon drawn from `emitters` with `rng`, reporting to `visitor`; at most
+/// Traces one photon drawn from `emitters` with `sampler`, reporting to `visitor`; at most
 /// `max_bounces` surface interactions follow the first hit. Returns the rays cast.
 pub fn trace_photon(
     scene: &Scene,
     accel: &Accel,
     emitters: &Emitters,
-    rng: &mut Rng,
+    sampler: &mut Sampler,
     max_bounces: u32,
     visitor: &mut impl PathVisitor,
 ) -> u64 {
@@ -48,7 +50,7 @@ pub fn trace_photon(
         dir,
         surface_normal,
         mut power,
-    } = emitters.sample(rng);
+    } = emitters.sample(sampler);
     let mut ray = match surface_normal {
         Some(n) => Ray::new(offset_point(origin, n), dir),
         None => Ray::new(origin, dir),
@@ -71,11 +73,12 @@ pub fn trace_photon(
         } else {
             -at.normal
         };
-        let dir = match interact(scene, &at, power, rng) {
+        let dir = match interact(scene, &at, power, sampler) {
             Event::Absorbed => break,
             Event::Diffuse(f) => {
                 power *= f;
-                sampling::cosine_hemisphere(n, rng.uniform(), rng.uniform())
+                let (u1, u2) = sampler.uniform2();
+                sampling::cosine_hemisphere(n, u1, u2)
             }
             Event::Mirror(f) => {
                 power *= f;
@@ -88,7 +91,7 @@ pub fn trace_photon(
                 let eta = if entering { 1.0 / ior } else { ior };
                 let cos_i = -ray.dir.dot(n);
                 match refract(ray.dir, n, eta) {
-                    Some(t) if rng.uniform() >= fresnel_dielectric(cos_i, eta) => t,
+                    Some(t) if sampler.uniform() >= fresnel_dielectric(cos_i, eta) => t,
                     _ => reflect(ray.dir, n),
                 }
             }
@@ -112,7 +115,7 @@ pub fn trace_photon(
 /// red room the variance is infinite: reported intervals would be far too narrow.
 /// Probabilities are normalised when the parts add up to more than one.
 #[inline]
-fn interact(scene: &Scene, at: &Interaction, power: Rgb, rng: &mut Rng) -> Event {
+fn interact(scene: &Scene, at: &Interaction, power: Rgb, sampler: &mut Sampler) -> Event {
     let m = &scene.materials[at.material as usize];
     let mut kd = m.diffuse;
     if let Some(t) = m.texture {
@@ -127,7 +130,7 @@ fn interact(scene: &Scene, at: &Interaction, power: Rgb, rng: &mut Rng) -> Event
     let rho_t = m.transmission;
     let norm = (rho_d + rho_s + rho_t).max(1.0);
     let (p_d, p_s, p_t) = (rho_d / norm, rho_s / norm, rho_t / norm);
-    let xi = rng.uniform();
+    let xi = sampler.uniform();
     if xi < p_d {
         Event::Diffuse(kd / p_d)
     } else if xi < p_d + p_s {

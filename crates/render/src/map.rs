@@ -277,8 +277,8 @@ impl PathVisitor for CellTally<'_> {
     fn escape(&mut self, _power: Rgb) {}
 
     #[inline]
-    fn end_photon(&mut self) {
-        self.tallies.end_photon();
+    fn end_group(&mut self) {
+        self.tallies.end_group();
     }
 }
 
@@ -367,7 +367,7 @@ pub fn illuminance_map(
                 index: (c, r),
                 centre,
                 area,
-                estimate: Estimate::from_sums(
+                estimate: Estimate::from_groups(
                     t.sum / area,
                     t.sum_sq / (area * area),
                     settings.photons,
