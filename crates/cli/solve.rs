@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use invlight_ilp::{
     Binding, Interval, Isoc, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Record,
-    Search, Value, read_solutions,
+    RunSettings, Search, Value, read_solutions,
 };
 use invlight_photon::{TraceSettings, z_two_sided};
 use invlight_scene::LoadOptions;
@@ -141,7 +141,9 @@ pub fn run(args: SolveArgs) -> Result<()> {
         .clone()
         .unwrap_or_else(|| problem.output.clone());
     let csv = dir.join("solutions.csv");
+    let run = RunSettings::new(&settings, max_bounces);
     let resumed = if args.resume && csv.is_file() {
+        run.check_resume(&dir).map_err(input)?;
         Some(read_solutions(&csv, &binding, z).map_err(input)?)
     } else {
         if args.resume {
@@ -172,6 +174,8 @@ pub fn run(args: SolveArgs) -> Result<()> {
         resumed.as_ref().map_or(0.0, |(_, e)| *e),
     )
     .with_context(|| format!("creating the output folder {}", dir.display()))?;
+    run.write(&dir)
+        .with_context(|| format!("writing run.json in {}", dir.display()))?;
 
     // 4. Search, on a pool of the requested size, until done or Ctrl-C.
     let pool = rayon::ThreadPoolBuilder::new()
@@ -464,6 +468,19 @@ mod tests {
             let refined = i > 0 && second[i].ends_with(",refine");
             assert!(traced.insert(key) || refined, "cell traced twice: {r}");
         }
+        // Rows traced with another seed cannot be continued: an input error that names
+        // the setting, and the folder is left as it was.
+        let mut other = args("lamp-room.xml", &out);
+        other.resume = true;
+        other.seed = Some(99);
+        let err = run(other).unwrap_err();
+        let text = format!("{err:#}");
+        assert!(
+            text.contains("seed 99") && text.contains("cannot resume"),
+            "{text}"
+        );
+        assert!(err.chain().any(|e| e.is::<InputError>()), "{text}");
+        assert_eq!(rows(&out), second);
 
         // Interrupt a long run once it has written a few rows.
         let out2 = dir.path().join("interrupted");

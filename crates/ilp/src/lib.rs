@@ -64,7 +64,7 @@ pub use cache::{Cache, Entry};
 pub use compare::{Comparison, Interval, compare};
 pub use invlight_photon::Estimate;
 pub use isoc::{Admission, Isoc, Member};
-pub use output::{ObjectiveInfo, Output, csv_header, read_solutions};
+pub use output::{ObjectiveInfo, Output, RunSettings, csv_header, read_solutions};
 pub use photons::PhotonEvaluator;
 pub use problem::{Objective, Problem, ProblemError, VariableKind, VariableSpec};
 pub use rng::{SplitMix64, mix};

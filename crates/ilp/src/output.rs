@@ -1,13 +1,15 @@
 //! The results of a search, written as it goes so they are valid after an interruption
 //! (thesis §4.2.2): `solutions.csv`, one row per evaluation, flushed row by row, and
 //! `result.json`, the ISOC, rewritten atomically (temporary file + rename) whenever it
-//! changes. `--resume` reads `solutions.csv` back into [`Record`]s.
+//! changes. `--resume` reads `solutions.csv` back into [`Record`]s, after
+//! [`RunSettings::check_resume`] has made sure the rows were traced with the same
+//! settings (`run.json`).
 
 use crate::apply::{Binding, Value};
 use crate::compare::Interval;
 use crate::isoc::Isoc;
 use crate::space::{Configuration, Domain};
-use crate::vns::{Observer, Record, Verdict};
+use crate::vns::{Observer, Record, Settings, Strategy, Verdict};
 use invlight_photon::Estimate;
 use serde_json::{Value as Json, json};
 use std::fs::{File, OpenOptions};
@@ -24,6 +26,99 @@ pub struct ObjectiveInfo {
     pub cap: Option<f64>,
     /// N, photons of a full evaluation.
     pub photons: u64,
+}
+
+/// The settings a search's numbers depend on, written to `run.json` when a search starts
+/// so that `--resume` can refuse to mix rows traced differently: a different seed,
+/// sample count or confidence would make the old and new estimates incomparable
+/// (common random numbers are lost, intervals differ) while looking alike in the CSV.
+/// The iteration budget may change: resuming with more iterations is what it is for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    /// Seed of the photon streams.
+    pub seed: u64,
+    /// N, photons of a full evaluation.
+    pub photons: u64,
+    /// q, the fast evaluations' share of N.
+    pub fast_quality: f64,
+    /// The refinement strategy.
+    pub strategy: Strategy,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// The cap on the objective, lx.
+    pub cap: Option<f64>,
+    /// Bounce cap of the photon paths.
+    pub max_bounces: u32,
+}
+
+impl RunSettings {
+    /// The settings of a search and its photon tracer.
+    pub fn new(settings: &Settings, max_bounces: u32) -> RunSettings {
+        RunSettings {
+            seed: settings.seed,
+            photons: settings.photons,
+            fast_quality: settings.fast_quality,
+            strategy: settings.strategy,
+            confidence: settings.confidence,
+            cap: settings.cap,
+            max_bounces,
+        }
+    }
+
+    fn to_json(&self) -> Json {
+        json!({
+            "seed": self.seed,
+            "photons": self.photons,
+            "fastQuality": self.fast_quality,
+            "strategy": self.strategy.name(),
+            "confidence": self.confidence,
+            "cap": self.cap,
+            "maxBounces": self.max_bounces,
+        })
+    }
+
+    /// Writes `dir/run.json`.
+    pub fn write(&self, dir: &Path) -> io::Result<()> {
+        let mut f = File::create(dir.join("run.json"))?;
+        serde_json::to_writer_pretty(&mut f, &self.to_json())?;
+        writeln!(f)
+    }
+
+    /// Whether the rows in `dir` may be continued with these settings: `Err` names every
+    /// setting that differs from `dir/run.json`, with the value the folder was made
+    /// with. A folder without `run.json` (written by an older invlight) is accepted.
+    pub fn check_resume(&self, dir: &Path) -> Result<(), String> {
+        let path = dir.join("run.json");
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            return Ok(());
+        };
+        let old: Json = serde_json::from_str(&text)
+            .map_err(|e| format!("{}: not valid JSON ({e})", path.display()))?;
+        let new = self.to_json();
+        let differ: Vec<String> = new
+            .as_object()
+            .into_iter()
+            .flatten()
+            .filter(|(k, v)| old.get(k.as_str()) != Some(v))
+            .map(|(k, v)| {
+                let was = old
+                    .get(k.as_str())
+                    .map_or("nothing".to_string(), Json::to_string);
+                format!("{k} {v} (the folder has {was})")
+            })
+            .collect();
+        if differ.is_empty() {
+            Ok(())
+        } else {
+            Err(format!(
+                "cannot resume {}: its rows were traced with other settings: {}; resume with \
+                 the folder's settings (--seed, --photons, --confidence, --max-bounces, the \
+                 problem file's quality and strategy) or choose a new --output",
+                dir.display(),
+                differ.join(", ")
+            ))
+        }
+    }
 }
 
 /// The CSV header for a binding's variables.
