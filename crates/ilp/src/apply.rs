@@ -188,6 +188,18 @@ impl Binding {
                         ))
                         .with_hint(known(scene.materials.iter().map(|m| m.name.as_str()), "materials")));
                     }
+                    // The problem states the colour (hue, saturation, free value); a
+                    // base-colour texture would multiply it into another one, and the
+                    // variable would no longer be the colour the file names.
+                    for &m in &materials {
+                        let material = &mut scene.materials[m as usize];
+                        if material.texture.take().is_some() {
+                            warnings.push(err(format!(
+                                "material '{}' has a base-colour texture; the colour variable '{}' replaces it by the uniform colour HSV({hue}°, {saturation}, V)",
+                                material.name, spec.id
+                            )));
+                        }
+                    }
                     (
                         Domain::Segment {
                             min: *min,
@@ -645,6 +657,30 @@ mod tests {
         assert!((s.lights[1].kind.direction().unwrap() + Vec3::Z).length() < 1e-6);
         // V = 0.8, hue 120°, saturation 0.5: (0.4, 0.8, 0.4).
         assert!((s.materials[1].diffuse - Vec3::new(0.4, 0.8, 0.4)).length() < 1e-6);
+    }
+
+    #[test]
+    fn a_colour_variable_replaces_a_texture() {
+        // A textured Paint would make the variable "HSV × texture": the binding drops
+        // the texture and says so; an untextured colour gives no warning.
+        let mut s = scene();
+        let colour = problem("<color id=\"Paint\" hue=\"120\" saturation=\"0.5\"/>");
+        assert!(Binding::new(&colour, &mut s).unwrap().warnings.is_empty());
+        s.textures.push(invlight_scene::Texture {
+            width: 1,
+            height: 1,
+            pixels: vec![Vec3::new(0.1, 0.9, 0.1)],
+        });
+        let paint = s.materials.iter().position(|m| m.name == "Paint").unwrap();
+        s.materials[paint].texture = Some(0);
+        let b = Binding::new(&colour, &mut s).unwrap();
+        assert_eq!(s.materials[paint].texture, None);
+        assert_eq!(b.warnings.len(), 1);
+        assert!(
+            b.warnings[0].message.contains("'Paint'"),
+            "{}",
+            b.warnings[0]
+        );
     }
 
     #[test]
