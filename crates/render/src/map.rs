@@ -2,8 +2,9 @@
 //! (EN 12464-1 §4.4: a regular grid of cells, Emin, Eavg, Emax and uniformity
 //! U0 = Emin/Eavg). Each cell's value is the mean illuminance over the cell, measured
 //! like a surface (thesis eq. 3.2): the luminous power of the photons that arrive in it
-//! over its area and N, with the standard error of the per-photon contributions
-//! (DESIGN.md §1), so every value carries its interval.
+//! over its area and N, with the standard error of the contributions of the stratified
+//! photon groups (DESIGN.md §1, `invlight_photon::Sampler`), so every value carries its
+//! interval.
 //!
 //! Photons are traced by `invlight_photon::trace_chunks`, each chunk tallied on its own
 //! and the tallies added in chunk order: the grid is the same on any number of threads.
