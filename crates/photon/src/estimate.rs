@@ -46,7 +46,9 @@ impl Estimate {
     /// `sum_sq` are Σ X_g and Σ X_g² over the groups' totals X_g. The mean is Σ X_g / N;
     /// its standard error is that of a mean of G = ⌈N/GROUP⌉ independent group totals,
     /// scaled to photons: sqrt(var(X_g) · G) / N. With groups of one photon this is
-    /// [`Estimate::from_sums`].
+    /// [`Estimate::from_sums`]. The normal interval assumes enough groups for the
+    /// standard error to be known well: from fewer than about 30 (N below 2 000) it is
+    /// itself noisy and the interval somewhat narrower than its confidence says.
     pub fn from_groups(sum: f64, sum_sq: f64, photons: u64) -> Estimate {
         let groups = photons.div_ceil(GROUP);
         let per_group = Estimate::from_sums(sum, sum_sq, groups);
