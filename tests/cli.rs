@@ -955,7 +955,46 @@ mod solve {
             v.as_object_mut().unwrap().remove("seconds");
             v
         };
+        let members = file["isoc"].as_array().unwrap().len();
         assert_eq!(strip(printed), strip(file));
+
+        // Render the best member (#1, as isoc-01.png) from the problem file; member 0 and
+        // a member past the end are input errors naming the number.
+        let png = dir.path().join("best.png");
+        let config = format!("{}#1", out.join("result.json").display());
+        let rendered = invlight([
+            "render".as_ref(),
+            problem.as_os_str(),
+            "--config".as_ref(),
+            config.as_ref(),
+            "--width".as_ref(),
+            "32".as_ref(),
+            "--height".as_ref(),
+            "24".as_ref(),
+            "--photons".as_ref(),
+            "2000".as_ref(),
+            "-o".as_ref(),
+            png.as_os_str(),
+        ]);
+        assert!(rendered.status.success(), "{}", text(&rendered.stderr));
+        assert!(png.is_file());
+        for (k, says) in [
+            (0, "'0' is not an ISOC member number".to_string()),
+            (members + 1, format!("no ISOC member {}", members + 1)),
+        ] {
+            let config = format!("{}#{k}", out.join("result.json").display());
+            input_error(
+                [
+                    "render".as_ref(),
+                    problem.as_os_str(),
+                    "--config".as_ref(),
+                    config.as_ref(),
+                    "-o".as_ref(),
+                    png.as_os_str(),
+                ],
+                &[&says],
+            );
+        }
     }
 
     #[test]

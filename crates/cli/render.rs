@@ -23,9 +23,11 @@ pub struct RenderArgs {
     /// Scene file: glTF 2.0 (.gltf, .glb), COLLADA (.dae) or Wavefront OBJ (.obj); with
     /// --config, the problem file (.xml) the solve read.
     pub scene: PathBuf,
-    /// Render a configuration a solve found: RESULT#K is member K (from 0) of the ISOC
-    /// in RESULT (a result.json written by `invlight solve`). SCENE must then be the
-    /// problem file, whose scene is loaded and changed as the configuration says.
+    /// Render a configuration a solve found: RESULT#K is member K of the ISOC in RESULT
+    /// (a result.json written by `invlight solve`), counted from 1 in result.json's
+    /// order, as the solve's pictures isoc-01.png, isoc-02.png, … are (RESULT alone is
+    /// member 1, the highest mean). SCENE must then be the problem file, whose scene is
+    /// loaded and changed as the configuration says.
     #[arg(long, value_name = "RESULT#K")]
     pub config: Option<String>,
     /// PNG file to write.
@@ -265,17 +267,21 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
 /// sun direction or colour value) is turned back into the problem's coordinates and
 /// applied as `invlight solve` applies it.
 fn configured_scene(args: &RenderArgs, config: &str) -> anyhow::Result<Scene> {
-    let (file, member) = match config.rsplit_once('#') {
+    let (file, number) = match config.rsplit_once('#') {
         Some((f, k)) => (
             PathBuf::from(f),
-            k.parse::<usize>().map_err(|_| {
-                InputError(format!(
-                    "--config {config}: '{k}' is not an ISOC member number"
-                ))
-            })?,
+            k.parse::<usize>()
+                .ok()
+                .filter(|&k| k >= 1)
+                .ok_or_else(|| {
+                    InputError(format!(
+                        "--config {config}: '{k}' is not an ISOC member number (they count from 1, as isoc-01.png, isoc-02.png, …)"
+                    ))
+                })?,
         ),
-        None => (PathBuf::from(config), 0),
+        None => (PathBuf::from(config), 1),
     };
+    let member = number - 1;
     let problem = Problem::read(&args.scene).map_err(|e| InputError(e.to_string()))?;
     let mut scene = args.load.load(&problem.scene)?;
     let binding = Binding::new(&problem, &mut scene).map_err(|e| InputError(e.to_string()))?;
@@ -287,7 +293,7 @@ fn configured_scene(args: &RenderArgs, config: &str) -> anyhow::Result<Scene> {
     let variables = &json["isoc"][member]["variables"];
     if !variables.is_object() {
         return Err(InputError(format!(
-            "{}: no ISOC member {member} (it has {members})",
+            "{}: no ISOC member {number} (it has {members})",
             file.display()
         ))
         .into());

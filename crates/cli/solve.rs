@@ -215,8 +215,8 @@ pub fn run(args: SolveArgs) -> Result<()> {
     if let Some(scene) = &pictured {
         let members: Vec<_> = search
             .isoc()
-            .members()
-            .iter()
+            .by_mean()
+            .into_iter()
             .map(|m| m.config.clone())
             .collect();
         let start = std::time::Instant::now();
@@ -304,9 +304,7 @@ impl Observer for Reporter<'_> {
 }
 
 fn best(isoc: &Isoc) -> Option<&invlight_ilp::Member> {
-    isoc.members()
-        .iter()
-        .max_by(|a, b| a.estimate.mean.total_cmp(&b.estimate.mean))
+    isoc.by_mean().first().copied()
 }
 
 /// A bar over the iterations on stderr, hidden when stderr is not a terminal.
@@ -340,8 +338,7 @@ fn sig(x: f64) -> String {
 
 /// The ISOC, best mean first.
 fn print_table(binding: &Binding, isoc: &Isoc, surface: &str, confidence: f64) {
-    let mut members: Vec<_> = isoc.members().iter().collect();
-    members.sort_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean));
+    let members = isoc.by_mean();
     println!(
         "{} configuration(s) light '{surface}' best, indistinguishable at {} % confidence:",
         members.len(),

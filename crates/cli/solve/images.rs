@@ -46,7 +46,7 @@ fn view(scene: &Scene, width: u32) -> Result<(View, u32)> {
     Ok((view, height))
 }
 
-/// Renders every configuration of `members` (the ISOC, in result.json's order) into
+/// Renders every configuration of `members` (the ISOC, in result.json's order: highest mean first) into
 /// `dir/isoc-NN.png` and returns the paths. `scene` is the scene as bound to the problem;
 /// each member is applied to a copy. All pictures share the first one's exposure, so a
 /// brighter configuration looks brighter.

@@ -65,6 +65,15 @@ impl Isoc {
         &self.members
     }
 
+    /// The members, highest mean first (equal means oldest first): the order a reader
+    /// expects in `result.json`, the pictures and the printed table, though the members
+    /// cannot be told apart at the chosen confidence.
+    pub fn by_mean(&self) -> Vec<&Member> {
+        let mut members: Vec<&Member> = self.members.iter().collect();
+        members.sort_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean));
+        members
+    }
+
     /// The SIISOC, `None` while the ISOC is empty.
     pub fn siisoc(&self) -> Option<Interval> {
         self.siisoc

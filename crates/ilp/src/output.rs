@@ -203,8 +203,8 @@ impl<'b> Output<'b> {
     /// The `result.json` document for an ISOC.
     pub fn result_json(&self, isoc: &Isoc) -> Json {
         let members: Vec<Json> = isoc
-            .members()
-            .iter()
+            .by_mean()
+            .into_iter()
             .map(|m| {
                 let mut vars = serde_json::Map::new();
                 for ((v, value), kind) in self
@@ -522,6 +522,11 @@ mod tests {
         assert_eq!(json["objective"]["cap"], 9.5);
         let isoc = json["isoc"].as_array().unwrap();
         assert_eq!(isoc.len(), search.isoc().members().len());
+        let means: Vec<f64> = isoc
+            .iter()
+            .map(|m| m["estimate"]["mean"].as_f64().unwrap())
+            .collect();
+        assert!(means.windows(2).all(|w| w[0] >= w[1]), "{means:?}");
         let m = &isoc[0];
         assert_eq!(m["variables"]["Floor"]["kind"], "objectInSurface");
         assert_eq!(
