@@ -369,24 +369,30 @@ fn same_bits_on_one_and_two_threads() {
 
 #[test]
 fn intervals_cover_the_exact_value_at_their_confidence() {
-    // An honest 95 % interval contains the exact value in 95 % of independent runs. Over
-    // 400 seeds the count of covering runs is Binomial(400, 0.95): mean 380, σ 4.36; the
-    // test accepts 4 σ either side. Interreflection in a closed room gives per-photon
-    // contributions with a long tail, the hard case for a normal interval.
+    // An honest 95 % interval contains the exact value in 95 % of independent runs.
+    // Interreflection in a closed room gives per-group contributions with a long tail,
+    // the hard case for a normal interval.
     let rho = 0.6f32;
     let scene = closed_room(Vec3::splat(rho));
-    let accel = Accel::new(&scene);
     let area = scene.surface_area(0) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    assert_intervals_cover(&scene, area, exact, 4000);
+}
+
+/// Traces surface 0 of `scene` (of `area` m²) with 400 seeds of `photons` photons each
+/// and checks that the 95 % intervals contain `exact` as often as they claim: the count
+/// of covering runs is Binomial(400, 0.95) (mean 380, σ 4.36), accepted within 4 σ.
+fn assert_intervals_cover(scene: &Scene, area: f64, exact: f64, photons: u64) {
+    let accel = Accel::new(scene);
     let runs = 400;
     let covered = (0..runs)
         .filter(|&seed| {
             let s = TraceSettings {
-                photons: 4000,
+                photons,
                 seed,
                 ..TraceSettings::default()
             };
-            let (low, high) = trace(&scene, &accel, &[0], &s, None)
+            let (low, high) = trace(scene, &accel, &[0], &s, None)
                 .estimate(0, area)
                 .interval(0.95);
             low <= exact && exact <= high
@@ -416,29 +422,9 @@ fn lamp_over_square() -> (Scene, f64) {
 fn stratified_intervals_cover_direct_light() {
     // Direct light is where the stratified groups (invlight_photon::Sampler) take away
     // most variance, and where an interval computed as if photons were independent would
-    // be far too wide, or, from too few groups, too narrow. Coverage as in
-    // `intervals_cover_the_exact_value_at_their_confidence`: Binomial(400, 0.95), 4 σ.
+    // be far too wide, or, from too few groups, too narrow. 4096 photons: 64 groups.
     let (scene, exact) = lamp_over_square();
-    let accel = Accel::new(&scene);
-    let runs = 400;
-    let covered = (0..runs)
-        .filter(|&seed| {
-            let s = TraceSettings {
-                photons: 4096,
-                seed,
-                ..TraceSettings::default()
-            };
-            let (low, high) = trace(&scene, &accel, &[0], &s, None)
-                .estimate(0, 4.0)
-                .interval(0.95);
-            low <= exact && exact <= high
-        })
-        .count() as f64;
-    let (mean, sd) = (0.95 * runs as f64, (runs as f64 * 0.95 * 0.05).sqrt());
-    assert!(
-        (covered - mean).abs() < Z * sd,
-        "{covered} of {runs} intervals covered"
-    );
+    assert_intervals_cover(&scene, 4.0, exact, 4096);
 }
 
 #[test]
