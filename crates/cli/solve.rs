@@ -134,6 +134,16 @@ pub fn run(args: SolveArgs) -> Result<()> {
     let pictured = (!args.no_images).then(|| scene.clone());
     let settings = problem.settings();
     let z = z_two_sided(problem.confidence);
+    // Standard errors are taken over groups of GROUP photons (Estimate::from_groups).
+    let fast = settings.fast_photons();
+    if fast < 32 * invlight_photon::GROUP {
+        eprintln!(
+            "warning: a fast evaluation's {fast} photons form only {} stratified groups of {}; its interval is approximate below {} photons (raise N or the fast quality)",
+            fast.div_ceil(invlight_photon::GROUP),
+            invlight_photon::GROUP,
+            32 * invlight_photon::GROUP
+        );
+    }
 
     // 3. Output, resuming if asked.
     let dir = args
