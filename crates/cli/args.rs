@@ -153,16 +153,6 @@ impl TraceArgs {
         if photons == 0 {
             return Err(InputError("--photons must be at least 1".into()).into());
         }
-        // The standard error is taken over groups of GROUP photons (Estimate::from_groups):
-        // from few groups it is itself noisy.
-        if photons < 32 * invlight_photon::GROUP {
-            eprintln!(
-                "warning: {photons} photons form only {} stratified groups of {}; the intervals are approximate below {} photons",
-                photons.div_ceil(invlight_photon::GROUP),
-                invlight_photon::GROUP,
-                32 * invlight_photon::GROUP
-            );
-        }
         Ok(())
     }
 

@@ -24,7 +24,8 @@ pub struct MapArgs {
     /// Largest cell side, m. A side of length L gets ⌈L/grid⌉ equal cells.
     #[arg(long, default_value_t = 0.25, value_name = "M")]
     pub grid: f32,
-    /// Photons to emit. Each cell's standard error falls as 1/√N.
+    /// Photons to emit. Each cell's standard error falls as 1/√N. Rounded up to whole
+    /// groups of 64 (photons are stratified in groups), at least 2048.
     #[arg(long, short = 'n', default_value_t = 4_000_000, value_name = "N")]
     pub photons: u64,
     /// Top of the heat map's colour scale, lx (default: the largest cell, rounded up).
@@ -64,7 +65,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
         seed: args.trace.seed,
         max_bounces: args.trace.max_bounces,
     };
-    let bar = progress::bar(args.photons, "photons");
+    let bar = progress::bar(invlight_photon::whole_groups(args.photons), "photons");
     let report = |done: u64| bar.set_position(done);
     let map = pool
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))

@@ -18,7 +18,8 @@ pub struct MeasureArgs {
     /// for several). `invlight scene FILE` lists the names.
     #[arg(long = "surface", short = 's', value_name = "NAME", required = true)]
     pub surfaces: Vec<String>,
-    /// Photons to emit. The standard error falls as 1/√N.
+    /// Photons to emit. The standard error falls as 1/√N. Rounded up to whole groups of
+    /// 64 (photons are stratified in groups), at least 2048; the output says how many.
     #[arg(long, short = 'n', default_value_t = 1_000_000, value_name = "N")]
     pub photons: u64,
     #[command(flatten)]
@@ -47,7 +48,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
     let accel = Accel::with_movable(&scene, &[]);
     let build_seconds = start.elapsed().as_secs_f64();
     let settings = args.trace.settings(args.photons);
-    let bar = progress::bar(args.photons, "photons");
+    let bar = progress::bar(invlight_photon::whole_groups(args.photons), "photons");
     let report = |done: u64| bar.set_position(done);
     let result = pool.install(|| trace(&scene, &accel, &ids, &settings, Some(&report)));
     bar.finish_and_clear();

@@ -40,7 +40,8 @@ pub struct SolveArgs {
     /// relative to the problem file].
     #[arg(long, short, value_name = "DIR")]
     pub output: Option<PathBuf>,
-    /// Photons of a full evaluation, N [default: the problem's `photons`, else 100000].
+    /// Photons of a full evaluation, N [default: the problem's `photons`, else 100000];
+    /// every evaluation traces whole groups of 64 photons, at least 2048.
     #[arg(long, value_name = "N")]
     pub photons: Option<u64>,
     /// Candidates the search draws before it stops, cache hits included [default: the
@@ -134,16 +135,6 @@ pub fn run(args: SolveArgs) -> Result<()> {
     let pictured = (!args.no_images).then(|| scene.clone());
     let settings = problem.settings();
     let z = z_two_sided(problem.confidence);
-    // Standard errors are taken over groups of GROUP photons (Estimate::from_groups).
-    let fast = settings.fast_photons();
-    if fast < 32 * invlight_photon::GROUP {
-        eprintln!(
-            "warning: a fast evaluation's {fast} photons form only {} stratified groups of {}; its interval is approximate below {} photons (raise N or the fast quality)",
-            fast.div_ceil(invlight_photon::GROUP),
-            invlight_photon::GROUP,
-            32 * invlight_photon::GROUP
-        );
-    }
 
     // 3. Output, resuming if asked.
     let dir = args

@@ -72,7 +72,7 @@ impl Evaluate for PhotonEvaluator<'_> {
             None,
         );
         self.rays += r.rays;
-        self.photons += photons;
+        self.photons += r.photons;
         Ok(r.estimate(0, self.area))
     }
 }

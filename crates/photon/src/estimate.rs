@@ -17,7 +17,7 @@ pub struct Estimate {
     pub mean: f64,
     /// Standard error of `mean`.
     pub std_error: f64,
-    /// Number of independent samples (photons) behind it.
+    /// Photons behind it (for the photon tracer's estimates; a sample count for others).
     pub photons: u64,
 }
 
@@ -42,23 +42,31 @@ impl Estimate {
     }
 
     /// The estimate of a per-photon mean from N photons traced in stratified groups of
-    /// [`GROUP`] (the last one possibly smaller; see [`crate::Sampler`]): `sum` and
-    /// `sum_sq` are Σ X_g and Σ X_g² over the groups' totals X_g. The mean is Σ X_g / N;
-    /// its standard error is that of a mean of G = ⌈N/GROUP⌉ independent group totals,
-    /// scaled to photons: sqrt(var(X_g) · G) / N. With groups of one photon this is
-    /// [`Estimate::from_sums`]. The normal interval assumes enough groups for the
-    /// standard error to be known well: from fewer than about 30 (N below 2 000) it is
-    /// itself noisy and the interval somewhat narrower than its confidence says.
+    /// [`GROUP`] ([`crate::Sampler`]; N a whole number of groups, see
+    /// [`crate::whole_groups`]): `sum` and `sum_sq` are Σ X_g and Σ X_g² over the G = N/GROUP
+    /// group totals X_g. The mean is Σ X_g / N; the standard error is that of the mean of
+    /// G independent totals, with the unbiased sample variance (G − 1 in the
+    /// denominator), scaled to photons: sqrt(s²_g / G) · G / N. A single group has no
+    /// spread to measure: its standard error is infinite.
     pub fn from_groups(sum: f64, sum_sq: f64, photons: u64) -> Estimate {
         let groups = photons.div_ceil(GROUP);
-        let per_group = Estimate::from_sums(sum, sum_sq, groups);
-        if groups == 0 {
-            return per_group;
+        if groups < 2 {
+            return Estimate {
+                mean: if photons > 0 {
+                    sum / photons as f64
+                } else {
+                    0.0
+                },
+                std_error: f64::INFINITY,
+                photons,
+            };
         }
-        let scale = groups as f64 / photons as f64;
+        let g = groups as f64;
+        let per_group = Estimate::from_sums(sum, sum_sq, groups);
+        let scale = g / photons as f64;
         Estimate {
             mean: per_group.mean * scale,
-            std_error: per_group.std_error * scale,
+            std_error: per_group.std_error * (g / (g - 1.0)).sqrt() * scale,
             photons,
         }
     }
@@ -157,6 +165,27 @@ mod tests {
         assert!((z_two_sided(0.99) - 2.575829).abs() < 1e-5);
         assert!((normal_quantile(0.5)).abs() < 1e-7);
         assert!((normal_quantile(0.001) + 3.090232).abs() < 1e-5);
+    }
+
+    #[test]
+    fn groups_give_the_per_photon_mean_and_an_unbiased_spread() {
+        // Two groups of 64 photons with totals 1 and 3: per-photon mean 4/128; sample
+        // variance of the totals (G − 1 = 1 in the denominator) 2, so the error of the
+        // mean total is sqrt(2/2) = 1, and per photon 1/64.
+        let e = Estimate::from_groups(4.0, 10.0, 2 * GROUP);
+        assert_eq!(e.mean, 4.0 / 128.0);
+        assert!((e.std_error - 1.0 / 64.0).abs() < 1e-12, "{}", e.std_error);
+        assert_eq!(e.photons, 128);
+        // One group has no spread to measure.
+        assert!(
+            Estimate::from_groups(4.0, 16.0, GROUP)
+                .std_error
+                .is_infinite()
+        );
+        // Measurements trace whole groups, at least MIN_GROUPS of them.
+        assert_eq!(crate::whole_groups(1), crate::MIN_GROUPS * GROUP);
+        assert_eq!(crate::whole_groups(100_001), 100_032);
+        assert_eq!(crate::whole_groups(2_000_000), 2_000_000);
     }
 
     #[test]

@@ -10,6 +10,7 @@ use crate::chunks::trace_chunks;
 use crate::emit::Emitters;
 use crate::estimate::Estimate;
 use crate::path::PathVisitor;
+use crate::sampler::whole_groups;
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
 use invlight_trace::{Accel, Interaction};
@@ -17,7 +18,8 @@ use invlight_trace::{Accel, Interaction};
 /// How to trace.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TraceSettings {
-    /// Photons to emit, N.
+    /// Photons to emit, N. Measurements ([`trace`], illuminance maps) round it up to
+    /// [`whole_groups`].
     pub photons: u64,
     /// Seed of the random streams; photon i uses the stream (seed, i).
     pub seed: u64,
@@ -118,7 +120,7 @@ impl PhotonTallies {
 /// What a trace measured.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TraceResult {
-    /// Photons emitted, N.
+    /// Photons emitted, N: the settings' count rounded up to [`whole_groups`].
     pub photons: u64,
     /// Rays cast (closest-hit queries).
     pub rays: u64,
@@ -210,9 +212,10 @@ impl PathVisitor for ChunkTally<'_> {
     }
 }
 
-/// Traces `settings.photons` photons from the lights of `scene` and tallies their
-/// arrivals on the surfaces `targets`. `progress` is called from worker threads with
-/// the number of photons traced so far.
+/// Traces `settings.photons` photons, rounded up to whole stratified groups
+/// ([`whole_groups`]; [`TraceResult::photons`] says how many), from the lights of `scene`
+/// and tallies their arrivals on the surfaces `targets`. `progress` is called from worker
+/// threads with the number of photons traced so far.
 pub fn trace(
     scene: &Scene,
     accel: &Accel,
@@ -220,6 +223,10 @@ pub fn trace(
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> TraceResult {
+    let settings = &TraceSettings {
+        photons: whole_groups(settings.photons),
+        ..*settings
+    };
     let emitters = Emitters::new(scene);
     let map = TargetMap::new(scene, targets);
     let mut result = TraceResult {

@@ -26,6 +26,20 @@ use crate::rng::{Rng, mix64};
 /// Divides [`crate::CHUNK`], so a group never straddles two chunks.
 pub const GROUP: u64 = 64;
 const SIDE: u32 = 8;
+const _: () = assert!(SIDE as u64 * SIDE as u64 == GROUP);
+
+/// The fewest groups a measurement traces: the standard error comes from the spread of
+/// the group totals, and with fewer groups it is itself too noisy for a normal interval
+/// (with 4 groups "95 %" intervals covered 86 %; with 32 the t quantile of 31 degrees of
+/// freedom, 2.04, is within 4 % of the normal 1.96).
+pub const MIN_GROUPS: u64 = 32;
+
+/// The photons a measurement traces when `photons` are asked for: whole groups (a short
+/// last group would widen the spread of the totals, and so the interval, for nothing),
+/// and at least [`MIN_GROUPS`] of them.
+pub fn whole_groups(photons: u64) -> u64 {
+    photons.next_multiple_of(GROUP).max(MIN_GROUPS * GROUP)
+}
 /// Dimensions stratified per photon: emission and the first bounces, where the paths of
 /// a group's photons are still alike enough for stratification to pay. Later dimensions
 /// are plain independent numbers.

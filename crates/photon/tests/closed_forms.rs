@@ -194,9 +194,9 @@ fn a_surface_no_photon_reaches_is_not_exactly_dark() {
     scene
         .lights
         .push(point("Lamp", Vec3::new(0.0, 0.0, 1.0), 10.0));
-    let e = measure(&scene, &["Below"], 1000);
+    let e = measure(&scene, &["Below"], 4096);
     assert_eq!(e[0].mean, 0.0);
-    let one_arrival = 4.0 * PI * 10.0 / (4.0 * 1000.0);
+    let one_arrival = 4.0 * PI * 10.0 / (4.0 * 4096.0);
     // The flux is summed in f32 by the emitters: equal to f32 rounding.
     assert!((e[0].std_error - one_arrival).abs() < 1e-6 * one_arrival);
 }
@@ -376,7 +376,7 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     let scene = closed_room(Vec3::splat(rho));
     let area = scene.surface_area(0) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
-    assert_intervals_cover(&scene, area, exact, 4000);
+    assert_intervals_cover(&scene, area, exact, 4096);
 }
 
 /// Traces surface 0 of `scene` (of `area` m²) with 400 seeds of `photons` photons each

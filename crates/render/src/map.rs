@@ -14,6 +14,7 @@ use glam::{Vec2, Vec3};
 use image::RgbImage;
 use invlight_photon::{
     Emitters, Estimate, PathVisitor, PhotonTallies, Tally, TraceSettings, trace_chunks,
+    whole_groups,
 };
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
 use invlight_trace::{Accel, Interaction};
@@ -106,7 +107,7 @@ pub struct IlluminanceMap {
     pub cell_v: f32,
     /// Cells row by row (row 0 at v = 0); `None` where the surface covers no area.
     pub cells: Vec<Option<MapCell>>,
-    /// Photons emitted.
+    /// Photons emitted: the settings' count rounded up to whole stratified groups.
     pub photons: u64,
 }
 
@@ -335,8 +336,11 @@ pub fn illuminance_map(
         rows,
     };
     let mut totals = vec![Tally::default(); n_cells];
+    // Whole stratified groups, as for surfaces: each cell's standard error comes from the
+    // spread of the group totals.
+    let photons = whole_groups(settings.photons);
     let trace = TraceSettings {
-        photons: settings.photons,
+        photons,
         seed: settings.seed,
         max_bounces: settings.max_bounces,
     };
@@ -368,11 +372,7 @@ pub fn illuminance_map(
                 index: (c, r),
                 centre,
                 area,
-                estimate: Estimate::from_groups(
-                    t.sum / area,
-                    t.sum_sq / (area * area),
-                    settings.photons,
-                ),
+                estimate: Estimate::from_groups(t.sum / area, t.sum_sq / (area * area), photons),
                 hits: t.hits,
             })
         })
@@ -386,7 +386,7 @@ pub fn illuminance_map(
         cell_u: cell.x,
         cell_v: cell.y,
         cells,
-        photons: settings.photons,
+        photons,
     })
 }
 
