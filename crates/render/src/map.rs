@@ -336,6 +336,7 @@ pub fn illuminance_map(
         rows,
     };
     let mut totals = vec![Tally::default(); n_cells];
+    let emitters = Emitters::new(scene);
     // Whole stratified groups, as for surfaces: each cell's standard error comes from the
     // spread of the group totals.
     let photons = whole_groups(settings.photons);
@@ -347,7 +348,7 @@ pub fn illuminance_map(
     trace_chunks(
         scene,
         accel,
-        &Emitters::new(scene),
+        &emitters,
         &trace,
         || CellTally {
             grid: &grid,
@@ -368,11 +369,18 @@ pub fn illuminance_map(
             let centre = plane.origin
                 + plane.u * ((c as f32 + 0.5) * cell.x)
                 + plane.v * ((r as f32 + 0.5) * cell.y);
+            let mut estimate =
+                Estimate::from_groups(t.sum / area, t.sum_sq / (area * area), photons);
+            // As for a surface no photon reaches (`TraceResult::estimate`): not exactly
+            // dark, but one arrival's worth of uncertainty.
+            if t.hits == 0 {
+                estimate.std_error = emitters.total_flux() / (area * photons as f64);
+            }
             Some(MapCell {
                 index: (c, r),
                 centre,
                 area,
-                estimate: Estimate::from_groups(t.sum / area, t.sum_sq / (area * area), photons),
+                estimate,
                 hits: t.hits,
             })
         })
