@@ -42,6 +42,18 @@ struct Args {
 
 const USAGE: &str = "usage: sweep PROBLEM.xml [--photons N] [--half K] [--step M] [--around X,Y] [--bounces B] [--seed S] [--json]";
 
+/// The number after option `name`.
+fn number<T: std::str::FromStr>(
+    name: &str,
+    it: &mut impl Iterator<Item = String>,
+) -> Result<T, String> {
+    let v = it
+        .next()
+        .ok_or_else(|| format!("{name} needs a value\n{USAGE}"))?;
+    v.parse()
+        .map_err(|_| format!("{name} {v}: not a valid number\n{USAGE}"))
+}
+
 fn parse_args() -> Result<Args, String> {
     let mut args = Args {
         problem: PathBuf::new(),
@@ -62,26 +74,11 @@ fn parse_args() -> Result<Args, String> {
         };
         let bad = |name: &str, v: &str| format!("{name} {v}: not a valid number\n{USAGE}");
         match a.as_str() {
-            "--photons" => {
-                let v = value("--photons")?;
-                args.photons = v.parse().map_err(|_| bad("--photons", &v))?;
-            }
-            "--half" => {
-                let v = value("--half")?;
-                args.half = v.parse().map_err(|_| bad("--half", &v))?;
-            }
-            "--step" => {
-                let v = value("--step")?;
-                args.step = v.parse().map_err(|_| bad("--step", &v))?;
-            }
-            "--bounces" => {
-                let v = value("--bounces")?;
-                args.bounces = v.parse().map_err(|_| bad("--bounces", &v))?;
-            }
-            "--seed" => {
-                let v = value("--seed")?;
-                args.seed = Some(v.parse().map_err(|_| bad("--seed", &v))?);
-            }
+            "--photons" => args.photons = number("--photons", &mut it)?,
+            "--half" => args.half = number("--half", &mut it)?,
+            "--step" => args.step = number("--step", &mut it)?,
+            "--bounces" => args.bounces = number("--bounces", &mut it)?,
+            "--seed" => args.seed = Some(number("--seed", &mut it)?),
             "--around" => {
                 let v = value("--around")?;
                 let xy: Vec<f64> = v
