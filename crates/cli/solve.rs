@@ -304,8 +304,12 @@ impl Observer for Reporter<'_> {
     }
 }
 
+/// The first of the highest-mean members, as `Isoc::by_mean` orders them, without
+/// sorting (this runs after every evaluation).
 fn best(isoc: &Isoc) -> Option<&invlight_ilp::Member> {
-    isoc.by_mean().first().copied()
+    isoc.members()
+        .iter()
+        .min_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean))
 }
 
 /// A bar over the iterations on stderr, hidden when stderr is not a terminal.

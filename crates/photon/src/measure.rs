@@ -57,6 +57,18 @@ pub struct Tally {
 }
 
 impl Tally {
+    /// The mean illuminance over `area` m² of what `photons` photons carrying `flux` lm in
+    /// all brought, in lux, with its standard error ([`TraceResult::estimate`], whose
+    /// rule for a tally with no arrival this applies: one arrival's worth, Φ/(A·N)).
+    pub fn estimate(&self, area: f64, photons: u64, flux: f64) -> Estimate {
+        let inv = 1.0 / area;
+        let mut e = Estimate::from_groups(self.sum * inv, self.sum_sq * inv * inv, photons);
+        if self.hits == 0 && photons > 0 {
+            e.std_error = flux * inv / photons as f64;
+        }
+        e
+    }
+
     fn merge(&mut self, other: &Tally) {
         self.sum += other.sum;
         self.sum_sq += other.sum_sq;
@@ -142,13 +154,7 @@ impl TraceResult {
     /// error is then taken as the illuminance one arrival would have given, Φ/(A·N): the
     /// binomial σ with the hit probability 1/N, the smallest that is not ruled out.
     pub fn estimate(&self, i: usize, area: f64) -> Estimate {
-        let t = &self.tallies[i];
-        let inv = 1.0 / area;
-        let mut e = Estimate::from_groups(t.sum * inv, t.sum_sq * inv * inv, self.photons);
-        if t.hits == 0 && self.photons > 0 {
-            e.std_error = self.flux * inv / self.photons as f64;
-        }
-        e
+        self.tallies[i].estimate(area, self.photons, self.flux)
     }
 }
 

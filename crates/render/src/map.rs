@@ -369,18 +369,11 @@ pub fn illuminance_map(
             let centre = plane.origin
                 + plane.u * ((c as f32 + 0.5) * cell.x)
                 + plane.v * ((r as f32 + 0.5) * cell.y);
-            let mut estimate =
-                Estimate::from_groups(t.sum / area, t.sum_sq / (area * area), photons);
-            // As for a surface no photon reaches (`TraceResult::estimate`): not exactly
-            // dark, but one arrival's worth of uncertainty.
-            if t.hits == 0 {
-                estimate.std_error = emitters.total_flux() / (area * photons as f64);
-            }
             Some(MapCell {
                 index: (c, r),
                 centre,
                 area,
-                estimate,
+                estimate: t.estimate(area, photons, emitters.total_flux()),
                 hits: t.hits,
             })
         })
