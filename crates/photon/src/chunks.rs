@@ -12,7 +12,7 @@
 use crate::emit::Emitters;
 use crate::measure::TraceSettings;
 use crate::path::{PathVisitor, trace_photon};
-use crate::sampler::{GROUP, Sampler};
+use crate::sampler::{GROUP, GroupKeys, Sampler};
 use invlight_scene::Scene;
 use invlight_trace::Accel;
 use rayon::prelude::*;
@@ -55,8 +55,13 @@ pub fn trace_chunks<V: PathVisitor + Send>(
                 let last = (first + CHUNK).min(settings.photons);
                 let mut visitor = new_visitor();
                 let mut chunk_rays = 0;
+                // A chunk starts a group: CHUNK is a multiple of GROUP.
+                let mut keys = GroupKeys::new(settings.seed, first / GROUP);
                 for i in first..last {
-                    let mut sampler = Sampler::new(settings.seed, i);
+                    if i % GROUP == 0 && i != first {
+                        keys = GroupKeys::new(settings.seed, i / GROUP);
+                    }
+                    let mut sampler = Sampler::new(&keys, settings.seed, i);
                     chunk_rays += trace_photon(
                         scene,
                         accel,

@@ -210,7 +210,7 @@ impl Emitters {
     /// draws the same dimensions (which light, then two pairs), so the photons of a
     /// stratified group stay aligned dimension by dimension whichever light they leave.
     #[inline]
-    pub fn sample(&self, sampler: &mut Sampler) -> EmitSample {
+    pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample {
         let source = &self.sources[sampling::pick(&self.cdf, sampler.uniform())];
         let (u1, u2) = sampler.uniform2();
         let (u3, u4) = sampler.uniform2();

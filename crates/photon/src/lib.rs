@@ -27,5 +27,5 @@ pub use estimate::{Estimate, normal_quantile, z_two_sided};
 pub use measure::{DEFAULT_MAX_BOUNCES, PhotonTallies, Tally, TraceResult, TraceSettings, trace};
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use rng::Rng;
-pub use sampler::{GROUP, MIN_GROUPS, Sampler, whole_groups};
+pub use sampler::{GROUP, GroupKeys, MIN_GROUPS, Sampler, whole_groups};
 pub use sampling::{basis, cosine_hemisphere};

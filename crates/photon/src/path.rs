@@ -41,7 +41,7 @@ pub fn trace_photon(
     scene: &Scene,
     accel: &Accel,
     emitters: &Emitters,
-    sampler: &mut Sampler,
+    sampler: &mut Sampler<'_>,
     max_bounces: u32,
     visitor: &mut impl PathVisitor,
 ) -> u64 {
@@ -115,7 +115,7 @@ pub fn trace_photon(
 /// red room the variance is infinite: reported intervals would be far too narrow.
 /// Probabilities are normalised when the parts add up to more than one.
 #[inline]
-fn interact(scene: &Scene, at: &Interaction, power: Rgb, sampler: &mut Sampler) -> Event {
+fn interact(scene: &Scene, at: &Interaction, power: Rgb, sampler: &mut Sampler<'_>) -> Event {
     let m = &scene.materials[at.material as usize];
     let mut kd = m.diffuse;
     if let Some(t) = m.texture {

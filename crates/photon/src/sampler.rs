@@ -48,25 +48,39 @@ const STRATIFIED_DIMENSIONS: u32 = 16;
 /// [0, 1).
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
+/// The permutation keys of one group, one per stratified dimension, hashed from
+/// (seed, group): the same for the group's photons, so computed once per group.
+#[derive(Debug, Clone)]
+pub struct GroupKeys([u32; STRATIFIED_DIMENSIONS as usize]);
+
+impl GroupKeys {
+    /// The keys of group `group` (photons `group·GROUP ..`) under `seed`.
+    pub fn new(seed: u64, group: u64) -> GroupKeys {
+        let group_key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ group);
+        GroupKeys(std::array::from_fn(|d| mix64(group_key ^ d as u64) as u32))
+    }
+}
+
 /// The random numbers of one photon.
 #[derive(Debug, Clone)]
-pub struct Sampler {
+pub struct Sampler<'k> {
     rng: Rng,
-    /// Hash of (seed, group): the root of the group's permutations.
-    group_key: u64,
+    /// The keys of the photon's group.
+    keys: &'k GroupKeys,
     /// The photon's place in its group, 0..GROUP.
     index: u32,
     /// Dimensions drawn so far.
     dimension: u32,
 }
 
-impl Sampler {
-    /// The numbers of photon `photon` under `seed`.
+impl<'k> Sampler<'k> {
+    /// The numbers of photon `photon` under `seed`; `keys` are those of its group,
+    /// `GroupKeys::new(seed, photon / GROUP)`.
     #[inline]
-    pub fn new(seed: u64, photon: u64) -> Sampler {
+    pub fn new(keys: &'k GroupKeys, seed: u64, photon: u64) -> Sampler<'k> {
         Sampler {
             rng: Rng::new(seed, photon),
-            group_key: mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ (photon / GROUP)),
+            keys,
             index: (photon % GROUP) as u32,
             dimension: 0,
         }
@@ -76,10 +90,7 @@ impl Sampler {
     /// dimensions.
     #[inline]
     fn stratum(&mut self) -> Option<u32> {
-        if self.dimension >= STRATIFIED_DIMENSIONS {
-            return None;
-        }
-        let key = mix64(self.group_key ^ self.dimension as u64) as u32;
+        let key = *self.keys.0.get(self.dimension as usize)?;
         self.dimension += 1;
         Some(permute(self.index, GROUP as u32, key))
     }
@@ -171,8 +182,10 @@ mod tests {
     fn a_group_fills_every_stratum_in_every_dimension() {
         // Each dimension of a group takes each of its GROUP strata exactly once; in two
         // dimensions each cell of the 8 × 8 grid once.
-        let samplers = || (0..GROUP).map(|i| Sampler::new(7, 3 * GROUP + i));
-        let mut all: Vec<Sampler> = samplers().collect();
+        let keys = GroupKeys::new(7, 3);
+        let mut all: Vec<Sampler> = (0..GROUP)
+            .map(|i| Sampler::new(&keys, 7, 3 * GROUP + i))
+            .collect();
         for _ in 0..STRATIFIED_DIMENSIONS / 2 {
             let mut cells = [0u32; GROUP as usize];
             let mut strata = [0u32; GROUP as usize];
@@ -199,7 +212,8 @@ mod tests {
         // groups and dimensions are permuted independently.
         let first: Vec<(u32, u32)> = (0..32)
             .map(|g| {
-                let mut s = Sampler::new(1, g * GROUP);
+                let keys = GroupKeys::new(1, g);
+                let mut s = Sampler::new(&keys, 1, g * GROUP);
                 let a = (s.uniform() * GROUP as f32) as u32;
                 let b = (s.uniform() * GROUP as f32) as u32;
                 (a, b)
