@@ -162,6 +162,7 @@ impl TraceArgs {
             photons,
             seed: self.seed,
             max_bounces: self.max_bounces,
+            connect: true,
         }
     }
 

@@ -63,6 +63,7 @@ impl Evaluate for PhotonEvaluator<'_> {
             photons,
             seed: self.seed,
             max_bounces: self.max_bounces,
+            connect: true,
         };
         let r = trace(
             &self.scene,

@@ -4,6 +4,7 @@
 //! luminous power: the scene's total flux. Equal powers keep the per-photon variance, and
 //! so the reported intervals, as small as this estimator allows.
 
+use crate::connect::Lobe;
 use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
@@ -21,6 +22,8 @@ pub struct EmitSample {
     pub surface_normal: Option<Vec3>,
     /// RGB power, whose luminance is the scene's total flux.
     pub power: Rgb,
+    /// The light's emission profile, which `dir` was drawn from (for connections).
+    pub lobe: Lobe,
 }
 
 /// An emissive triangle of a scene, in world space: an area light that emits from its
@@ -220,6 +223,7 @@ impl Emitters {
                 dir: sampling::sphere(u1, u2),
                 surface_normal: None,
                 power,
+                lobe: Lobe::Sphere,
             },
             Source::Spot {
                 position,
@@ -241,6 +245,12 @@ impl Emitters {
                     dir: sampling::cone(axis, cos_theta, u2),
                     surface_normal: None,
                     power,
+                    lobe: Lobe::Spot {
+                        axis,
+                        cos_inner,
+                        cos_outer,
+                        flat_share,
+                    },
                 }
             }
             Source::Directional {
@@ -256,6 +266,10 @@ impl Emitters {
                     dir: direction,
                     surface_normal: None,
                     power,
+                    lobe: Lobe::Parallel {
+                        direction,
+                        area: PI * radius * radius,
+                    },
                 }
             }
             Source::Triangle {
@@ -271,6 +285,7 @@ impl Emitters {
                     dir: sampling::cosine_hemisphere(normal, u3, u4),
                     surface_normal: Some(normal),
                     power,
+                    lobe: Lobe::Cosine { normal },
                 }
             }
         }

@@ -13,6 +13,7 @@
 #![deny(missing_docs)]
 
 mod chunks;
+mod connect;
 mod emit;
 mod estimate;
 mod measure;
@@ -22,6 +23,7 @@ mod sampler;
 mod sampling;
 
 pub use chunks::{BLOCK, CHUNK, trace_chunks};
+pub use connect::{Departure, Lobe, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, emissive_triangles};
 pub use estimate::{Estimate, normal_quantile, z_two_sided};
 pub use measure::{DEFAULT_MAX_BOUNCES, PhotonTallies, Tally, TraceResult, TraceSettings, trace};

@@ -7,10 +7,11 @@
 //! many, and memory stays constant however many photons are traced.
 
 use crate::chunks::trace_chunks;
+use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
 use crate::estimate::Estimate;
 use crate::path::PathVisitor;
-use crate::sampler::whole_groups;
+use crate::sampler::{Sampler, whole_groups};
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
 use invlight_trace::{Accel, Interaction};
@@ -26,6 +27,12 @@ pub struct TraceSettings {
     /// Surface interactions followed after the first hit from the light. Russian
     /// roulette ends paths on its own; this is a safety cap (the thesis used 4).
     pub max_bounces: u32,
+    /// Whether [`trace`] also connects every photon departure to every target
+    /// ([`crate::Targets`]: next-event estimation toward the target, weighted against the
+    /// arrivals by multiple importance sampling) instead of counting arrivals alone as
+    /// the thesis does. Same expectation, a fraction of the variance (BENCHMARKS.md).
+    /// Visitors of [`crate::trace_chunks`] (maps, photon maps) decide for themselves.
+    pub connect: bool,
 }
 
 impl Default for TraceSettings {
@@ -34,6 +41,7 @@ impl Default for TraceSettings {
             photons: 1_000_000,
             seed: 1,
             max_bounces: DEFAULT_MAX_BOUNCES,
+            connect: true,
         }
     }
 }
@@ -59,11 +67,11 @@ pub struct Tally {
 impl Tally {
     /// The mean illuminance over `area` m² of what `photons` photons carrying `flux` lm in
     /// all brought, in lux, with its standard error ([`TraceResult::estimate`], whose
-    /// rule for a tally with no arrival this applies: one arrival's worth, Φ/(A·N)).
+    /// rule for a tally nothing reached this applies: one arrival's worth, Φ/(A·N)).
     pub fn estimate(&self, area: f64, photons: u64, flux: f64) -> Estimate {
         let inv = 1.0 / area;
         let mut e = Estimate::from_groups(self.sum * inv, self.sum_sq * inv * inv, photons);
-        if self.hits == 0 && photons > 0 {
+        if self.sum <= 0.0 && photons > 0 {
             e.std_error = flux * inv / photons as f64;
         }
         e
@@ -98,15 +106,25 @@ impl PhotonTallies {
         }
     }
 
-    /// The current photon arrived on `target` carrying `lumens`.
+    /// The current photon arrived on `target`, counting `lumens` of its power.
     #[inline]
     pub fn arrive(&mut self, target: u32, lumens: f64) {
+        self.add(target, lumens);
+        self.tallies[target as usize].hits += 1;
+    }
+
+    /// The current photon brings `lumens` to `target` otherwise than by arriving (a
+    /// connection).
+    #[inline]
+    pub fn add(&mut self, target: u32, lumens: f64) {
+        if lumens == 0.0 {
+            return;
+        }
         let t = target as usize;
         if self.current[t] == 0.0 {
             self.touched.push(target);
         }
         self.current[t] += lumens;
-        self.tallies[t].hits += 1;
     }
 
     /// The current group ended: its sums join the tallies.
@@ -149,7 +167,7 @@ impl TraceResult {
     /// error: F_N = Σ_g X_g / (A·N) (thesis eq. 3.2, the photons summed group by group),
     /// the standard error from the spread of the groups' sums.
     ///
-    /// A target no photon reached has a sample variance of zero, which would claim the
+    /// A target nothing reached (no arrival, no connection) has a sample variance of zero, which would claim the
     /// mean 0 exact and let a comparison rule the surface out on no evidence. Its standard
     /// error is then taken as the illuminance one arrival would have given, Φ/(A·N): the
     /// binomial σ with the hit probability 1/N, the smallest that is not ruled out.
@@ -195,15 +213,32 @@ impl TargetMap {
 /// Tallies one chunk of photons on the measured targets.
 struct ChunkTally<'a> {
     map: &'a TargetMap,
+    /// The targets to connect departures to; `None` counts arrivals alone.
+    connect: Option<(&'a Targets, &'a Accel)>,
     tallies: PhotonTallies,
     escaped: f64,
 }
 
 impl PathVisitor for ChunkTally<'_> {
     #[inline]
-    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32) {
+    fn depart(&mut self, from: &Departure, sampler: &mut Sampler<'_>) {
+        if let Some((targets, accel)) = self.connect {
+            for t in 0..targets.len() {
+                let lumens = targets.connect(t, from, accel, sampler);
+                self.tallies.add(t as u32, lumens);
+            }
+        }
+    }
+
+    #[inline]
+    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
+        let lumens = luminance(power);
         for &t in self.map.of(at.instance) {
-            self.tallies.arrive(t, luminance(power) as f64);
+            let w = match self.connect {
+                Some((targets, _)) => targets.arrival_weight(t as usize, from, at.point, at.normal),
+                None => 1.0,
+            };
+            self.tallies.arrive(t, (lumens * w) as f64);
         }
     }
 
@@ -235,6 +270,7 @@ pub fn trace(
     };
     let emitters = Emitters::new(scene);
     let map = TargetMap::new(scene, targets);
+    let shapes = Targets::new(scene, targets);
     let mut result = TraceResult {
         photons: settings.photons,
         rays: 0,
@@ -249,6 +285,7 @@ pub fn trace(
         settings,
         || ChunkTally {
             map: &map,
+            connect: settings.connect.then_some((&shapes, accel)),
             tallies: PhotonTallies::new(targets.len()),
             escaped: 0.0,
         },

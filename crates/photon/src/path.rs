@@ -4,6 +4,7 @@
 //! and absorption. Paths end only by absorption, escape or the bounce cap, so estimates
 //! are unbiased when the cap is not reached.
 
+use crate::connect::{Departure, Lobe};
 use crate::emit::{EmitSample, Emitters};
 use crate::sampler::Sampler;
 use crate::sampling;
@@ -14,9 +15,16 @@ use invlight_trace::{Accel, Interaction, Ray, offset_point};
 /// What a path reports to whoever follows it: tallies for measurement, stored photons
 /// for rendering.
 pub trait PathVisitor {
-    /// A photon carrying `power` arrived at `at` travelling along `dir`; `bounce` is 0 for
-    /// the first hit from the light. Called for every arrival, before the surface acts.
-    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32);
+    /// A photon leaves `from`: a light, or a diffuse surface before the Russian roulette
+    /// decides whether it is reflected (`from.lumens` is then the expected reflected
+    /// power). The place to connect it to targets ([`crate::Targets::connect`]); a visitor
+    /// draws from `sampler` only what it uses.
+    #[inline]
+    fn depart(&mut self, _from: &Departure, _sampler: &mut Sampler<'_>) {}
+    /// A photon carrying `power` arrived at `at` travelling along `dir` from `from`;
+    /// `bounce` is 0 for the first hit from the light. Called for every arrival, before
+    /// the surface acts.
+    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32, from: &Departure);
     /// A photon carrying `power` left the scene.
     fn escape(&mut self, power: Rgb);
     /// A stratified group of photons ([`crate::GROUP`] consecutive ones, fewer at the
@@ -50,7 +58,15 @@ pub fn trace_photon(
         dir,
         surface_normal,
         mut power,
+        lobe,
     } = emitters.sample(sampler);
+    let mut from = Departure {
+        point: origin,
+        lobe,
+        lumens: luminance(power),
+        survival: 1.0,
+    };
+    visitor.depart(&from, sampler);
     let mut ray = match surface_normal {
         Some(n) => Ray::new(offset_point(origin, n), dir),
         None => Ray::new(origin, dir),
@@ -63,7 +79,7 @@ pub fn trace_photon(
             break;
         };
         let at = accel.interaction(&ray, &hit);
-        visitor.arrive(&at, ray.dir, power, bounce);
+        visitor.arrive(&at, ray.dir, power, bounce, &from);
         if bounce == max_bounces {
             break;
         }
@@ -73,19 +89,34 @@ pub fn trace_photon(
         } else {
             -at.normal
         };
-        let dir = match interact(scene, &at, power, sampler) {
+        let Some(roulette) = Roulette::new(scene, &at, power) else {
+            break;
+        };
+        let diffuse = Departure {
+            point: at.point,
+            lobe: Lobe::Cosine { normal: n },
+            lumens: roulette.rho_d * luminance(power),
+            survival: roulette.p_d,
+        };
+        if roulette.p_d > 0.0 {
+            visitor.depart(&diffuse, sampler);
+        }
+        let dir = match roulette.choose(sampler.uniform()) {
             Event::Absorbed => break,
             Event::Diffuse(f) => {
                 power *= f;
+                from = diffuse;
                 let (u1, u2) = sampler.uniform2();
                 sampling::cosine_hemisphere(n, u1, u2)
             }
             Event::Mirror(f) => {
                 power *= f;
+                from = specular(at.point, power);
                 reflect(ray.dir, n)
             }
             Event::Dielectric(f) => {
                 power *= f;
+                from = specular(at.point, power);
                 let entering = at.normal.dot(ray.dir) < 0.0;
                 let ior = scene.materials[at.material as usize].ior;
                 let eta = if entering { 1.0 / ior } else { ior };
@@ -102,7 +133,7 @@ pub fn trace_photon(
     rays
 }
 
-/// Russian roulette over the material's parts (thesis Algorithm 2.2): diffuse, mirror,
+/// The Russian roulette over a material's parts (thesis Algorithm 2.2): diffuse, mirror,
 /// dielectric or absorbed, each surviving power scaled by (part / probability) so that
 /// its expectation is the physical one.
 ///
@@ -114,31 +145,69 @@ pub fn trace_photon(
 /// second moment of the red channel by K_r²/mean(K_d) = 2.7 per bounce, and in a closed
 /// red room the variance is infinite: reported intervals would be far too narrow.
 /// Probabilities are normalised when the parts add up to more than one.
+struct Roulette {
+    kd: Rgb,
+    specular: Rgb,
+    rho_d: f32,
+    rho_t: f32,
+    p_d: f32,
+    p_s: f32,
+    p_t: f32,
+}
+
+impl Roulette {
+    /// The parts at `at` for a photon carrying `power`; `None` when it carries no
+    /// luminance (nothing left to reflect).
+    #[inline]
+    fn new(scene: &Scene, at: &Interaction, power: Rgb) -> Option<Roulette> {
+        let m = &scene.materials[at.material as usize];
+        let mut kd = m.diffuse;
+        if let Some(t) = m.texture {
+            kd *= scene.textures[t as usize].sample(at.uv);
+        }
+        let y = luminance(power);
+        if y <= 0.0 {
+            return None;
+        }
+        let rho_d = luminance(power * kd) / y;
+        let rho_s = luminance(power * m.specular) / y;
+        let rho_t = m.transmission;
+        let norm = (rho_d + rho_s + rho_t).max(1.0);
+        Some(Roulette {
+            kd,
+            specular: m.specular,
+            rho_d,
+            rho_t,
+            p_d: rho_d / norm,
+            p_s: rho_s / norm,
+            p_t: rho_t / norm,
+        })
+    }
+
+    /// The event for the uniform number `xi`.
+    #[inline]
+    fn choose(&self, xi: f32) -> Event {
+        let (p_d, p_s, p_t) = (self.p_d, self.p_s, self.p_t);
+        if xi < p_d {
+            Event::Diffuse(self.kd / p_d)
+        } else if xi < p_d + p_s {
+            Event::Mirror(self.specular / p_s)
+        } else if xi < p_d + p_s + p_t {
+            Event::Dielectric(self.rho_t / p_t)
+        } else {
+            Event::Absorbed
+        }
+    }
+}
+
+/// A departure along a delta lobe (mirror, glass), which no connection competes with.
 #[inline]
-fn interact(scene: &Scene, at: &Interaction, power: Rgb, sampler: &mut Sampler<'_>) -> Event {
-    let m = &scene.materials[at.material as usize];
-    let mut kd = m.diffuse;
-    if let Some(t) = m.texture {
-        kd *= scene.textures[t as usize].sample(at.uv);
-    }
-    let y = luminance(power);
-    if y <= 0.0 {
-        return Event::Absorbed;
-    }
-    let rho_d = luminance(power * kd) / y;
-    let rho_s = luminance(power * m.specular) / y;
-    let rho_t = m.transmission;
-    let norm = (rho_d + rho_s + rho_t).max(1.0);
-    let (p_d, p_s, p_t) = (rho_d / norm, rho_s / norm, rho_t / norm);
-    let xi = sampler.uniform();
-    if xi < p_d {
-        Event::Diffuse(kd / p_d)
-    } else if xi < p_d + p_s {
-        Event::Mirror(m.specular / p_s)
-    } else if xi < p_d + p_s + p_t {
-        Event::Dielectric(rho_t / p_t)
-    } else {
-        Event::Absorbed
+fn specular(point: Vec3, power: Rgb) -> Departure {
+    Departure {
+        point,
+        lobe: Lobe::Specular,
+        lumens: luminance(power),
+        survival: 1.0,
     }
 }
 

@@ -13,7 +13,7 @@ use crate::draw;
 use glam::{Vec2, Vec3};
 use image::RgbImage;
 use invlight_photon::{
-    Emitters, Estimate, PathVisitor, PhotonTallies, Tally, TraceSettings, trace_chunks,
+    Departure, Emitters, Estimate, PathVisitor, PhotonTallies, Tally, TraceSettings, trace_chunks,
     whole_groups,
 };
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
@@ -267,7 +267,14 @@ struct CellTally<'a> {
 
 impl PathVisitor for CellTally<'_> {
     #[inline]
-    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32) {
+    fn arrive(
+        &mut self,
+        at: &Interaction,
+        _dir: Vec3,
+        power: Rgb,
+        _bounce: u32,
+        _from: &Departure,
+    ) {
         if !self.grid.on_surface[at.instance as usize] {
             return;
         }
@@ -344,6 +351,8 @@ pub fn illuminance_map(
         photons,
         seed: settings.seed,
         max_bounces: settings.max_bounces,
+        // Cells count arrivals (`CellTally` connects nothing).
+        connect: false,
     };
     trace_chunks(
         scene,

@@ -19,7 +19,7 @@
 //! fixed radius from the mean photon density suits the grid (BENCHMARKS.md, "Rendering benchmarks").
 
 use glam::Vec3;
-use invlight_photon::{Emitters, PathVisitor, TraceSettings, trace_chunks};
+use invlight_photon::{Departure, Emitters, PathVisitor, TraceSettings, trace_chunks};
 use invlight_scene::{Rgb, Scene};
 use invlight_trace::{Accel, Interaction};
 use rayon::prelude::*;
@@ -125,7 +125,7 @@ struct Collector<'a> {
 
 impl PathVisitor for Collector<'_> {
     #[inline]
-    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32) {
+    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32, _from: &Departure) {
         if bounce == 0 {
             self.specular_only = true;
         }
@@ -200,6 +200,8 @@ impl PhotonMap {
             photons: settings.photons,
             seed: settings.seed,
             max_bounces: settings.max_bounces,
+            // A photon map stores arrivals; it connects nothing.
+            connect: false,
         };
         let mut photons = Vec::new();
         trace_chunks(

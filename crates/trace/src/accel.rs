@@ -402,6 +402,13 @@ impl Accel {
         self.any::<wide::Portable>(ray)
     }
 
+    /// Whether `p` lies in a hole's volume, where surfaces are cut away: no ray stops
+    /// there, so nothing arrives there either.
+    pub fn in_hole(&self, p: Vec3) -> bool {
+        let p = Vec3A::from(p);
+        self.holes.iter().any(|v| v.contains(p))
+    }
+
     /// `intersect` compiled for AVX2 (8 child boxes per instruction), chosen at run time
     /// so one binary runs everywhere and is fast where it can be.
     #[cfg(target_arch = "x86_64")]

@@ -1,0 +1,299 @@
+//! Connections from a photon's departures to the measured targets: next-event estimation
+//! toward the sensor, as a light tracer connects every vertex of its paths to the camera
+//! (pbrt-v4 `LightPathIntegrator`), with the target surface in the place of the camera.
+//!
+//! Why: a photon tracer that only counts arrivals (thesis §3.3) learns about a target
+//! from the photons that happen to hit it. A photon that leaves a light or a diffuse
+//! surface sends its expected power toward the target along every direction that sees
+//! it; a connection estimates that flux from one point drawn on the target (uniform in
+//! area) and a shadow ray, before the Russian roulette decides the photon's fate, so even
+//! absorbed photons report what their reflection would have brought.
+//!
+//! Both ways of reaching a target point y from a departure x (the connection, and the
+//! photon's own next ray hitting it) are kept and weighted by the balance heuristic
+//! (Veach 1997, §9.2): with p_a = 1/A the connection's density of y per unit area and
+//! p_b = s·f(ω)·|cos θ_y|/r² the photon's (s the probability the photon leaves along
+//! this lobe, f its directional density), the connection counts p_a/(p_a + p_b) and the
+//! arrival p_b/(p_a + p_b). The weights add up to one for every y, so the sum stays
+//! unbiased, and each is bounded: a departure next to its target (a lamp touching it, a
+//! wall's corner with the floor) no longer gives the connection its 1/r² tail.
+//! Arrivals after a mirror or glass (a delta lobe no connection can sample) count fully.
+
+use crate::sampler::Sampler;
+use crate::sampling;
+use glam::Vec3;
+use invlight_scene::{Scene, SurfaceId};
+use invlight_trace::{Accel, Ray, SHADOW_EPSILON, offset_point};
+use std::f32::consts::PI;
+
+/// How a photon leaves a point: the directional distribution of its next ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lobe {
+    /// Lambertian about the unit `normal`: density cos θ / π (area lights, diffuse
+    /// reflection).
+    Cosine {
+        /// The side the photon leaves to.
+        normal: Vec3,
+    },
+    /// Uniform over the sphere: density 1 / (4π) (point lights).
+    Sphere,
+    /// A glTF spot's profile (see `emit::Source::Spot`).
+    Spot {
+        /// Unit axis.
+        axis: Vec3,
+        /// Cosine of the inner cone's half angle.
+        cos_inner: f32,
+        /// Cosine of the outer cone's half angle.
+        cos_outer: f32,
+        /// Probability of the uniform inner part.
+        flat_share: f32,
+    },
+    /// A parallel beam along the unit `direction` whose photons start uniformly over a
+    /// disk of `area` m² across it (the sun).
+    Parallel {
+        /// Direction of travel.
+        direction: Vec3,
+        /// Area of the disk the photons start from.
+        area: f32,
+    },
+    /// A delta distribution (mirror reflection, refraction): no connection can sample it.
+    Specular,
+}
+
+impl Lobe {
+    /// Density per steradian of leaving along the unit vector `w` (zero for the parallel
+    /// and specular lobes, whose densities are not per steradian).
+    #[inline]
+    pub fn pdf(&self, w: Vec3) -> f32 {
+        match *self {
+            Lobe::Cosine { normal } => normal.dot(w).max(0.0) / PI,
+            Lobe::Sphere => 0.25 / PI,
+            Lobe::Spot {
+                axis,
+                cos_inner,
+                cos_outer,
+                flat_share,
+            } => {
+                let c = axis.dot(w);
+                if c >= cos_inner {
+                    // Uniform in solid angle over the inner cap.
+                    if cos_inner < 1.0 {
+                        flat_share / (2.0 * PI * (1.0 - cos_inner))
+                    } else {
+                        0.0
+                    }
+                } else if c > cos_outer {
+                    // Density 3t² in t = (cos θ − cos_outer)/(cos_inner − cos_outer).
+                    let width = cos_inner - cos_outer;
+                    let t = (c - cos_outer) / width;
+                    (1.0 - flat_share) * 3.0 * t * t / (width * 2.0 * PI)
+                } else {
+                    0.0
+                }
+            }
+            Lobe::Parallel { .. } | Lobe::Specular => 0.0,
+        }
+    }
+}
+
+/// A point a photon leaves from, as a connection needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Departure {
+    /// Where the photon leaves: the point on the light or on the surface.
+    pub point: Vec3,
+    /// Its directional distribution.
+    pub lobe: Lobe,
+    /// The luminous power expected to leave along the lobe, lm: what the photon carries
+    /// when it leaves this way, times the probability `survival` that it does.
+    pub lumens: f32,
+    /// Probability that the photon's next ray follows this lobe (the Russian roulette's
+    /// share of diffuse reflection; 1 when it leaves a light).
+    pub survival: f32,
+}
+
+impl Departure {
+    /// Density per unit area at `y` (unit normal `n_y`, either side) with which the
+    /// photon's next ray reaches y, visibility aside: p_b of the module's weights.
+    /// Infinite for a specular lobe, whose arrivals no connection competes with.
+    #[inline]
+    pub fn arrival_density(&self, y: Vec3, n_y: Vec3) -> f32 {
+        match self.lobe {
+            Lobe::Specular => f32::INFINITY,
+            Lobe::Parallel { direction, area } => self.survival * n_y.dot(direction).abs() / area,
+            lobe => {
+                let d = y - self.point;
+                let r2 = d.length_squared();
+                if r2 <= 0.0 {
+                    return 0.0;
+                }
+                let w = d / r2.sqrt();
+                self.survival * lobe.pdf(w) * n_y.dot(w).abs() / r2
+            }
+        }
+    }
+}
+
+/// A target's triangles in world space, to draw points on uniformly by area.
+#[derive(Debug, Clone, Default)]
+struct Shape {
+    /// (corner, edge 1, edge 2, unit normal) of each triangle of positive area.
+    tris: Vec<(Vec3, Vec3, Vec3, Vec3)>,
+    /// Cumulative areas.
+    cdf: Vec<f64>,
+    /// Total area, m²: 1/area is the connection's density p_a.
+    area: f32,
+}
+
+/// The measured targets as connections see them: the triangles photons can arrive on
+/// (every traced triangle of the target's instances; hole apertures are left out, as
+/// photons pass through them).
+#[derive(Debug, Clone, Default)]
+pub struct Targets {
+    shapes: Vec<Shape>,
+}
+
+impl Targets {
+    /// The surfaces `targets` of `scene` with their current instance transforms.
+    pub fn new(scene: &Scene, targets: &[SurfaceId]) -> Targets {
+        let shapes = targets
+            .iter()
+            .map(|&s| {
+                let mut shape = Shape::default();
+                let mut total = 0.0f64;
+                for &i in &scene.surfaces[s as usize].instances {
+                    let inst = &scene.instances[i as usize];
+                    let mesh = &scene.meshes[inst.mesh as usize];
+                    for (t, &m) in mesh.materials.iter().enumerate() {
+                        if scene.materials[m as usize].hole {
+                            continue;
+                        }
+                        let [a, b, c] =
+                            mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
+                        let cross = (b - a).cross(c - a);
+                        let area = 0.5 * cross.length();
+                        if area > 0.0 && area.is_finite() {
+                            total += area as f64;
+                            shape.tris.push((a, b - a, c - a, cross / (2.0 * area)));
+                            shape.cdf.push(total);
+                        }
+                    }
+                }
+                shape.area = total as f32;
+                shape
+            })
+            .collect();
+        Targets { shapes }
+    }
+
+    /// The number of targets.
+    pub fn len(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.shapes.is_empty()
+    }
+
+    /// The share of an arrival on target `t` at `y` (unit normal `n_y`) coming from
+    /// `from` that the arrival counts: p_b/(p_a + p_b); 1 for a target with nothing to
+    /// connect to.
+    #[inline]
+    pub fn arrival_weight(&self, t: usize, from: &Departure, y: Vec3, n_y: Vec3) -> f32 {
+        let area = self.shapes[t].area;
+        if area <= 0.0 {
+            return 1.0;
+        }
+        let q = area * from.arrival_density(y, n_y);
+        if q.is_infinite() { 1.0 } else { q / (1.0 + q) }
+    }
+
+    /// Connects `from` to a point drawn on target `t`: the luminous power, lm, this
+    /// connection counts toward the target's total (zero when the point is hidden, in a
+    /// hole, or outside the lobe). Draws three numbers from `sampler` whatever happens,
+    /// so the photons of a stratified group stay aligned.
+    #[inline]
+    pub fn connect(
+        &self,
+        t: usize,
+        from: &Departure,
+        accel: &Accel,
+        sampler: &mut Sampler<'_>,
+    ) -> f64 {
+        let pick = sampler.uniform();
+        let (u1, u2) = sampler.uniform2();
+        let shape = &self.shapes[t];
+        if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
+            return 0.0;
+        }
+        let (p0, e1, e2, n_y) = shape.tris[crate::sampling::pick(&shape.cdf, pick)];
+        let (b1, b2) = sampling::triangle(u1, u2);
+        let y = p0 + e1 * b1 + e2 * b2;
+        // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
+        // is lumens/s · q/(1 + q).
+        let q = shape.area * from.arrival_density(y, n_y);
+        if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
+            return 0.0;
+        }
+        // The shadow ray runs from the target back to the departure: only the target's
+        // end needs an offset, and one rule serves points and parallel beams.
+        let ray = match from.lobe {
+            Lobe::Parallel { direction, .. } => {
+                let back = -direction;
+                let side = if n_y.dot(back) >= 0.0 { n_y } else { -n_y };
+                Ray::new(offset_point(y, side), back)
+            }
+            _ => {
+                let side = if n_y.dot(from.point - y) >= 0.0 {
+                    n_y
+                } else {
+                    -n_y
+                };
+                let origin = offset_point(y, side);
+                let d = from.point - origin;
+                let dist = d.length();
+                Ray {
+                    origin,
+                    dir: d / dist,
+                    t_max: dist * (1.0 - SHADOW_EPSILON),
+                }
+            }
+        };
+        if accel.occluded(&ray) {
+            return 0.0;
+        }
+        (from.lumens / from.survival * q / (1.0 + q)) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each lobe's density integrates to one over the sphere (midpoint rule in cos θ).
+    #[test]
+    fn lobe_densities_integrate_to_one() {
+        let lobes = [
+            Lobe::Cosine { normal: Vec3::Z },
+            Lobe::Sphere,
+            Lobe::Spot {
+                axis: Vec3::Z,
+                cos_inner: 0.9,
+                cos_outer: 0.7,
+                flat_share: 0.1 / (0.1 + 0.2 / 3.0),
+            },
+        ];
+        for lobe in lobes {
+            let n = 200_000;
+            let total: f64 = (0..n)
+                .map(|i| {
+                    let c = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+                    let s = (1.0 - c * c).sqrt();
+                    let w = Vec3::new(s as f32, 0.0, c as f32);
+                    lobe.pdf(w) as f64 * 2.0 * std::f64::consts::PI * 2.0 / n as f64
+                })
+                .sum();
+            assert!((total - 1.0).abs() < 1e-3, "{lobe:?}: {total}");
+        }
+    }
+}
