@@ -3,7 +3,9 @@
 # triangles) and on the Sponza atrium of examples/atrium-skylight (66 k triangles, two
 # point lights and a sun), on 1 and 2 threads. Prints one line per run: photons/s and
 # rays/s of the trace alone (`seconds` − `build_seconds` of the JSON: scene loading and
-# the BVH build are not counted).
+# the BVH build are not counted). It measures the photon loop itself, so it counts
+# arrivals only (`--arrivals-only`: no shadow rays toward the target); what connections
+# cost and gain is benches/estimators.sh's part.
 # Usage: benches/photons.sh [photons]   (from the repository root; builds release first)
 set -euo pipefail
 N=${1:-2000000}
@@ -13,7 +15,7 @@ run() {
   local scene=$1 surface=$2 threads=$3
   local json
   json=$(/usr/bin/time -f "%U %S" -o /tmp/invlight-bench-cpu "$BIN" measure "$scene" \
-      --surface "$surface" --photons "$N" --seed 1 --threads "$threads" --json)
+      --surface "$surface" --photons "$N" --seed 1 --threads "$threads" --arrivals-only --json)
   python3 -c "$REPORT" "$scene" "$threads" "$(cat /tmp/invlight-bench-cpu)" <<<"$json"
 }
 # Wall rates of the trace alone, and rays per CPU-second of the whole process (user +

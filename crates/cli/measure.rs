@@ -82,7 +82,10 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
                        "std_error": e.std_error, "hits": hits})
             })
             .collect();
-        let out = json!({"photons": result.photons, "rays": result.rays, "seconds": seconds,
+        let out = json!({"photons": result.photons, "rays": result.rays,
+                         "shadow_rays": result.shadow_rays,
+                         "estimator": if settings.connect { "connected" } else { "arrivals" },
+                         "seconds": seconds,
                          "build_seconds": build_seconds, "confidence": args.trace.confidence, "seed": args.trace.seed,
                          "max_bounces": args.trace.max_bounces, "flux_lm": result.flux,
                          "surfaces": surfaces});
@@ -105,9 +108,10 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
             );
         }
         println!(
-            "{} photons, {} rays, {:.2} s ({:.2} M photons/s), {:.0} lm emitted",
+            "{} photons, {} rays and {} shadow rays, {:.2} s ({:.2} M photons/s), {:.0} lm emitted",
             result.photons,
             result.rays,
+            result.shadow_rays,
             seconds,
             result.photons as f64 / seconds / 1e6,
             result.flux

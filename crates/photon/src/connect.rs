@@ -209,9 +209,10 @@ impl Targets {
     }
 
     /// Connects `from` to a point drawn on target `t`: the luminous power, lm, this
-    /// connection counts toward the target's total (zero when the point is hidden, in a
-    /// hole, or outside the lobe). Draws three numbers from `sampler` whatever happens,
-    /// so the photons of a stratified group stay aligned.
+    /// connection counts toward the target's total (zero when the point is hidden), or
+    /// `None` when no shadow ray was needed (the point is in a hole or outside the lobe).
+    /// Draws three numbers from `sampler` whatever happens, so the photons of a
+    /// stratified group stay aligned.
     #[inline]
     pub fn connect(
         &self,
@@ -219,12 +220,12 @@ impl Targets {
         from: &Departure,
         accel: &Accel,
         sampler: &mut Sampler<'_>,
-    ) -> f64 {
+    ) -> Option<f64> {
         let pick = sampler.uniform();
         let (u1, u2) = sampler.uniform2();
         let shape = &self.shapes[t];
         if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
-            return 0.0;
+            return None;
         }
         let (p0, e1, e2, n_y) = shape.tris[crate::sampling::pick(&shape.cdf, pick)];
         let (b1, b2) = sampling::triangle(u1, u2);
@@ -233,7 +234,7 @@ impl Targets {
         // is lumens/s · q/(1 + q).
         let q = shape.area * from.arrival_density(y, n_y);
         if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
-            return 0.0;
+            return None;
         }
         // The shadow ray runs from the target back to the departure: only the target's
         // end needs an offset, and one rule serves points and parallel beams.
@@ -260,9 +261,9 @@ impl Targets {
             }
         };
         if accel.occluded(&ray) {
-            return 0.0;
+            return Some(0.0);
         }
-        (from.lumens / from.survival * q / (1.0 + q)) as f64
+        Some((from.lumens / from.survival * q / (1.0 + q)) as f64)
     }
 }
 
