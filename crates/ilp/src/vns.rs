@@ -406,7 +406,14 @@ impl<'s> Search<'s> {
         };
         self.started = true;
         self.iteration = 1;
-        self.report(observer, 0, config, cell, estimate, seconds, verdict)
+        let record = Record {
+            iteration: 0,
+            config,
+            estimate,
+            seconds,
+            verdict,
+        };
+        self.report(observer, cell, record)
     }
 
     /// Algorithm 3.2: up to `tries` candidates in N(x, r); true on the first improvement.
@@ -467,16 +474,14 @@ impl<'s> Search<'s> {
             } else {
                 None
             };
-            let shown = verdict.unwrap_or(Verdict::Refine);
-            self.report(
-                observer,
+            let record = Record {
                 iteration,
-                config.clone(),
-                cell.clone(),
-                fast,
+                config: config.clone(),
+                estimate: fast,
                 seconds,
-                shown,
-            )?;
+                verdict: verdict.unwrap_or(Verdict::Refine),
+            };
+            self.report(observer, cell.clone(), record)?;
             if let Some(v) = verdict {
                 return Ok(v);
             }
@@ -506,9 +511,14 @@ impl<'s> Search<'s> {
                 }
             }
         };
-        self.report(
-            observer, iteration, config, cell, estimate, seconds, verdict,
-        )?;
+        let record = Record {
+            iteration,
+            config,
+            estimate,
+            seconds,
+            verdict,
+        };
+        self.report(observer, cell, record)?;
         Ok(verdict)
     }
 
@@ -532,16 +542,14 @@ impl<'s> Search<'s> {
                     ..m.clone()
                 });
             }
-            let iteration = self.iteration;
-            self.report(
-                observer,
-                iteration,
-                m.config,
-                m.cell,
+            let record = Record {
+                iteration: self.iteration,
+                config: m.config,
                 estimate,
                 seconds,
-                Verdict::Final,
-            )?;
+                verdict: Verdict::Final,
+            };
+            self.report(observer, m.cell, record)?;
         }
         Ok(())
     }
@@ -560,29 +568,19 @@ impl<'s> Search<'s> {
         Ok((e, t.elapsed().as_secs_f64()))
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Remembers the cell's estimate and verdict and tells the observer.
     fn report<O: Observer, X>(
         &mut self,
         observer: &mut O,
-        iteration: u64,
-        config: Configuration,
         cell: Cell,
-        estimate: Estimate,
-        seconds: f64,
-        verdict: Verdict,
+        record: Record,
     ) -> Result<(), SearchError<X>> {
+        let (estimate, verdict) = (record.estimate, record.verdict);
         self.cache.insert(cell, Entry { estimate, verdict });
         let changed = matches!(
             verdict,
             Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final
         );
-        let record = Record {
-            iteration,
-            config,
-            estimate,
-            seconds,
-            verdict,
-        };
         observer
             .evaluated(&record, &self.isoc, changed)
             .map_err(SearchError::Output)
