@@ -530,3 +530,42 @@ fn targets_sharing_an_instance() {
         "room around its floor",
     );
 }
+
+#[test]
+fn a_thin_target_lit_from_both_sides() {
+    // A single black quad between a point lamp above and a spot below aimed up at it:
+    // arrivals and connections on either face, photons drawn from two kinds of lights in
+    // proportion to their flux. The spot's part is the mirror image of a spot above.
+    let mut scene = Scene::default();
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let r = [-0.5, 0.7, -0.4, 0.4];
+    let [x0, x1, y0, y1] = r.map(|c| c as f32);
+    let sheet = scene.add_mesh(rect(x0, x1, y0, y1, 0.0, black));
+    scene.add_instance("Sheet", sheet, Mat4::IDENTITY);
+    scene.lights.push(point(Vec3::new(0.1, -0.1, 0.6), 30.0));
+    let (inner, outer) = (0.3f32, 0.7f32);
+    let axis = Vec3::new(-0.2, 0.1, 1.0).normalize();
+    let at = Vec3::new(0.3, 0.0, -0.8);
+    scene.lights.push(Light {
+        name: "Spot".into(),
+        kind: LightKind::Spot {
+            position: at,
+            direction: axis,
+            intensity: Vec3::splat(80.0),
+            inner,
+            outer,
+        },
+    });
+    let area = ((r[1] - r[0]) * (r[3] - r[2])) as f64;
+    let above = 30.0 * rect_solid_angle(r[0] - 0.1, r[1] - 0.1, r[2] + 0.1, r[3] + 0.1, 0.6) / area;
+    let mirrored = |v: Vec3| [v.x as f64, v.y as f64, -v.z as f64];
+    let below = spot_on_rect(
+        mirrored(at),
+        mirrored(axis),
+        80.0,
+        (inner.cos() as f64, outer.cos() as f64),
+        r,
+    );
+    let e = measure(&scene, &["Sheet"], 262_144);
+    assert_close(&e[0], above + below, "sheet lit from both sides");
+}
