@@ -556,7 +556,7 @@ fn a_thin_target_lit_from_both_sides() {
             outer,
         },
     });
-    let area = ((r[1] - r[0]) * (r[3] - r[2])) as f64;
+    let area = (r[1] - r[0]) * (r[3] - r[2]);
     let above = 30.0 * rect_solid_angle(r[0] - 0.1, r[1] - 0.1, r[2] + 0.1, r[3] + 0.1, 0.6) / area;
     let mirrored = |v: Vec3| [v.x as f64, v.y as f64, -v.z as f64];
     let below = spot_on_rect(
