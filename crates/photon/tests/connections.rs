@@ -8,8 +8,10 @@
 //!   the box, so the box's flux is Φ − IΩ + ρ·IΩ with ρ the floor's luminance albedo, a
 //!   closed form for textured colours, parts summing to more than one, mirrors, glass and
 //!   emitters, and the floor itself (mirror, glass, emitter as a target) gets IΩ.
-//! - Spot, sun and hole closed forms checked over 400 seeds: coverage of the 95 %
-//!   intervals, the pooled mean, and the spread of the means against the reported errors.
+//! - A spot across its cap and ring and the sun on a block, checked over 400 seeds:
+//!   coverage of the 95 % intervals, the pooled mean, and the spread of the means against
+//!   the reported errors; a lamp through a hole, a sheet lit from both sides and targets
+//!   sharing an instance against closed forms.
 //!
 //! Tolerances are 4 σ of the errors the estimates report (or, for pooled checks, of their
 //! observed spread); seeds are fixed.
