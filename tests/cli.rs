@@ -607,7 +607,7 @@ mod measure {
 
     /// The JSON of issue 2: photons, rays, seconds and per surface its name, area, mean,
     /// interval, standard error and hits, in the order asked; with the estimator and
-    /// its shadow rays.
+    /// its connection rays.
     #[test]
     fn json_shape() {
         let file = data("triple/room.gltf");
@@ -619,16 +619,16 @@ mod measure {
         // Whole stratified groups of 64: 20 000 → 20 032.
         assert_eq!(out["photons"], 20032);
         assert!(out["rays"].as_u64().unwrap() >= 20000, "{out}");
-        // Connections by default: a shadow ray for most departures.
+        // Connections by default: a ray toward the target for most departures.
         assert_eq!(out["estimator"], "connected");
-        assert!(out["shadow_rays"].as_u64().unwrap() >= 20000, "{out}");
+        assert!(out["connection_rays"].as_u64().unwrap() >= 20000, "{out}");
         let thesis = measure(
             &file,
             &["Box", "Floor"],
             &["--photons", "20000", "--seed", "5", "--arrivals-only"],
         );
         assert_eq!(thesis["estimator"], "arrivals");
-        assert_eq!(thesis["shadow_rays"], 0);
+        assert_eq!(thesis["connection_rays"], 0);
         assert!(f64_of(&out["seconds"]) >= 0.0);
         let surfaces = out["surfaces"].as_array().unwrap();
         let names: Vec<&str> = surfaces

@@ -83,7 +83,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
             })
             .collect();
         let out = json!({"photons": result.photons, "rays": result.rays,
-                         "shadow_rays": result.shadow_rays,
+                         "connection_rays": result.connection_rays,
                          "estimator": if settings.connect { "connected" } else { "arrivals" },
                          "seconds": seconds,
                          "build_seconds": build_seconds, "confidence": args.trace.confidence, "seed": args.trace.seed,
@@ -108,10 +108,10 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<()> {
             );
         }
         println!(
-            "{} photons, {} rays and {} shadow rays, {:.2} s ({:.2} M photons/s), {:.0} lm emitted",
+            "{} photons, {} rays and {} connection rays, {:.2} s ({:.2} M photons/s), {:.0} lm emitted",
             result.photons,
             result.rays,
-            result.shadow_rays,
+            result.connection_rays,
             seconds,
             result.photons as f64 / seconds / 1e6,
             result.flux

@@ -6,7 +6,7 @@
 //! from the photons that happen to hit it. A photon that leaves a light or a diffuse
 //! surface sends its expected power toward the target along every direction that sees
 //! it; a connection estimates that flux from one point drawn on the target (uniform in
-//! area) and a shadow ray, before the Russian roulette decides the photon's fate, so even
+//! area) and a ray toward it, before the Russian roulette decides the photon's fate, so even
 //! absorbed photons report what their reflection would have brought.
 //!
 //! Both ways of reaching a target point y from a departure x (the connection, and the
@@ -22,8 +22,8 @@
 use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
-use invlight_scene::{Scene, SurfaceId};
-use invlight_trace::{Accel, Ray, SHADOW_EPSILON, offset_point};
+use invlight_scene::{InstanceId, Scene, SurfaceId};
+use invlight_trace::{Accel, OFFSET_SCALE, Ray, offset_point};
 use std::f32::consts::PI;
 
 /// How a photon leaves a point: the directional distribution of its next ray.
@@ -142,6 +142,9 @@ struct Shape {
     cdf: Vec<f64>,
     /// Total area, m²: 1/area is the connection's density p_a.
     area: f32,
+    /// The instances the target covers, sorted: a connection counts when its ray's first
+    /// hit is one of them.
+    instances: Vec<InstanceId>,
 }
 
 /// The measured targets as connections see them: the triangles photons can arrive on
@@ -160,6 +163,9 @@ impl Targets {
             .map(|&s| {
                 let mut shape = Shape::default();
                 let mut total = 0.0f64;
+                shape.instances = scene.surfaces[s as usize].instances.clone();
+                shape.instances.sort_unstable();
+                shape.instances.dedup();
                 for &i in &scene.surfaces[s as usize].instances {
                     let inst = &scene.instances[i as usize];
                     let mesh = &scene.meshes[inst.mesh as usize];
@@ -210,7 +216,7 @@ impl Targets {
 
     /// Connects `from` to a point drawn on target `t`: the luminous power, lm, this
     /// connection counts toward the target's total (zero when the point is hidden), or
-    /// `None` when no shadow ray was needed (the point is in a hole or outside the lobe).
+    /// `None` when no ray was needed (the point is in a hole or outside the lobe).
     /// Draws three numbers from `sampler` whatever happens, so the photons of a
     /// stratified group stay aligned.
     #[inline]
@@ -236,31 +242,33 @@ impl Targets {
         if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
             return None;
         }
-        // The shadow ray runs from the target back to the departure: only the target's
-        // end needs an offset, and one rule serves points and parallel beams.
-        let ray = match from.lobe {
-            Lobe::Parallel { direction, .. } => {
-                let back = -direction;
-                let side = if n_y.dot(back) >= 0.0 { n_y } else { -n_y };
-                Ray::new(offset_point(y, side), back)
-            }
-            _ => {
-                let side = if n_y.dot(from.point - y) >= 0.0 {
-                    n_y
-                } else {
-                    -n_y
-                };
-                let origin = offset_point(y, side);
-                let d = from.point - origin;
-                let dist = d.length();
-                Ray {
-                    origin,
-                    dir: d / dist,
-                    t_max: dist * (1.0 - SHADOW_EPSILON),
-                }
-            }
+        // The connection's ray goes the way the photon would: from the departure (offset
+        // as a spawned ray is; for the sun, from behind the scene) toward y, and counts
+        // when its first hit is the target at y. A ray from y back to the departure
+        // would pass surfaces lying on the target or within the offset of it (a decal on
+        // a floor, a box standing on a table), which the photons' own rays stop at: the
+        // two estimators would then measure different things (found in review).
+        let origin = match from.lobe {
+            Lobe::Parallel { direction, area } => y - direction * (2.02 * (area / PI).sqrt()),
+            Lobe::Cosine { normal } => offset_point(from.point, normal),
+            _ => from.point,
         };
-        if accel.occluded(&ray) {
+        let d = y - origin;
+        let dist = d.length();
+        if !(dist > 0.0 && dist.is_finite()) {
+            return None;
+        }
+        // The rounding of the two ends: the offsets' own scale, a few times over.
+        let slack = 8.0 * OFFSET_SCALE * origin.abs().max(y.abs()).max_element().max(1.0 / 32.0);
+        let ray = Ray {
+            origin,
+            dir: d / dist,
+            t_max: dist + slack,
+        };
+        let reached = accel.intersect(&ray).is_some_and(|hit| {
+            (hit.t - dist).abs() <= slack && shape.instances.binary_search(&hit.instance).is_ok()
+        });
+        if !reached {
             return Some(0.0);
         }
         Some((from.lumens / from.survival * q / (1.0 + q)) as f64)

@@ -5,7 +5,7 @@
 //! - [`trace`] measures surfaces: it returns one [`Tally`] per target, from which
 //!   [`TraceResult::estimate`] gives the mean illuminance in lux with its standard error.
 //!   Besides the photons' arrivals it counts [`Targets::connect`]ions: each photon
-//!   departure joined to a point on each target by a shadow ray, the two weighted by
+//!   departure joined to a point on each target by a ray, the two weighted by
 //!   multiple importance sampling.
 //! - [`trace_photon`] follows one photon and reports its arrivals to a [`PathVisitor`];
 //!   rendering stores photons through it.

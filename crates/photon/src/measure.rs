@@ -154,8 +154,8 @@ pub struct TraceResult {
     pub photons: u64,
     /// Rays cast (closest-hit queries).
     pub rays: u64,
-    /// Shadow rays cast by connections (any-hit queries).
-    pub shadow_rays: u64,
+    /// Rays cast by connections (closest-hit queries toward the targets).
+    pub connection_rays: u64,
     /// One tally per target, in the order the targets were given.
     pub tallies: Vec<Tally>,
     /// Luminous power that left the scene, Σ over photons, lm·photons (divide by N).
@@ -219,7 +219,7 @@ struct ChunkTally<'a> {
     connect: Option<(&'a Targets, &'a Accel)>,
     tallies: PhotonTallies,
     escaped: f64,
-    shadow_rays: u64,
+    connection_rays: u64,
 }
 
 impl PathVisitor for ChunkTally<'_> {
@@ -228,7 +228,7 @@ impl PathVisitor for ChunkTally<'_> {
         if let Some((targets, accel)) = self.connect {
             for t in 0..targets.len() {
                 if let Some(lumens) = targets.connect(t, from, accel, sampler) {
-                    self.shadow_rays += 1;
+                    self.connection_rays += 1;
                     self.tallies.add(t as u32, lumens);
                 }
             }
@@ -279,7 +279,7 @@ pub fn trace(
     let mut result = TraceResult {
         photons: settings.photons,
         rays: 0,
-        shadow_rays: 0,
+        connection_rays: 0,
         tallies: vec![Tally::default(); targets.len()],
         escaped: 0.0,
         flux: emitters.total_flux(),
@@ -294,12 +294,12 @@ pub fn trace(
             connect: settings.connect.then_some((&shapes, accel)),
             tallies: PhotonTallies::new(targets.len()),
             escaped: 0.0,
-            shadow_rays: 0,
+            connection_rays: 0,
         },
         |part| {
             part.tallies.add_to(&mut result.tallies);
             result.escaped += part.escaped;
-            result.shadow_rays += part.shadow_rays;
+            result.connection_rays += part.connection_rays;
         },
         progress,
     );

@@ -577,3 +577,23 @@ fn connections_cut_the_error() {
     let ratio = arrivals.std_error / connected.std_error;
     assert!(ratio > 3.0, "patch in a closed room: σ ratio {ratio}");
 }
+
+#[test]
+fn a_target_just_under_another_surface_stays_dark() {
+    // A 1 × 1 m patch 2 µm under a lit floor, closer than the rays' offsets: photons stop
+    // at the floor, and so must connections (their rays run from the departure toward
+    // the target and count only when the target is what they hit first).
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let floor = scene.add_mesh(rect(-2.0, 2.0, -2.0, 2.0, 0.0, grey));
+    let patch = scene.add_mesh(rect(-0.5, 0.5, -0.5, 0.5, -2.0e-6, black));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    scene.add_instance("Patch", patch, Mat4::IDENTITY);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.0, 0.0, 1.5), 100.0));
+    for e in &measure(&scene, &["Patch"], 100_000)[0] {
+        assert_eq!(e.mean, 0.0);
+    }
+}
