@@ -169,10 +169,11 @@ impl TraceResult {
     /// error: F_N = Σ_g X_g / (A·N) (thesis eq. 3.2, the photons summed group by group),
     /// the standard error from the spread of the groups' sums.
     ///
-    /// A target nothing reached (no arrival, no connection) has a sample variance of zero, which would claim the
-    /// mean 0 exact and let a comparison rule the surface out on no evidence. Its standard
-    /// error is then taken as the illuminance one arrival would have given, Φ/(A·N): the
-    /// binomial σ with the hit probability 1/N, the smallest that is not ruled out.
+    /// A target nothing reached (no arrival, no connection) has a sample variance of
+    /// zero, which would claim the mean 0 exact and let a comparison rule the surface out
+    /// on no evidence. Its standard error is then taken as the illuminance one arrival
+    /// would have given, Φ/(A·N): the binomial σ with the hit probability 1/N, the
+    /// smallest that is not ruled out.
     pub fn estimate(&self, i: usize, area: f64) -> Estimate {
         self.tallies[i].estimate(area, self.photons, self.flux)
     }

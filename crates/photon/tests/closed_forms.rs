@@ -562,9 +562,9 @@ fn connections_cut_the_error() {
     // direct light (the point lamp over a square: the connection sees the lamp from every
     // point it draws) and on a patch in a closed room (its reflected light), by at least
     // half the measured ratios (8.1 and 5.7; without connections they would be 1). Each σ
-    // is estimated from 3125–6250 groups, to about 2 %. (On the whole
-    // room as target connections gain little: there the variance is that of the paths'
-    // lengths, which only absorption decides.)
+    // is estimated from 3125–6250 groups, to about 2 %. (On the whole room as target
+    // connections gain little: there the variance is that of the paths' lengths, which
+    // only absorption decides.)
     let (square, _) = lamp_over_square();
     let [arrivals, connected] = measure(&square, &["Floor"], 400_000)[0];
     let ratio = arrivals.std_error / connected.std_error;
