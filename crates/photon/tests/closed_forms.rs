@@ -530,7 +530,7 @@ fn lamp_touching_its_target() {
 #[test]
 fn sun_through_a_hole_in_the_roof() {
     // A vertical sun of E lx through a 1 × 1 m hole in a 10 × 10 m roof onto a black
-    // 4 × 4 m floor below it: the floor gets E·1/16 on average. Shadow rays and photons
+    // 4 × 4 m floor below it: the floor gets E·1/16 on average. Connection rays and photons
     // must both pass through the hole and nowhere else.
     let mut scene = Scene::default();
     let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));

@@ -487,7 +487,7 @@ fn sun_on_a_block_from_every_side() {
 fn lamp_through_a_hole_and_a_roof_around_it() {
     // A 100 cd lamp 1 m above a 10 × 10 m roof with a 1 × 1 m hole: the black floor 3 m
     // below gets I·Ω_hole, the roof (measured over its whole area, the hole included)
-    // I·(Ω_roof − Ω_hole). Shadow rays pass the hole and nothing else.
+    // I·(Ω_roof − Ω_hole). Connection rays pass the hole and nothing else.
     let mut scene = Scene::default();
     let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
     let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
