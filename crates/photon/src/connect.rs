@@ -201,16 +201,17 @@ impl Targets {
         self.shapes.is_empty()
     }
 
-    /// The share of an arrival on target `t` at `y` (unit normal `n_y`) coming from
-    /// `from` that the arrival counts: p_b/(p_a + p_b); 1 for a target with nothing to
-    /// connect to.
+    /// The share of an arrival on target `t` that the arrival counts, p_b/(p_a + p_b),
+    /// from its [`Departure::arrival_density`] p_b (which does not depend on the target,
+    /// so an arrival on several targets computes it once); 1 for a target with nothing
+    /// to connect to.
     #[inline]
-    pub fn arrival_weight(&self, t: usize, from: &Departure, y: Vec3, n_y: Vec3) -> f32 {
+    pub fn arrival_weight(&self, t: usize, density: f32) -> f32 {
         let area = self.shapes[t].area;
         if area <= 0.0 {
             return 1.0;
         }
-        let q = area * from.arrival_density(y, n_y);
+        let q = area * density;
         if q.is_infinite() { 1.0 } else { q / (1.0 + q) }
     }
 
@@ -233,7 +234,7 @@ impl Targets {
         if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
             return None;
         }
-        let (p0, e1, e2, n_y) = shape.tris[crate::sampling::pick(&shape.cdf, pick)];
+        let (p0, e1, e2, n_y) = shape.tris[sampling::pick(&shape.cdf, pick)];
         let (b1, b2) = sampling::triangle(u1, u2);
         let y = p0 + e1 * b1 + e2 * b2;
         // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)

@@ -238,10 +238,17 @@ impl PathVisitor for ChunkTally<'_> {
 
     #[inline]
     fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
+        let on = self.map.of(at.instance);
+        if on.is_empty() {
+            return;
+        }
         let lumens = luminance(power);
-        for &t in self.map.of(at.instance) {
-            let w = match self.connect {
-                Some((targets, _)) => targets.arrival_weight(t as usize, from, at.point, at.normal),
+        let weighing = self
+            .connect
+            .map(|(targets, _)| (targets, from.arrival_density(at.point, at.normal)));
+        for &t in on {
+            let w = match weighing {
+                Some((targets, density)) => targets.arrival_weight(t as usize, density),
                 None => 1.0,
             };
             self.tallies.arrive(t, (lumens * w) as f64);
