@@ -4,6 +4,9 @@
 //! is measured with both estimators: the photons' arrivals alone (the thesis) and
 //! arrivals weighted against connections to the target (`TraceSettings::connect`).
 
+mod common;
+
+use common::{point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Estimate, TraceSettings, trace};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
 use invlight_trace::Accel;
@@ -39,46 +42,29 @@ fn measure(scene: &Scene, names: &[&str], photons: u64) -> Vec<[Estimate; 2]> {
         .collect()
 }
 
+/// Both estimates within 4 σ of `exact`.
 fn assert_close(both: &[Estimate; 2], exact: f64, what: &str) {
     for (e, how) in both.iter().zip(NAMES) {
-        let err = (e.mean - exact).abs();
-        assert!(
-            err < Z * e.std_error,
-            "{what} ({how}): estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
-            e.mean,
-            e.std_error,
-            err / e.std_error
-        );
-        // The interval must also be informative, or the check above means nothing.
-        assert!(
-            e.std_error < 0.02 * exact,
-            "{what} ({how}): σ {} too large",
-            e.std_error
-        );
+        assert_one(e, exact, &format!("{what} ({how})"));
     }
 }
 
-fn point(name: &str, position: Vec3, cd: f32) -> Light {
-    Light {
-        name: name.into(),
-        kind: LightKind::Point {
-            position,
-            intensity: Vec3::splat(cd),
-        },
-    }
-}
-
-/// A horizontal rectangle [x0,x1]×[y0,y1] at height z, counter-clockwise seen from +z.
-fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: u32) -> Mesh {
-    Mesh::quad(
-        [
-            Vec3::new(x0, y0, z),
-            Vec3::new(x1, y0, z),
-            Vec3::new(x1, y1, z),
-            Vec3::new(x0, y1, z),
-        ],
-        m,
-    )
+/// `e` within 4 of its σ of `exact`, with σ below 2 % of it.
+fn assert_one(e: &Estimate, exact: f64, what: &str) {
+    let err = (e.mean - exact).abs();
+    assert!(
+        err < Z * e.std_error,
+        "{what}: estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
+        e.mean,
+        e.std_error,
+        err / e.std_error
+    );
+    // The interval must also be informative, or the check above means nothing.
+    assert!(
+        e.std_error < 0.02 * exact,
+        "{what}: σ {} too large",
+        e.std_error
+    );
 }
 
 /// A closed 4 × 3 × 2.5 m room (the surface "Room", area 79 m²) of reflectance `kd`
@@ -92,17 +78,6 @@ fn closed_room(kd: Vec3) -> Scene {
         .lights
         .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
     scene
-}
-
-/// Solid angle of the rectangle [0,x]×[0,y] at z = 0 seen from (0,0,h), signed by x·y.
-fn corner_solid_angle(x: f64, y: f64, h: f64) -> f64 {
-    (x * y / (h * (x * x + y * y + h * h).sqrt())).atan()
-}
-
-/// Solid angle of [x0,x1]×[y0,y1] at z = 0 seen from (0,0,h) (corner decomposition).
-fn rect_solid_angle(x0: f64, x1: f64, y0: f64, y1: f64, h: f64) -> f64 {
-    corner_solid_angle(x1, y1, h) - corner_solid_angle(x0, y1, h) - corner_solid_angle(x1, y0, h)
-        + corner_solid_angle(x0, y0, h)
 }
 
 #[test]
@@ -324,7 +299,7 @@ fn spot_light_flux_reaches_the_floor() {
     // Every photon lands: arrivals alone have no variance, so compare to rounding.
     assert!((arrivals.mean - flux / 400.0).abs() < 1e-4 * flux / 400.0);
     // Connections see the spot's profile from every floor point they draw.
-    assert_close(&[connected; 2], flux / 400.0, "spot");
+    assert_one(&connected, flux / 400.0, "spot (connected)");
 }
 
 #[test]
@@ -478,7 +453,7 @@ fn stratification_shrinks_the_error_of_direct_light() {
         "σ {} lx, binomial σ {binomial} lx",
         e.std_error
     );
-    assert_close(&[e; 2], exact, "stratified point over square");
+    assert_one(&e, exact, "stratified point over square (arrivals)");
 }
 
 /// View factor from an l × w rectangle to an l × h one standing on their common edge of
@@ -532,16 +507,7 @@ fn sun_through_a_hole_in_the_roof() {
     // A vertical sun of E lx through a 1 × 1 m hole in a 10 × 10 m roof onto a black
     // 4 × 4 m floor below it: the floor gets E·1/16 on average. Connection rays and photons
     // must both pass through the hole and nowhere else.
-    let mut scene = Scene::default();
-    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
-    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
-    let hole = scene.add_material(Material::hole("Hole"));
-    let roof = scene.add_mesh(rect(-5.0, 5.0, -5.0, 5.0, 3.0, grey));
-    let opening = scene.add_mesh(rect(0.0, 1.0, 0.0, 1.0, 3.0, hole));
-    let floor = scene.add_mesh(rect(-2.0, 2.0, -2.0, 2.0, 0.0, black));
-    scene.add_instance("Roof", roof, Mat4::IDENTITY);
-    scene.add_instance("Opening", opening, Mat4::IDENTITY);
-    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    let mut scene = roof_with_hole(2.0);
     scene.lights.push(Light {
         name: "Sun".into(),
         kind: LightKind::Directional {

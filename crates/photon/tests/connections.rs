@@ -16,10 +16,11 @@
 //! Tolerances are 4 σ of the errors the estimates report (or, for pooled checks, of their
 //! observed spread); seeds are fixed.
 
+mod common;
+
+use common::{point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Emitters, Estimate, GroupKeys, Lobe, Sampler, TraceSettings, trace};
-use invlight_scene::{
-    Light, LightKind, Mat4, Material, Mesh, Scene, Texture, Vec2, Vec3, luminance,
-};
+use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Texture, Vec3, luminance};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
 
@@ -105,48 +106,6 @@ fn assert_honest(scene: &Scene, name: &str, exact: f64) {
     );
 }
 
-fn point(position: Vec3, cd: f32) -> Light {
-    Light {
-        name: "Lamp".into(),
-        kind: LightKind::Point {
-            position,
-            intensity: Vec3::splat(cd),
-        },
-    }
-}
-
-/// A horizontal rectangle [x0,x1]×[y0,y1] at height z, counter-clockwise seen from +z,
-/// with texture coordinates (0,0)..(1,1) from corner (x0,y0) to (x1,y1).
-fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: u32) -> Mesh {
-    let mut q = Mesh::quad(
-        [
-            Vec3::new(x0, y0, z),
-            Vec3::new(x1, y0, z),
-            Vec3::new(x1, y1, z),
-            Vec3::new(x0, y1, z),
-        ],
-        m,
-    );
-    q.uvs = vec![
-        Vec2::new(0.0, 0.0),
-        Vec2::new(1.0, 0.0),
-        Vec2::new(1.0, 1.0),
-        Vec2::new(0.0, 1.0),
-    ];
-    q
-}
-
-/// Solid angle of the rectangle [0,x]×[0,y] at z = 0 seen from (0,0,h), signed by x·y.
-fn corner_solid_angle(x: f64, y: f64, h: f64) -> f64 {
-    (x * y / (h * (x * x + y * y + h * h).sqrt())).atan()
-}
-
-/// Solid angle of [x0,x1]×[y0,y1] at z = 0 seen from (0,0,h) (corner decomposition).
-fn rect_solid_angle(x0: f64, x1: f64, y0: f64, y1: f64, h: f64) -> f64 {
-    corner_solid_angle(x1, y1, h) - corner_solid_angle(x0, y1, h) - corner_solid_angle(x1, y0, h)
-        + corner_solid_angle(x0, y0, h)
-}
-
 /// Checks that the directions `Emitters::sample` draws from the only light of `scene`
 /// follow the sample's own `Lobe::pdf`: 40 bins of cos θ about `axis` in [`lo`, 1], each
 /// holding N·∫pdf 2π dcos θ of N = 262 144 samples within 4 binomial σ (stratification only
@@ -211,7 +170,7 @@ fn spot_point_and_panel_draw_what_their_pdf_says() {
         },
     });
     assert_directions_follow_pdf(&scene, axis, outer.cos() as f64 - 0.02);
-    scene.lights[0] = point(Vec3::ZERO, 100.0);
+    scene.lights[0] = point("Lamp", Vec3::ZERO, 100.0);
     assert_directions_follow_pdf(&scene, axis, -1.0);
     // A panel facing -z: Lambertian about its normal.
     let mut scene = Scene::default();
@@ -308,7 +267,9 @@ fn enclosure(floor: Material, texture: Option<Texture>, bottom: bool) -> Scene {
     let fl = scene.add_mesh(rect(-1.0, 1.0, -1.0, 1.0, 0.0, f));
     scene.add_instance("Floor", fl, Mat4::IDENTITY);
     let [x, y, z] = LAMP.map(|c| c as f32);
-    scene.lights.push(point(Vec3::new(x, y, z), CANDELA as f32));
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(x, y, z), CANDELA as f32));
     scene
 }
 
@@ -488,17 +449,10 @@ fn lamp_through_a_hole_and_a_roof_around_it() {
     // A 100 cd lamp 1 m above a 10 × 10 m roof with a 1 × 1 m hole: the black floor 3 m
     // below gets I·Ω_hole, the roof (measured over its whole area, the hole included)
     // I·(Ω_roof − Ω_hole). Connection rays pass the hole and nothing else.
-    let mut scene = Scene::default();
-    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
-    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
-    let hole = scene.add_material(Material::hole("Hole"));
-    let roof = scene.add_mesh(rect(-5.0, 5.0, -5.0, 5.0, 3.0, grey));
-    let opening = scene.add_mesh(rect(0.0, 1.0, 0.0, 1.0, 3.0, hole));
-    let floor = scene.add_mesh(rect(-4.0, 4.0, -4.0, 4.0, 0.0, black));
-    scene.add_instance("Roof", roof, Mat4::IDENTITY);
-    scene.add_instance("Opening", opening, Mat4::IDENTITY);
-    scene.add_instance("Floor", floor, Mat4::IDENTITY);
-    scene.lights.push(point(Vec3::new(0.2, 0.3, 4.0), 100.0));
+    let mut scene = roof_with_hole(4.0);
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.2, 0.3, 4.0), 100.0));
     let hole = rect_solid_angle(-0.2, 0.8, -0.3, 0.7, 1.0);
     let roof = rect_solid_angle(-5.2, 4.8, -5.3, 4.7, 1.0);
     let e = measure(&scene, &["Floor", "Roof"], 524_288);
@@ -523,7 +477,9 @@ fn targets_sharing_an_instance() {
     let f = scene.add_mesh(rect(0.0, 4.0, 0.0, 3.0, 0.0, m));
     let floor = scene.add_instance("Floor", f, Mat4::IDENTITY);
     scene.add_to_surface("Room", floor);
-    scene.lights.push(point(Vec3::new(1.0, 2.0, 2.0), 100.0));
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let e = measure(&scene, &["Floor", "Room"], 262_144);
     assert_close(
@@ -544,7 +500,9 @@ fn a_thin_target_lit_from_both_sides() {
     let [x0, x1, y0, y1] = r.map(|c| c as f32);
     let sheet = scene.add_mesh(rect(x0, x1, y0, y1, 0.0, black));
     scene.add_instance("Sheet", sheet, Mat4::IDENTITY);
-    scene.lights.push(point(Vec3::new(0.1, -0.1, 0.6), 30.0));
+    scene
+        .lights
+        .push(point("Lamp", Vec3::new(0.1, -0.1, 0.6), 30.0));
     let (inner, outer) = (0.3f32, 0.7f32);
     let axis = Vec3::new(-0.2, 0.1, 1.0).normalize();
     let at = Vec3::new(0.3, 0.0, -0.8);
