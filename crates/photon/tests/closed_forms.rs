@@ -6,13 +6,11 @@
 
 mod common;
 
-use common::{point, rect, rect_solid_angle, roof_with_hole};
+use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Estimate, TraceSettings, trace};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
-
-const Z: f64 = 4.0;
 
 /// `connect` of the two estimators, in the order [`measure`] returns them.
 const ESTIMATORS: [bool; 2] = [false, true];
@@ -49,22 +47,9 @@ fn assert_close(both: &[Estimate; 2], exact: f64, what: &str) {
     }
 }
 
-/// `e` within 4 of its σ of `exact`, with σ below 2 % of it.
+/// `e` within 4 σ of `exact`, with σ below 2 % of it.
 fn assert_one(e: &Estimate, exact: f64, what: &str) {
-    let err = (e.mean - exact).abs();
-    assert!(
-        err < Z * e.std_error,
-        "{what}: estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
-        e.mean,
-        e.std_error,
-        err / e.std_error
-    );
-    // The interval must also be informative, or the check above means nothing.
-    assert!(
-        e.std_error < 0.02 * exact,
-        "{what}: σ {} too large",
-        e.std_error
-    );
+    assert_near(e, exact, 0.02, what);
 }
 
 /// A closed 4 × 3 × 2.5 m room (the surface "Room", area 79 m²) of reflectance `kd`

@@ -18,13 +18,11 @@
 
 mod common;
 
-use common::{point, rect, rect_solid_angle, roof_with_hole};
+use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Emitters, Estimate, GroupKeys, Lobe, Sampler, TraceSettings, trace};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Texture, Vec3, luminance};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
-
-const Z: f64 = 4.0;
 
 fn settings(photons: u64, seed: u64) -> TraceSettings {
     TraceSettings {
@@ -46,21 +44,9 @@ fn measure(scene: &Scene, names: &[&str], photons: u64) -> Vec<Estimate> {
         .collect()
 }
 
+/// `e` within 4 σ of `exact`, with σ below 1 % of it.
 fn assert_close(e: &Estimate, exact: f64, what: &str) {
-    let err = (e.mean - exact).abs();
-    assert!(
-        err < Z * e.std_error,
-        "{what}: estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
-        e.mean,
-        e.std_error,
-        err / e.std_error
-    );
-    // An interval this narrow makes the check above mean something.
-    assert!(
-        e.std_error < 0.01 * exact,
-        "{what}: σ {} too large",
-        e.std_error
-    );
+    assert_near(e, exact, 0.01, what);
 }
 
 /// Traces surface `name` of `scene` with 400 seeds of 4096 photons (64 groups) and checks

@@ -1,7 +1,30 @@
 //! Scene pieces and closed forms shared by the photon tests (`closed_forms.rs`,
 //! `connections.rs`).
 
+use invlight_photon::Estimate;
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec2, Vec3};
+
+/// Standard errors an estimate may miss its exact value by: a 4 σ miss has probability
+/// 6·10⁻⁵ for an honest interval.
+pub const Z: f64 = 4.0;
+
+/// `e` within [`Z`] of its σ of `exact`, and σ below `informative` × exact: an interval
+/// that wide would make the first check mean nothing.
+pub fn assert_near(e: &Estimate, exact: f64, informative: f64, what: &str) {
+    let err = (e.mean - exact).abs();
+    assert!(
+        err < Z * e.std_error,
+        "{what}: estimate {} ± {} lx, exact {exact} lx ({:.1} σ off)",
+        e.mean,
+        e.std_error,
+        err / e.std_error
+    );
+    assert!(
+        e.std_error < informative * exact,
+        "{what}: σ {} too large",
+        e.std_error
+    );
+}
 
 /// A point light of `cd` candela, white.
 pub fn point(name: &str, position: Vec3, cd: f32) -> Light {
