@@ -10,13 +10,41 @@
 //! memory of pending chunks constant however many photons are traced.
 
 use crate::emit::Emitters;
-use crate::measure::TraceSettings;
+use crate::estimator::GROUP;
 use crate::path::{PathVisitor, trace_photon};
-use crate::sampler::{GROUP, GroupKeys, Sampler};
+use crate::sampler::{GroupKeys, Sampler};
 use invlight_scene::Scene;
 use invlight_trace::Accel;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
+
+/// How to trace photons.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceSettings {
+    /// Photons to emit, N. Measurements ([`crate::measure`], illuminance maps) round it
+    /// up to whole groups ([`crate::photons_traced`]).
+    pub photons: u64,
+    /// Seed of the random streams; photon i uses the stream (seed, i).
+    pub seed: u64,
+    /// Surface interactions followed after the first hit from the light. Russian
+    /// roulette ends paths on its own; this is a safety cap (the thesis used 4).
+    pub max_bounces: u32,
+}
+
+impl Default for TraceSettings {
+    fn default() -> Self {
+        TraceSettings {
+            photons: 1_000_000,
+            seed: 1,
+            max_bounces: DEFAULT_MAX_BOUNCES,
+        }
+    }
+}
+
+/// The default bounce cap: high enough that, with the reflectances of real rooms, no
+/// measurable energy is cut off (0.9^1000 ≈ 2·10⁻⁴⁶), low enough to stop a photon caught
+/// between perfect mirrors.
+pub const DEFAULT_MAX_BOUNCES: u32 = 1000;
 
 /// Photons per chunk: large enough that a chunk's bookkeeping is negligible, small
 /// enough to balance two to a hundred threads; whole stratified groups.

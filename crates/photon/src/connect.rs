@@ -23,6 +23,7 @@ use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
 use invlight_scene::{InstanceId, Scene, SurfaceId};
+use invlight_stats::Distribution1D;
 use invlight_trace::{Accel, OFFSET_SCALE, Ray, offset_point};
 use std::f32::consts::PI;
 
@@ -133,13 +134,22 @@ impl Departure {
     }
 }
 
+/// What one connection found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Connection {
+    /// The point drawn on the target.
+    pub point: Vec3,
+    /// The luminous power it counts toward the target, lm (0 when hidden).
+    pub lumens: f64,
+}
+
 /// A target's triangles in world space, to draw points on uniformly by area.
 #[derive(Debug, Clone, Default)]
 struct Shape {
     /// (corner, edge 1, edge 2, unit normal) of each triangle of positive area.
     tris: Vec<(Vec3, Vec3, Vec3, Vec3)>,
-    /// Cumulative areas.
-    cdf: Vec<f64>,
+    /// The triangles by area.
+    by_area: Distribution1D,
     /// Total area, m²: 1/area is the connection's density p_a.
     area: f32,
     /// The instances the target covers, sorted: a connection counts when its ray's first
@@ -162,7 +172,7 @@ impl Targets {
             .iter()
             .map(|&s| {
                 let mut shape = Shape::default();
-                let mut total = 0.0f64;
+                let mut areas = Vec::new();
                 shape.instances = scene.surfaces[s as usize].instances.clone();
                 shape.instances.sort_unstable();
                 shape.instances.dedup();
@@ -178,13 +188,13 @@ impl Targets {
                         let cross = (b - a).cross(c - a);
                         let area = 0.5 * cross.length();
                         if area > 0.0 && area.is_finite() {
-                            total += area as f64;
+                            areas.push(area as f64);
                             shape.tris.push((a, b - a, c - a, cross / (2.0 * area)));
-                            shape.cdf.push(total);
                         }
                     }
                 }
-                shape.area = total as f32;
+                shape.by_area = Distribution1D::new(areas);
+                shape.area = shape.by_area.total() as f32;
                 shape
             })
             .collect();
@@ -215,10 +225,10 @@ impl Targets {
         if q.is_infinite() { 1.0 } else { q / (1.0 + q) }
     }
 
-    /// Connects `from` to a point drawn on target `t`: the luminous power, lm, this
-    /// connection counts toward the target's total (zero when the point is hidden), or
-    /// `None` when no ray was needed (the point is in a hole or outside the lobe).
-    /// Draws three numbers from `sampler` whatever happens, so the photons of a
+    /// Connects `from` to a point drawn on target `t`: the point and the luminous power,
+    /// lm, this connection counts toward the target's total (zero when the point is
+    /// hidden), or `None` when no ray was needed (the point is in a hole or outside the
+    /// lobe). Draws three numbers from `sampler` whatever happens, so the photons of a
     /// stratified group stay aligned.
     #[inline]
     pub fn connect(
@@ -227,14 +237,14 @@ impl Targets {
         from: &Departure,
         accel: &Accel,
         sampler: &mut Sampler<'_>,
-    ) -> Option<f64> {
+    ) -> Option<Connection> {
         let pick = sampler.uniform();
         let (u1, u2) = sampler.uniform2();
         let shape = &self.shapes[t];
         if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
             return None;
         }
-        let (p0, e1, e2, n_y) = shape.tris[sampling::pick(&shape.cdf, pick)];
+        let (p0, e1, e2, n_y) = shape.tris[shape.by_area.sample(pick)];
         let (b1, b2) = sampling::triangle(u1, u2);
         let y = p0 + e1 * b1 + e2 * b2;
         // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
@@ -269,10 +279,12 @@ impl Targets {
         let reached = accel.intersect(&ray).is_some_and(|hit| {
             (hit.t - dist).abs() <= slack && shape.instances.binary_search(&hit.instance).is_ok()
         });
-        if !reached {
-            return Some(0.0);
-        }
-        Some((from.lumens / from.survival * q / (1.0 + q)) as f64)
+        let lumens = if reached {
+            (from.lumens / from.survival * q / (1.0 + q)) as f64
+        } else {
+            0.0
+        };
+        Some(Connection { point: y, lumens })
     }
 }
 

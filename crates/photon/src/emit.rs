@@ -9,6 +9,7 @@ use crate::sampler::Sampler;
 use crate::sampling;
 use glam::Vec3;
 use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use invlight_stats::Distribution1D;
 use std::f32::consts::PI;
 
 /// Where a photon starts, where it goes and the (RGB) power it carries, lm.
@@ -109,8 +110,8 @@ enum Source {
 #[derive(Debug, Clone, Default)]
 pub struct Emitters {
     sources: Vec<Source>,
-    /// Cumulative luminous flux of `sources`.
-    cdf: Vec<f64>,
+    /// The sources by luminous flux.
+    by_flux: Distribution1D,
 }
 
 impl Emitters {
@@ -175,13 +176,10 @@ impl Emitters {
             // A Lambertian emitter of radiance L sends π·L per unit area.
             flux_rgb.push(t.emission * (PI * t.area));
         }
-        let total: f64 = flux_rgb.iter().map(|&f| luminance(f) as f64).sum();
-        let mut cdf = Vec::with_capacity(sources.len());
-        let mut acc = 0.0f64;
+        let by_flux = Distribution1D::new(flux_rgb.iter().map(|&f| luminance(f) as f64));
+        let total = by_flux.total();
         for (source, flux) in sources.iter_mut().zip(&flux_rgb) {
             let y = luminance(*flux) as f64;
-            acc += y;
-            cdf.push(acc);
             // Chosen with probability y / total, a photon carries flux · total / y.
             let power = if y > 0.0 {
                 *flux * (total / y) as f32
@@ -195,13 +193,13 @@ impl Emitters {
                 | Source::Triangle { power: p, .. } => *p = power,
             }
         }
-        Emitters { sources, cdf }
+        Emitters { sources, by_flux }
     }
 
     /// Total luminous flux of the scene's lights, lm (for the sun: what crosses the disk
     /// that covers the scene).
     pub fn total_flux(&self) -> f64 {
-        self.cdf.last().copied().unwrap_or(0.0)
+        self.by_flux.total()
     }
 
     /// Whether the scene has no light at all.
@@ -214,7 +212,7 @@ impl Emitters {
     /// stratified group stay aligned dimension by dimension whichever light they leave.
     #[inline]
     pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample {
-        let source = &self.sources[sampling::pick(&self.cdf, sampler.uniform())];
+        let source = &self.sources[self.by_flux.sample(sampler.uniform())];
         let (u1, u2) = sampler.uniform2();
         let (u3, u4) = sampler.uniform2();
         match *source {

@@ -1,36 +1,66 @@
 //! Photon tracing (thesis §2.6.1, §3.3; DESIGN.md §2): emission from every light kind in
 //! proportion to its flux, Russian roulette over diffuse, mirror, refraction and
-//! absorption, per-surface tallies, and estimates with confidence intervals.
+//! absorption, and the mean illuminance of named surfaces with its standard error.
 //!
-//! - [`trace`] measures surfaces: it returns one [`Tally`] per target, from which
-//!   [`TraceResult::estimate`] gives the mean illuminance in lux with its standard error.
-//!   Besides the photons' arrivals it counts [`Targets::connect`]ions: each photon
-//!   departure joined to a point on each target by a ray, the two weighted by
+//! - [`measure`] measures surfaces: one trace of photons, a [`Tally`] per target, from
+//!   which [`Measurement::estimate`] gives the mean illuminance in lux with its standard
+//!   error. With [`Estimator::Connected`] it also counts [`Targets::connect`]ions: each
+//!   photon departure joined to a point on each target by a ray, the two weighted by
 //!   multiple importance sampling.
-//! - [`trace_photon`] follows one photon and reports its arrivals to a [`PathVisitor`];
-//!   rendering stores photons through it.
+//! - The estimator, in one module: photons come in stratified groups of [`GROUP`],
+//!   the groups are the independent samples, [`photons_traced`] says how many photons a
+//!   request becomes, [`GroupTallies`] sums a chunk's groups.
+//! - [`trace_photon`] follows one photon and reports its departures and arrivals to a
+//!   [`PathVisitor`]; rendering stores photons and illuminance maps count cells
+//!   through it.
 //! - [`trace_chunks`] is the parallel driver of every trace: chunks of photons, each with
-//!   its own visitor, folded in index order.
-//! - [`Rng`] streams are keyed by (seed, photon index): results are bit-identical for any
-//!   thread count. [`Sampler`] stratifies them over groups of [`GROUP`] photons.
+//!   its own visitor, folded in index order, so results are bit-identical for any thread
+//!   count ([`Sampler`] streams are keyed by seed and photon index).
+//!
+//! ```
+//! use invlight_photon::{Estimator, TraceSettings, measure};
+//! use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
+//! use invlight_trace::Accel;
+//!
+//! // A 1 cd point lamp 1 m above a black 2 m × 2 m floor centred below it.
+//! let mut scene = Scene::default();
+//! let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+//! let quad = scene.add_mesh(Mesh::quad(
+//!     [Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0),
+//!      Vec3::new(1.0, 1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0)],
+//!     black,
+//! ));
+//! let floor = scene.add_instance("Floor", quad, Mat4::IDENTITY);
+//! scene.lights.push(Light {
+//!     name: "Lamp".into(),
+//!     kind: LightKind::Point { position: Vec3::new(0.0, 0.0, 1.0), intensity: Vec3::ONE },
+//! });
+//! let accel = Accel::new(&scene);
+//! let settings = TraceSettings { photons: 20_000, ..TraceSettings::default() };
+//! let m = measure(&scene, &accel, &[scene.surface("Floor").unwrap()], &settings,
+//!     Estimator::Connected, None);
+//! let e = m.estimate(0);
+//! // The floor subtends 2π/3 sr of the lamp: Φ = 2π/3 lm over 4 m².
+//! let exact = 2.0 * std::f64::consts::PI / 3.0 / 4.0;
+//! assert!((e.mean - exact).abs() < 4.0 * e.std_error);
+//! # let _ = floor;
+//! ```
 #![deny(missing_docs)]
 
 mod chunks;
 mod connect;
 mod emit;
-mod estimate;
+mod estimator;
 mod measure;
 mod path;
-mod rng;
 mod sampler;
 mod sampling;
 
-pub use chunks::{BLOCK, CHUNK, trace_chunks};
-pub use connect::{Departure, Lobe, Targets};
+pub use chunks::{BLOCK, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
+pub use connect::{Connection, Departure, Lobe, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, emissive_triangles};
-pub use estimate::{Estimate, normal_quantile, z_two_sided};
-pub use measure::{DEFAULT_MAX_BOUNCES, PhotonTallies, Tally, TraceResult, TraceSettings, trace};
+pub use estimator::{GROUP, GroupTallies, MIN_GROUPS, MIN_PHOTONS, Tally, photons_traced};
+pub use measure::{Estimator, MeasureReport, Measurement, SurfaceReport, measure};
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
-pub use rng::Rng;
-pub use sampler::{GROUP, GroupKeys, MIN_GROUPS, Sampler, whole_groups};
+pub use sampler::{GroupKeys, Sampler};
 pub use sampling::{basis, cosine_hemisphere};

@@ -1,181 +1,75 @@
-//! Measuring surfaces: per-surface tallies of the photons' arrivals (thesis §3.3, §4.9.2),
-//! accumulated without storing photons, in parallel, with results that do not depend on
-//! the number of threads.
+//! Measuring surfaces: the mean illuminance of each target from one trace of photons
+//! (thesis §3.3, §4.9.2), accumulated without storing photons, in parallel, with
+//! results that do not depend on the number of threads.
 //!
-//! Photons are traced by [`trace_chunks`], each chunk tallied on its own and the chunk
-//! tallies summed in index order: the same seed gives the same bits on one thread or
-//! many, and memory stays constant however many photons are traced.
+//! Photons are traced by [`trace_chunks`], each chunk tallied on its own
+//! ([`GroupTallies`]) and the chunk tallies summed in index order: the same seed gives
+//! the same bits on one thread or many, and memory stays constant however many photons
+//! are traced.
 
-use crate::chunks::trace_chunks;
+use crate::chunks::{TraceSettings, trace_chunks};
 use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
-use crate::estimate::Estimate;
+use crate::estimator::{GroupTallies, Tally, photons_traced};
 use crate::path::PathVisitor;
-use crate::sampler::{Sampler, whole_groups};
+use crate::sampler::Sampler;
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
+use invlight_stats::{Confidence, Estimate};
 use invlight_trace::{Accel, Interaction};
+use serde::{Deserialize, Serialize};
 
-/// How to trace.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TraceSettings {
-    /// Photons to emit, N. Measurements ([`trace`], illuminance maps) round it up to
-    /// [`whole_groups`].
-    pub photons: u64,
-    /// Seed of the random streams; photon i uses the stream (seed, i).
-    pub seed: u64,
-    /// Surface interactions followed after the first hit from the light. Russian
-    /// roulette ends paths on its own; this is a safety cap (the thesis used 4).
-    pub max_bounces: u32,
-    /// Whether [`trace`] also connects every photon departure to every target
-    /// ([`crate::Targets`]: next-event estimation toward the target, weighted against the
-    /// arrivals by multiple importance sampling) instead of counting arrivals alone as
-    /// the thesis does. Same expectation, a fraction of the variance (BENCHMARKS.md).
-    /// Visitors of [`crate::trace_chunks`] (maps, photon maps) decide for themselves.
-    pub connect: bool,
+/// How the photons' contributions to a target are counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Estimator {
+    /// Every photon departure (a light, a diffuse bounce before the roulette) is also
+    /// connected to a point on each target ([`crate::Targets`]: next-event estimation
+    /// toward the target, weighted against the arrivals by multiple importance
+    /// sampling). Same expectation as arrivals alone, a fraction of the variance for
+    /// small targets and light through openings (BENCHMARKS.md); a ray per departure
+    /// and target.
+    Connected,
+    /// Arrivals alone, as the thesis counts them (eq. 3.2): better when nearly every
+    /// photon reaches the target anyway, and the reference the connected estimator is
+    /// checked against.
+    ArrivalsOnly,
 }
 
-impl Default for TraceSettings {
-    fn default() -> Self {
-        TraceSettings {
-            photons: 1_000_000,
-            seed: 1,
-            max_bounces: DEFAULT_MAX_BOUNCES,
-            connect: true,
+impl Estimator {
+    /// `connected` or `arrivals`, as outputs name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimator::Connected => "connected",
+            Estimator::ArrivalsOnly => "arrivals",
         }
     }
 }
 
-/// The default bounce cap: high enough that, with the reflectances of real rooms, no
-/// measurable energy is cut off (0.9^1000 ≈ 2·10⁻⁴⁶), low enough to stop a photon caught
-/// between perfect mirrors.
-pub const DEFAULT_MAX_BOUNCES: u32 = 1000;
-
-/// Sums over stratified groups of one target's per-group contributions X_g, in lm (the
-/// luminous power a group of [`crate::GROUP`] photons brings to the target, all their
-/// arrivals added): groups are the independent samples (see [`crate::Sampler`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Tally {
-    /// Σ X_g.
-    pub sum: f64,
-    /// Σ X_g².
-    pub sum_sq: f64,
-    /// Number of arrivals.
-    pub hits: u64,
-}
-
-impl Tally {
-    /// The mean illuminance over `area` m² of what `photons` photons carrying `flux` lm in
-    /// all brought, in lux, with its standard error ([`TraceResult::estimate`], whose
-    /// rule for a tally nothing reached this applies: one arrival's worth, Φ/(A·N)).
-    pub fn estimate(&self, area: f64, photons: u64, flux: f64) -> Estimate {
-        let inv = 1.0 / area;
-        let mut e = Estimate::from_groups(self.sum * inv, self.sum_sq * inv * inv, photons);
-        if self.sum <= 0.0 && photons > 0 {
-            e.std_error = flux * inv / photons as f64;
-        }
-        e
-    }
-
-    fn merge(&mut self, other: &Tally) {
-        self.sum += other.sum;
-        self.sum_sq += other.sum_sq;
-        self.hits += other.hits;
-    }
-}
-
-/// One chunk's tallies of many targets, built photon by photon: a group's arrivals on a
-/// target are summed first (X_g is the group's whole contribution, all arrivals added,
-/// so that Σ X_g² is the variance's), and folded in at [`PhotonTallies::end_group`].
-/// Only the targets the group touched are visited then, so a photon costs its arrivals,
-/// not the number of targets.
-#[derive(Debug, Clone)]
-pub struct PhotonTallies {
-    tallies: Vec<Tally>,
-    current: Vec<f64>,
-    touched: Vec<u32>,
-}
-
-impl PhotonTallies {
-    /// Empty tallies of `targets` targets.
-    pub fn new(targets: usize) -> PhotonTallies {
-        PhotonTallies {
-            tallies: vec![Tally::default(); targets],
-            current: vec![0.0; targets],
-            touched: Vec::new(),
-        }
-    }
-
-    /// The current photon arrived on `target`, counting `lumens` of its power.
-    #[inline]
-    pub fn arrive(&mut self, target: u32, lumens: f64) {
-        self.add(target, lumens);
-        self.tallies[target as usize].hits += 1;
-    }
-
-    /// The current photon brings `lumens` to `target` otherwise than by arriving (a
-    /// connection).
-    #[inline]
-    pub fn add(&mut self, target: u32, lumens: f64) {
-        if lumens == 0.0 {
-            return;
-        }
-        let t = target as usize;
-        if self.current[t] == 0.0 {
-            self.touched.push(target);
-        }
-        self.current[t] += lumens;
-    }
-
-    /// The current group ended: its sums join the tallies.
-    #[inline]
-    pub fn end_group(&mut self) {
-        for &t in &self.touched {
-            let x = std::mem::take(&mut self.current[t as usize]);
-            let tally = &mut self.tallies[t as usize];
-            tally.sum += x;
-            tally.sum_sq += x * x;
-        }
-        self.touched.clear();
-    }
-
-    /// Adds these tallies to `totals`, target by target.
-    pub fn add_to(&self, totals: &mut [Tally]) {
-        for (total, t) in totals.iter_mut().zip(&self.tallies) {
-            total.merge(t);
-        }
-    }
-}
-
-/// What a trace measured.
+/// What a measurement found.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TraceResult {
-    /// Photons emitted, N: the settings' count rounded up to [`whole_groups`].
+pub struct Measurement {
+    /// Photons emitted, N: the count asked for rounded up to whole groups
+    /// ([`photons_traced`]).
     pub photons: u64,
-    /// Rays cast (closest-hit queries).
+    /// Rays cast along the photons' paths (closest-hit queries).
     pub rays: u64,
     /// Rays cast by connections (closest-hit queries toward the targets).
     pub connection_rays: u64,
     /// One tally per target, in the order the targets were given.
     pub tallies: Vec<Tally>,
+    /// Each target's area, m².
+    pub areas: Vec<f64>,
     /// Luminous power that left the scene, Σ over photons, lm·photons (divide by N).
     pub escaped: f64,
     /// The scene's total luminous flux Φ, lm: what each photon carries.
     pub flux: f64,
 }
 
-impl TraceResult {
-    /// Mean illuminance of target `i` of area `area` m², in lux, with its standard
-    /// error: F_N = Σ_g X_g / (A·N) (thesis eq. 3.2, the photons summed group by group),
-    /// the standard error from the spread of the groups' sums.
-    ///
-    /// A target nothing reached (no arrival, no connection) has a sample variance of
-    /// zero, which would claim the mean 0 exact and let a comparison rule the surface out
-    /// on no evidence. Its standard error is then taken as the illuminance one arrival
-    /// would have given, Φ/(A·N): the binomial σ with the hit probability 1/N, the
-    /// smallest that is not ruled out.
-    pub fn estimate(&self, i: usize, area: f64) -> Estimate {
-        self.tallies[i].estimate(area, self.photons, self.flux)
+impl Measurement {
+    /// Mean illuminance of target `i`, in lux, with its standard error
+    /// ([`Tally::estimate`]).
+    pub fn estimate(&self, i: usize) -> Estimate {
+        self.tallies[i].estimate(self.areas[i], self.photons, self.flux)
     }
 }
 
@@ -218,7 +112,7 @@ struct ChunkTally<'a> {
     map: &'a TargetMap,
     /// The targets to connect departures to; `None` counts arrivals alone.
     connect: Option<(&'a Targets, &'a Accel)>,
-    tallies: PhotonTallies,
+    tallies: GroupTallies,
     escaped: f64,
     connection_rays: u64,
 }
@@ -228,9 +122,9 @@ impl PathVisitor for ChunkTally<'_> {
     fn depart(&mut self, from: &Departure, sampler: &mut Sampler<'_>) {
         if let Some((targets, accel)) = self.connect {
             for t in 0..targets.len() {
-                if let Some(lumens) = targets.connect(t, from, accel, sampler) {
+                if let Some(c) = targets.connect(t, from, accel, sampler) {
                     self.connection_rays += 1;
-                    self.tallies.add(t as u32, lumens);
+                    self.tallies.add(t as u32, c.lumens);
                 }
             }
         }
@@ -267,28 +161,38 @@ impl PathVisitor for ChunkTally<'_> {
 }
 
 /// Traces `settings.photons` photons, rounded up to whole stratified groups
-/// ([`whole_groups`]; [`TraceResult::photons`] says how many), from the lights of `scene`
-/// and tallies their arrivals on the surfaces `targets`. `progress` is called from worker
-/// threads with the number of photons traced so far.
-pub fn trace(
+/// ([`photons_traced`]; [`Measurement::photons`] says how many), from the lights of
+/// `scene` and tallies what they bring to the surfaces `targets`. `progress` is called
+/// from worker threads with the number of photons traced so far.
+///
+/// # Panics
+/// If the photon count overflows when rounded up to whole groups (callers check it
+/// with [`photons_traced`] where it comes from a user).
+pub fn measure(
     scene: &Scene,
     accel: &Accel,
     targets: &[SurfaceId],
     settings: &TraceSettings,
+    estimator: Estimator,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> TraceResult {
+) -> Measurement {
     let settings = &TraceSettings {
-        photons: whole_groups(settings.photons),
+        photons: photons_traced(settings.photons).expect("a photon count that fits in u64"),
         ..*settings
     };
     let emitters = Emitters::new(scene);
     let map = TargetMap::new(scene, targets);
     let shapes = Targets::new(scene, targets);
-    let mut result = TraceResult {
+    let connect = estimator == Estimator::Connected;
+    let mut result = Measurement {
         photons: settings.photons,
         rays: 0,
         connection_rays: 0,
         tallies: vec![Tally::default(); targets.len()],
+        areas: targets
+            .iter()
+            .map(|&s| scene.surface_area(s) as f64)
+            .collect(),
         escaped: 0.0,
         flux: emitters.total_flux(),
     };
@@ -299,8 +203,8 @@ pub fn trace(
         settings,
         || ChunkTally {
             map: &map,
-            connect: settings.connect.then_some((&shapes, accel)),
-            tallies: PhotonTallies::new(targets.len()),
+            connect: connect.then_some((&shapes, accel)),
+            tallies: GroupTallies::new(targets.len()),
             escaped: 0.0,
             connection_rays: 0,
         },
@@ -312,4 +216,136 @@ pub fn trace(
         progress,
     );
     result
+}
+
+/// One surface of a [`MeasureReport`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceReport {
+    /// Its name.
+    pub name: String,
+    /// Its area, m².
+    pub area: f64,
+    /// Mean illuminance, lx.
+    pub mean: f64,
+    /// Lower end of the interval at the report's confidence, lx.
+    pub low: f64,
+    /// Upper end, lx.
+    pub high: f64,
+    /// Standard error of the mean, lx.
+    pub std_error: f64,
+    /// Photon arrivals counted.
+    pub hits: u64,
+}
+
+/// `invlight measure --json`: a measurement with its settings and costs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeasureReport {
+    /// The measured surfaces, in the order asked.
+    pub surfaces: Vec<SurfaceReport>,
+    /// Photons traced (whole groups).
+    pub photons: u64,
+    /// Rays along the photons' paths.
+    pub rays: u64,
+    /// Rays of connections to the surfaces.
+    pub connection_rays: u64,
+    /// [`Estimator::name`].
+    pub estimator: String,
+    /// The scene's luminous flux, lm.
+    pub flux_lm: f64,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// Seed of the photon streams.
+    pub seed: u64,
+    /// Bounce cap.
+    pub max_bounces: u32,
+    /// Seconds from the start of the build to the end of the trace.
+    pub seconds: f64,
+    /// Seconds building the acceleration structure.
+    pub build_seconds: f64,
+}
+
+impl MeasureReport {
+    /// The report as a table for people: a row per surface, then the costs.
+    pub fn table(&self) -> String {
+        use invlight_stats::significant;
+        let width = self
+            .surfaces
+            .iter()
+            .map(|s| s.name.len())
+            .max()
+            .unwrap_or(7)
+            .max(7);
+        let mut out = format!(
+            "{:<width$}  {:>10}  {:>12}  {:>27}  {:>10}\n",
+            "surface",
+            "area m²",
+            "mean lx",
+            format!("{:.0} % interval lx", self.confidence * 100.0),
+            "hits"
+        );
+        for s in &self.surfaces {
+            out += &format!(
+                "{:<width$}  {:>10.4}  {:>12}  {:>27}  {:>10}\n",
+                s.name,
+                s.area,
+                significant(s.mean),
+                format!("[{}, {}]", significant(s.low), significant(s.high)),
+                s.hits
+            );
+        }
+        out += &format!(
+            "{} photons, {} rays and {} connection rays, {:.2} s ({:.2} M photons/s), {} lm emitted\n",
+            self.photons,
+            self.rays,
+            self.connection_rays,
+            self.seconds,
+            self.photons as f64 / self.seconds / 1e6,
+            significant(self.flux_lm)
+        );
+        out
+    }
+}
+
+impl Measurement {
+    /// The report of this measurement of surfaces named `names` (in target order), with
+    /// intervals at `confidence`, traced with `settings` and `estimator`.
+    pub fn report(
+        &self,
+        names: &[String],
+        confidence: Confidence,
+        settings: &TraceSettings,
+        estimator: Estimator,
+        (seconds, build_seconds): (f64, f64),
+    ) -> MeasureReport {
+        let z = confidence.z();
+        MeasureReport {
+            surfaces: names
+                .iter()
+                .enumerate()
+                .map(|(i, name)| {
+                    let e = self.estimate(i);
+                    let interval = e.interval(z);
+                    SurfaceReport {
+                        name: name.clone(),
+                        area: self.areas[i],
+                        mean: e.mean,
+                        low: interval.low,
+                        high: interval.high,
+                        std_error: e.std_error,
+                        hits: self.tallies[i].hits,
+                    }
+                })
+                .collect(),
+            photons: self.photons,
+            rays: self.rays,
+            connection_rays: self.connection_rays,
+            estimator: estimator.name().into(),
+            flux_lm: self.flux,
+            confidence: confidence.level(),
+            seed: settings.seed,
+            max_bounces: settings.max_bounces,
+            seconds,
+            build_seconds,
+        }
+    }
 }

@@ -20,26 +20,13 @@
 //! whatever thread traces it, and two configurations traced with the same seed share
 //! them (common random numbers).
 
-use crate::rng::{Rng, mix64};
+use crate::estimator::GROUP;
+use invlight_stats::{Pcg32, mix};
 
-/// Photons per stratified group: an 8 × 8 grid in two dimensions, 64 strata in one.
-/// Divides [`crate::CHUNK`], so a group never straddles two chunks.
-pub const GROUP: u64 = 64;
+/// Strata per side of a group's two-dimensional grid.
 const SIDE: u32 = 8;
 const _: () = assert!(SIDE as u64 * SIDE as u64 == GROUP);
 
-/// The fewest groups a measurement traces: the standard error comes from the spread of
-/// the group totals, and with fewer groups it is itself too noisy for a normal interval
-/// (with 4 groups "95 %" intervals covered 86 %; with 32 the t quantile of 31 degrees of
-/// freedom, 2.04, is within 4 % of the normal 1.96).
-pub const MIN_GROUPS: u64 = 32;
-
-/// The photons a measurement traces when `photons` are asked for: whole groups (a short
-/// last group would widen the spread of the totals, and so the interval, for nothing),
-/// and at least [`MIN_GROUPS`] of them.
-pub fn whole_groups(photons: u64) -> u64 {
-    photons.next_multiple_of(GROUP).max(MIN_GROUPS * GROUP)
-}
 /// Dimensions stratified per photon: emission and the first bounces, where the paths of
 /// a group's photons are still alike enough for stratification to pay. Later dimensions
 /// are plain independent numbers.
@@ -56,15 +43,15 @@ pub struct GroupKeys([u32; STRATIFIED_DIMENSIONS as usize]);
 impl GroupKeys {
     /// The keys of group `group` (photons `group·GROUP ..`) under `seed`.
     pub fn new(seed: u64, group: u64) -> GroupKeys {
-        let group_key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ group);
-        GroupKeys(std::array::from_fn(|d| mix64(group_key ^ d as u64) as u32))
+        let group_key = mix(mix(seed ^ 0x5851_f42d_4c95_7f2d) ^ group);
+        GroupKeys(std::array::from_fn(|d| mix(group_key ^ d as u64) as u32))
     }
 }
 
 /// The random numbers of one photon.
 #[derive(Debug, Clone)]
 pub struct Sampler<'k> {
-    rng: Rng,
+    rng: Pcg32,
     /// The keys of the photon's group.
     keys: &'k GroupKeys,
     /// The photon's place in its group, 0..GROUP.
@@ -79,7 +66,7 @@ impl<'k> Sampler<'k> {
     #[inline]
     pub fn new(keys: &'k GroupKeys, seed: u64, photon: u64) -> Sampler<'k> {
         Sampler {
-            rng: Rng::new(seed, photon),
+            rng: Pcg32::new(seed, photon),
             keys,
             index: (photon % GROUP) as u32,
             dimension: 0,

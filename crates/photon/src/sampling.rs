@@ -58,22 +58,14 @@ pub fn disk(u1: f32, u2: f32) -> (f32, f32) {
     (r * phi.cos(), r * phi.sin())
 }
 
-/// Index of the first entry of a cumulative distribution above `u·total` (the last
-/// entry is the total). Binary search: O(log n) for thousands of emitting triangles.
-#[inline]
-pub fn pick(cdf: &[f64], u: f32) -> usize {
-    let target = u as f64 * cdf[cdf.len() - 1];
-    cdf.partition_point(|&c| c <= target).min(cdf.len() - 1)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::Rng;
+    use invlight_stats::Pcg32;
 
     #[test]
     fn basis_is_orthonormal() {
-        let mut rng = Rng::new(0, 0);
+        let mut rng = Pcg32::new(0, 0);
         for _ in 0..1000 {
             let n = sphere(rng.uniform(), rng.uniform());
             let (t, b) = basis(n);
@@ -86,21 +78,12 @@ mod tests {
     fn cosine_hemisphere_has_mean_cosine_two_thirds() {
         // E[cos θ] under p = cos θ/π is 2/3; Var = 1/2 − 4/9 = 1/18. Tolerance 5 σ.
         let n = 100_000;
-        let mut rng = Rng::new(1, 0);
+        let mut rng = Pcg32::new(1, 0);
         let axis = Vec3::new(0.3, -0.5, 0.8).normalize();
         let mean: f64 = (0..n)
             .map(|_| cosine_hemisphere(axis, rng.uniform(), rng.uniform()).dot(axis) as f64)
             .sum::<f64>()
             / n as f64;
         assert!((mean - 2.0 / 3.0).abs() < 5.0 * (1.0f64 / 18.0 / n as f64).sqrt());
-    }
-
-    #[test]
-    fn pick_follows_the_weights() {
-        let cdf = [1.0, 1.0, 4.0];
-        assert_eq!(pick(&cdf, 0.0), 0);
-        assert_eq!(pick(&cdf, 0.2), 0);
-        assert_eq!(pick(&cdf, 0.25), 2);
-        assert_eq!(pick(&cdf, 0.999), 2);
     }
 }

@@ -2,48 +2,43 @@
 //! |estimate − exact| < 4 σ with σ the standard error the estimate reports itself
 //! (a 4 σ miss has probability 6·10⁻⁵ for an honest interval); seeds are fixed. Each case
 //! is measured with both estimators: the photons' arrivals alone (the thesis) and
-//! arrivals weighted against connections to the target (`TraceSettings::connect`).
+//! arrivals weighted against connections to the target (`Estimator::Connected`).
 
 mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
-use invlight_photon::{Estimate, TraceSettings, trace};
+use invlight_photon::{Estimator, TraceSettings, measure};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
+use invlight_stats::{Confidence, Estimate};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
 
-/// `connect` of the two estimators, in the order [`measure`] returns them.
-const ESTIMATORS: [bool; 2] = [false, true];
-const NAMES: [&str; 2] = ["arrivals", "connected"];
+/// The two estimators, in the order [`measure_both`] returns them.
+const ESTIMATORS: [Estimator; 2] = [Estimator::ArrivalsOnly, Estimator::Connected];
 
-fn settings(photons: u64, connect: bool) -> TraceSettings {
+fn settings(photons: u64) -> TraceSettings {
     TraceSettings {
         photons,
         seed: 7,
-        connect,
         ..TraceSettings::default()
     }
 }
 
 /// Measures the named surfaces of `scene` with both estimators: per surface, the
 /// estimate from arrivals alone and the one with connections.
-fn measure(scene: &Scene, names: &[&str], photons: u64) -> Vec<[Estimate; 2]> {
+fn measure_both(scene: &Scene, names: &[&str], photons: u64) -> Vec<[Estimate; 2]> {
     let accel = Accel::new(scene);
     let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
-    let runs = ESTIMATORS.map(|c| trace(scene, &accel, &ids, &settings(photons, c), None));
-    ids.iter()
-        .enumerate()
-        .map(|(i, &s)| {
-            runs.each_ref()
-                .map(|r| r.estimate(i, scene.surface_area(s) as f64))
-        })
+    let runs = ESTIMATORS.map(|e| measure(scene, &accel, &ids, &settings(photons), e, None));
+    (0..ids.len())
+        .map(|i| runs.each_ref().map(|r| r.estimate(i)))
         .collect()
 }
 
 /// Both estimates within 4 σ of `exact`.
 fn assert_close(both: &[Estimate; 2], exact: f64, what: &str) {
-    for (e, how) in both.iter().zip(NAMES) {
-        assert_one(e, exact, &format!("{what} ({how})"));
+    for (e, how) in both.iter().zip(ESTIMATORS) {
+        assert_one(e, exact, &format!("{what} ({})", how.name()));
     }
 }
 
@@ -69,7 +64,7 @@ fn closed_room(kd: Vec3) -> Scene {
 fn point_source_over_a_square() {
     // E_mean = I·Ω/A: the flux a point source of I cd sends into the solid angle Ω.
     let (scene, exact) = lamp_over_square();
-    let e = measure(&scene, &["Floor"], 400_000);
+    let e = measure_both(&scene, &["Floor"], 400_000);
     assert_close(&e[0], exact, "point over square");
 }
 
@@ -82,7 +77,7 @@ fn off_axis_point_source() {
     scene
         .lights
         .push(point("Lamp", Vec3::new(0.0, 0.0, 0.8), 50.0));
-    let e = measure(&scene, &["Patch"], 1_000_000);
+    let e = measure_both(&scene, &["Patch"], 1_000_000);
     let area = 1.5 * 1.25;
     let exact = 50.0 * rect_solid_angle(0.5, 2.0, -0.25, 1.0, 0.8) / area;
     assert_close(&e[0], exact, "off-axis point");
@@ -122,7 +117,7 @@ fn parallel_lambertian_area_source() {
     ));
     scene.add_instance("Receiver", receiver, Mat4::IDENTITY);
     scene.add_instance("Panel", emitter, Mat4::IDENTITY);
-    let e = measure(&scene, &["Receiver"], 400_000);
+    let e = measure_both(&scene, &["Receiver"], 400_000);
     let exact = PI * lum as f64 * parallel_rectangles(1.0, 0.6, 0.5);
     assert_close(&e[0], exact, "parallel area source");
 }
@@ -132,7 +127,7 @@ fn closed_room_interreflection() {
     // Every photon arrives on the walls 1/(1 − ρ) times on average: E = Φ/(A(1 − ρ)).
     let rho = 0.8f32;
     let scene = closed_room(Vec3::splat(rho));
-    let e = measure(&scene, &["Room"], 200_000);
+    let e = measure_both(&scene, &["Room"], 200_000);
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
     assert_close(&e[0], exact, "closed room");
@@ -146,7 +141,7 @@ fn saturated_colour_room_keeps_an_honest_interval() {
     // second moment grows 2.7× per bounce); on the photon's luminance it is finite.
     let kd = Vec3::new(0.9, 0.05, 0.05);
     let scene = closed_room(kd);
-    let e = measure(&scene, &["Room"], 400_000);
+    let e = measure_both(&scene, &["Room"], 400_000);
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let flux = 4.0 * PI * 100.0;
     let per_channel = |rho: f32| flux / (area * (1.0 - rho as f64));
@@ -168,7 +163,7 @@ fn a_surface_no_photon_reaches_is_not_exactly_dark() {
         .lights
         .push(point("Lamp", Vec3::new(0.0, 0.0, 1.0), 10.0));
     let one_arrival = 4.0 * PI * 10.0 / (4.0 * 4096.0);
-    for e in &measure(&scene, &["Below"], 4096)[0] {
+    for e in &measure_both(&scene, &["Below"], 4096)[0] {
         assert_eq!(e.mean, 0.0);
         // The flux is summed in f32 by the emitters: equal to f32 rounding.
         assert!((e.std_error - one_arrival).abs() < 1e-6 * one_arrival);
@@ -182,12 +177,12 @@ fn thesis_bounce_cap_under_counts_a_bright_room() {
     let scene = closed_room(Vec3::splat(rho));
     let accel = Accel::new(&scene);
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
-    let both = ESTIMATORS.map(|connect| {
+    let both = ESTIMATORS.map(|estimator| {
         let s = TraceSettings {
             max_bounces: 4,
-            ..settings(200_000, connect)
+            ..settings(200_000)
         };
-        trace(&scene, &accel, &[0], &s, None).estimate(0, area)
+        measure(&scene, &accel, &[0], &s, estimator, None).estimate(0)
     });
     let exact = 4.0 * PI * 100.0 * (1.0 - (rho as f64).powi(5)) / (area * (1.0 - rho as f64));
     assert_close(&both, exact, "capped room");
@@ -208,7 +203,7 @@ fn sun_on_a_tilted_plane() {
             illuminance: Vec3::splat(10_000.0),
         },
     });
-    let e = measure(&scene, &["Roof"], 400_000);
+    let e = measure_both(&scene, &["Roof"], 400_000);
     assert_close(&e[0], 10_000.0 * (tilt as f64).cos(), "tilted plane");
 }
 
@@ -226,7 +221,7 @@ fn mirror_adds_the_image_source() {
     scene
         .lights
         .push(point("Lamp", Vec3::new(0.0, 0.0, 1.0), 100.0));
-    let e = measure(&scene, &["Target"], 1_000_000);
+    let e = measure_both(&scene, &["Target"], 1_000_000);
     let direct = rect_solid_angle(-0.5, 0.5, -0.5, 0.5, 2.0);
     let image = rect_solid_angle(-0.5, 0.5, -0.5, 0.5, 4.0);
     assert_close(&e[0], 100.0 * (direct + 0.9 * image), "mirror image");
@@ -254,7 +249,7 @@ fn glass_slab_transmits_by_fresnel() {
             illuminance: Vec3::splat(1000.0),
         },
     });
-    let e = measure(&scene, &["Target"], 2_000_000);
+    let e = measure_both(&scene, &["Target"], 2_000_000);
     let r = 0.04;
     assert_close(&e[0], 1000.0 * (1.0 - r) / (1.0 + r), "glass slab");
 }
@@ -280,7 +275,7 @@ fn spot_light_flux_reaches_the_floor() {
     });
     let (ci, co) = (inner.cos() as f64, outer.cos() as f64);
     let flux = 2.0 * PI * 500.0 * ((1.0 - ci) + (ci - co) / 3.0);
-    let [arrivals, connected] = measure(&scene, &["Floor"], 100_000)[0];
+    let [arrivals, connected] = measure_both(&scene, &["Floor"], 100_000)[0];
     // Every photon lands: arrivals alone have no variance, so compare to rounding.
     assert!((arrivals.mean - flux / 400.0).abs() < 1e-4 * flux / 400.0);
     // Connections see the spot's profile from every floor point they draw.
@@ -306,16 +301,16 @@ fn energy_is_conserved() {
         .lights
         .push(point("Lamp", Vec3::new(0.7, 1.2, 1.0), 10.0));
     let accel = Accel::new(&scene);
-    for connect in ESTIMATORS {
-        energy_balance(&scene, &accel, rho, connect);
+    for estimator in ESTIMATORS {
+        energy_balance(&scene, &accel, rho, estimator);
     }
 }
 
 /// Checks absorbed + escaped = emitted in the open box of `energy_is_conserved`.
-fn energy_balance(scene: &Scene, accel: &Accel, rho: f64, connect: bool) {
-    let r = trace(scene, accel, &[0], &settings(400_000, connect), None);
-    let area = scene.surface_area(0) as f64;
-    let e = r.estimate(0, area);
+fn energy_balance(scene: &Scene, accel: &Accel, rho: f64, estimator: Estimator) {
+    let r = measure(scene, accel, &[0], &settings(400_000), estimator, None);
+    let area = r.areas[0];
+    let e = r.estimate(0);
     let absorbed = (1.0 - rho) * e.mean * area;
     let n = r.photons as f64;
     let escaped = r.escaped / n;
@@ -340,14 +335,14 @@ fn same_bits_on_one_and_two_threads() {
         .lights
         .push(point("Lamp", Vec3::new(1.0, 1.0, 2.0), 100.0));
     let accel = Accel::new(&scene);
-    for connect in ESTIMATORS {
-        let s = settings(3 * invlight_photon::CHUNK + 17, connect);
+    for estimator in ESTIMATORS {
+        let s = settings(3 * invlight_photon::CHUNK + 17);
         let run = |threads| {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| trace(&scene, &accel, &[0], &s, None))
+                .install(|| measure(&scene, &accel, &[0], &s, estimator, None))
         };
         assert_eq!(run(1), run(2));
         assert_eq!(run(2), run(3));
@@ -363,34 +358,35 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     let scene = closed_room(Vec3::splat(rho));
     let area = scene.surface_area(0) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
-    for connect in ESTIMATORS {
-        assert_intervals_cover(&scene, area, exact, 4096, connect);
+    for estimator in ESTIMATORS {
+        assert_intervals_cover(&scene, exact, 4096, estimator);
     }
 }
 
-/// Traces surface 0 of `scene` (of `area` m²) with 400 seeds of `photons` photons each
+/// Traces surface 0 of `scene` with 400 seeds of `photons` photons each
 /// and checks that the 95 % intervals contain `exact` as often as they claim: the count
 /// of covering runs is Binomial(400, 0.95) (mean 380, σ 4.36), accepted within 4 σ.
-fn assert_intervals_cover(scene: &Scene, area: f64, exact: f64, photons: u64, connect: bool) {
+fn assert_intervals_cover(scene: &Scene, exact: f64, photons: u64, estimator: Estimator) {
     let accel = Accel::new(scene);
+    let z = Confidence::new(0.95).unwrap().z();
     let runs = 400;
     let covered = (0..runs)
         .filter(|&seed| {
             let s = TraceSettings {
                 seed,
-                ..settings(photons, connect)
+                ..settings(photons)
             };
-            let (low, high) = trace(scene, &accel, &[0], &s, None)
-                .estimate(0, area)
-                .interval(0.95);
-            low <= exact && exact <= high
+            measure(scene, &accel, &[0], &s, estimator, None)
+                .estimate(0)
+                .interval(z)
+                .contains(exact)
         })
         .count() as f64;
     let (mean, sd) = (0.95 * runs as f64, (runs as f64 * 0.95 * 0.05).sqrt());
     assert!(
         (covered - mean).abs() < Z * sd,
         "{covered} of {runs} intervals covered ({})",
-        NAMES[connect as usize]
+        estimator.name()
     );
 }
 
@@ -413,8 +409,8 @@ fn stratified_intervals_cover_direct_light() {
     // most variance, and where an interval computed as if photons were independent would
     // be far too wide, or, from too few groups, too narrow. 4096 photons: 64 groups.
     let (scene, exact) = lamp_over_square();
-    for connect in ESTIMATORS {
-        assert_intervals_cover(&scene, 4.0, exact, 4096, connect);
+    for estimator in ESTIMATORS {
+        assert_intervals_cover(&scene, exact, 4096, estimator);
     }
 }
 
@@ -429,7 +425,7 @@ fn stratification_shrinks_the_error_of_direct_light() {
     // 1) cannot pass and working stratification (ratio 2) cannot fail. That the smaller
     // error is also honest is `stratified_intervals_cover_direct_light`'s part.
     let (scene, exact) = lamp_over_square();
-    let [e, _] = measure(&scene, &["Floor"], 400_000)[0];
+    let [e, _] = measure_both(&scene, &["Floor"], 400_000)[0];
     let flux = 4.0 * PI * 100.0;
     let p = exact * 4.0 / flux;
     let binomial = flux / 4.0 * (p * (1.0 - p) / 400_000.0).sqrt();
@@ -478,12 +474,12 @@ fn lamp_touching_its_target() {
     scene.add_instance("Panel", panel, Mat4::IDENTITY);
     let exact = PI * lum as f64 * perpendicular_rectangles(1.0, 0.8, 0.5);
     assert_close(
-        &measure(&scene, &["Floor"], 400_000)[0],
+        &measure_both(&scene, &["Floor"], 400_000)[0],
         exact,
         "touching panel",
     );
-    for connect in ESTIMATORS {
-        assert_intervals_cover(&scene, 0.8, exact, 4096, connect);
+    for estimator in ESTIMATORS {
+        assert_intervals_cover(&scene, exact, 4096, estimator);
     }
 }
 
@@ -502,7 +498,7 @@ fn sun_through_a_hole_in_the_roof() {
     });
     // The roof's lit side gets E over everything but the hole (measured over its whole
     // area), plus what the black floor sends back: nothing.
-    let e = measure(&scene, &["Floor", "Roof"], 1_000_000);
+    let e = measure_both(&scene, &["Floor", "Roof"], 1_000_000);
     assert_close(&e[0], 10_000.0 / 16.0, "floor under the hole");
     assert_close(&e[1], 10_000.0 * 99.0 / 100.0, "roof around the hole");
 }
@@ -517,14 +513,14 @@ fn connections_cut_the_error() {
     // connections gain little: there the variance is that of the paths' lengths, which
     // only absorption decides.)
     let (square, _) = lamp_over_square();
-    let [arrivals, connected] = measure(&square, &["Floor"], 400_000)[0];
+    let [arrivals, connected] = measure_both(&square, &["Floor"], 400_000)[0];
     let ratio = arrivals.std_error / connected.std_error;
     assert!(ratio > 4.0, "direct light: σ ratio {ratio}");
     let mut room = closed_room(Vec3::splat(0.6));
     let black = room.add_material(Material::diffuse("Black", Vec3::ZERO));
     let patch = room.add_mesh(rect(3.0, 3.5, 0.5, 1.0, 0.5, black));
     room.add_instance("Patch", patch, Mat4::IDENTITY);
-    let [arrivals, connected] = measure(&room, &["Patch"], 200_000)[0];
+    let [arrivals, connected] = measure_both(&room, &["Patch"], 200_000)[0];
     let ratio = arrivals.std_error / connected.std_error;
     assert!(ratio > 3.0, "patch in a closed room: σ ratio {ratio}");
 }
@@ -544,7 +540,7 @@ fn a_target_just_under_another_surface_stays_dark() {
     scene
         .lights
         .push(point("Lamp", Vec3::new(0.0, 0.0, 1.5), 100.0));
-    for e in &measure(&scene, &["Patch"], 100_000)[0] {
+    for e in &measure_both(&scene, &["Patch"], 100_000)[0] {
         assert_eq!(e.mean, 0.0);
     }
 }

@@ -19,8 +19,9 @@
 mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
-use invlight_photon::{Emitters, Estimate, GroupKeys, Lobe, Sampler, TraceSettings, trace};
+use invlight_photon::{Emitters, Estimator, GroupKeys, Lobe, Sampler, TraceSettings, measure};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Texture, Vec3, luminance};
+use invlight_stats::{Confidence, Estimate};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
 
@@ -28,20 +29,23 @@ fn settings(photons: u64, seed: u64) -> TraceSettings {
     TraceSettings {
         photons,
         seed,
-        connect: true,
         ..TraceSettings::default()
     }
 }
 
 /// The connected estimates of the named surfaces of `scene`.
-fn measure(scene: &Scene, names: &[&str], photons: u64) -> Vec<Estimate> {
+fn connected(scene: &Scene, names: &[&str], photons: u64) -> Vec<Estimate> {
     let accel = Accel::new(scene);
     let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
-    let r = trace(scene, &accel, &ids, &settings(photons, 5), None);
-    ids.iter()
-        .enumerate()
-        .map(|(i, &s)| r.estimate(i, scene.surface_area(s) as f64))
-        .collect()
+    let m = measure(
+        scene,
+        &accel,
+        &ids,
+        &settings(photons, 5),
+        Estimator::Connected,
+        None,
+    );
+    (0..ids.len()).map(|i| m.estimate(i)).collect()
 }
 
 /// `e` within 4 σ of `exact`, with σ below 1 % of it.
@@ -60,19 +64,16 @@ fn assert_close(e: &Estimate, exact: f64, what: &str) {
 fn assert_honest(scene: &Scene, name: &str, exact: f64) {
     let accel = Accel::new(scene);
     let id = scene.surface(name).unwrap();
-    let area = scene.surface_area(id) as f64;
     let runs = 400;
     let e: Vec<Estimate> = (0..runs)
-        .map(|seed| trace(scene, &accel, &[id], &settings(4096, seed), None).estimate(0, area))
-        .collect();
-    let n = runs as f64;
-    let covered = e
-        .iter()
-        .filter(|e| {
-            let (low, high) = e.interval(0.95);
-            low <= exact && exact <= high
+        .map(|seed| {
+            let s = settings(4096, seed);
+            measure(scene, &accel, &[id], &s, Estimator::Connected, None).estimate(0)
         })
-        .count() as f64;
+        .collect();
+    let z = Confidence::new(0.95).unwrap().z();
+    let n = runs as f64;
+    let covered = e.iter().filter(|e| e.interval(z).contains(exact)).count() as f64;
     assert!(
         (covered - 0.95 * n).abs() < Z * (n * 0.95 * 0.05).sqrt(),
         "{name}: {covered} of {runs} intervals covered {exact}"
@@ -271,7 +272,7 @@ fn seen_from_lamp(x0: f64, x1: f64, y0: f64, y1: f64) -> f64 {
 fn assert_enclosure(scene: &Scene, floor_out: f64, what: &str) {
     let direct = CANDELA * seen_from_lamp(-1.0, 1.0, -1.0, 1.0);
     let lamp = 4.0 * PI * CANDELA;
-    let e = measure(scene, &["Box", "Floor"], 262_144);
+    let e = connected(scene, &["Box", "Floor"], 262_144);
     let box_area = scene.surface_area(0) as f64;
     assert_close(
         &e[0],
@@ -441,7 +442,7 @@ fn lamp_through_a_hole_and_a_roof_around_it() {
         .push(point("Lamp", Vec3::new(0.2, 0.3, 4.0), 100.0));
     let hole = rect_solid_angle(-0.2, 0.8, -0.3, 0.7, 1.0);
     let roof = rect_solid_angle(-5.2, 4.8, -5.3, 4.7, 1.0);
-    let e = measure(&scene, &["Floor", "Roof"], 524_288);
+    let e = connected(&scene, &["Floor", "Roof"], 524_288);
     assert_close(&e[0], 100.0 * hole / 64.0, "floor under the hole");
     assert_close(&e[1], 100.0 * (roof - hole) / 100.0, "roof around the hole");
 }
@@ -467,7 +468,7 @@ fn targets_sharing_an_instance() {
         .lights
         .push(point("Lamp", Vec3::new(1.0, 2.0, 2.0), 100.0));
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
-    let e = measure(&scene, &["Floor", "Room"], 262_144);
+    let e = connected(&scene, &["Floor", "Room"], 262_144);
     assert_close(
         &e[1],
         4.0 * PI * 100.0 / (area * (1.0 - rho as f64)),
@@ -512,6 +513,6 @@ fn a_thin_target_lit_from_both_sides() {
         (inner.cos() as f64, outer.cos() as f64),
         r,
     );
-    let e = measure(&scene, &["Sheet"], 262_144);
+    let e = connected(&scene, &["Sheet"], 262_144);
     assert_close(&e[0], above + below, "sheet lit from both sides");
 }

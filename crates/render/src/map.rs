@@ -1,10 +1,16 @@
 //! Illuminance grids over a planar surface, as lighting standards ask for them
 //! (EN 12464-1 §4.4: a regular grid of cells, Emin, Eavg, Emax and uniformity
 //! U0 = Emin/Eavg). Each cell's value is the mean illuminance over the cell, measured
-//! like a surface (thesis eq. 3.2): the luminous power of the photons that arrive in it
-//! over its area and N, with the standard error of the contributions of the stratified
-//! photon groups (DESIGN.md §1, `invlight_photon::Sampler`), so every value carries its
-//! interval.
+//! as `invlight_photon::measure` measures a surface: the luminous power the photons
+//! bring to it over its area and N, with the standard error of the contributions of the
+//! stratified photon groups, so every value carries its interval.
+//!
+//! With [`Estimator::Connected`] every photon departure is connected to one point drawn
+//! uniformly on the whole surface ([`Targets::connect`]), which counts for the cell the
+//! point falls in; arrivals are weighted against it by the same balance heuristic. The
+//! weights sum to one at every point of the surface, so each cell's estimate stays
+//! unbiased, and a departure costs one ray whatever the number of cells (a ray per cell
+//! would make a 20 × 20 grid cost 400).
 //!
 //! Photons are traced by `invlight_photon::trace_chunks`, each chunk tallied on its own
 //! and the tallies added in chunk order: the grid is the same on any number of threads.
@@ -13,11 +19,13 @@ use crate::draw;
 use glam::{Vec2, Vec3};
 use image::RgbImage;
 use invlight_photon::{
-    Departure, Emitters, Estimate, PathVisitor, PhotonTallies, Tally, TraceSettings, trace_chunks,
-    whole_groups,
+    Departure, Emitters, Estimator, GroupTallies, PathVisitor, Sampler, Tally, Targets,
+    TraceSettings, photons_traced, trace_chunks,
 };
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
+use invlight_stats::{Confidence, Estimate};
 use invlight_trace::{Accel, Interaction};
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// How to measure a grid.
@@ -26,12 +34,10 @@ pub struct MapSettings {
     /// Largest cell side, m: a side of length L gets ⌈L/cell⌉ equal cells (EN 12464-1
     /// spaces its points so).
     pub cell: f32,
-    /// Photons emitted, N.
-    pub photons: u64,
-    /// Seed of the photon streams.
-    pub seed: u64,
-    /// Bounce cap of the paths.
-    pub max_bounces: u32,
+    /// Photons, seed and bounce cap; the photons are rounded up to whole groups.
+    pub trace: TraceSettings,
+    /// Whether departures are connected to the surface (see the module doc).
+    pub estimator: Estimator,
 }
 
 /// Why a grid cannot be measured.
@@ -48,6 +54,8 @@ pub enum MapError {
     BadCell(f32),
     /// The grid would have this many cells (more than [`MAX_CELLS`]).
     TooManyCells(u64),
+    /// The photon count overflows when rounded up to whole groups.
+    TooManyPhotons(u64),
 }
 
 /// The most cells a grid may have: a million cells of a few photons each measure
@@ -67,6 +75,7 @@ impl fmt::Display for MapError {
                 f,
                 "the grid would have {n} cells (at most {MAX_CELLS}): choose larger cells"
             ),
+            MapError::TooManyPhotons(n) => write!(f, "{n} photons cannot be traced"),
         }
     }
 }
@@ -262,24 +271,35 @@ impl Grid<'_> {
 /// One chunk's per-cell tallies.
 struct CellTally<'a> {
     grid: &'a Grid<'a>,
-    tallies: PhotonTallies,
+    /// The surface as one target to connect departures to; `None` counts arrivals alone.
+    connect: Option<(&'a Targets, &'a Accel)>,
+    tallies: GroupTallies,
 }
 
 impl PathVisitor for CellTally<'_> {
     #[inline]
-    fn arrive(
-        &mut self,
-        at: &Interaction,
-        _dir: Vec3,
-        power: Rgb,
-        _bounce: u32,
-        _from: &Departure,
-    ) {
+    fn depart(&mut self, from: &Departure, sampler: &mut Sampler<'_>) {
+        if let Some((surface, accel)) = self.connect
+            && let Some(c) = surface.connect(0, from, accel, sampler)
+        {
+            let cell = self.grid.cell(c.point);
+            self.tallies.add(cell as u32, c.lumens);
+        }
+    }
+
+    #[inline]
+    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
         if !self.grid.on_surface[at.instance as usize] {
             return;
         }
+        let w = match self.connect {
+            Some((surface, _)) => {
+                surface.arrival_weight(0, from.arrival_density(at.point, at.normal))
+            }
+            None => 1.0,
+        };
         let c = self.grid.cell(at.point);
-        self.tallies.arrive(c as u32, luminance(power) as f64);
+        self.tallies.arrive(c as u32, (luminance(power) * w) as f64);
     }
 
     #[inline]
@@ -293,7 +313,7 @@ impl PathVisitor for CellTally<'_> {
 
 /// Measures the illuminance over a grid of cells at most `settings.cell` wide on the
 /// planar surface `surface`. Every photon arrival on the surface counts (either side,
-/// every bounce, as in `invlight_photon::trace`). `progress` receives photons traced.
+/// every bounce, as in `invlight_photon::measure`). `progress` receives photons traced.
 pub fn illuminance_map(
     scene: &Scene,
     accel: &Accel,
@@ -346,14 +366,13 @@ pub fn illuminance_map(
     let emitters = Emitters::new(scene);
     // Whole stratified groups, as for surfaces: each cell's standard error comes from the
     // spread of the group totals.
-    let photons = whole_groups(settings.photons);
+    let photons = photons_traced(settings.trace.photons)
+        .ok_or(MapError::TooManyPhotons(settings.trace.photons))?;
     let trace = TraceSettings {
         photons,
-        seed: settings.seed,
-        max_bounces: settings.max_bounces,
-        // Cells count arrivals (`CellTally` connects nothing).
-        connect: false,
+        ..settings.trace
     };
+    let whole = Targets::new(scene, &[surface]);
     trace_chunks(
         scene,
         accel,
@@ -361,7 +380,8 @@ pub fn illuminance_map(
         &trace,
         || CellTally {
             grid: &grid,
-            tallies: PhotonTallies::new(n_cells),
+            connect: (settings.estimator == Estimator::Connected).then_some((&whole, accel)),
+            tallies: GroupTallies::new(n_cells),
         },
         |part| part.tallies.add_to(&mut totals),
         progress,
@@ -400,7 +420,172 @@ pub fn illuminance_map(
     })
 }
 
+/// A cell of `invlight map --json`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MapPoint {
+    /// The cell's centre, m.
+    pub position: [f32; 3],
+    /// Mean illuminance over the part the surface covers, lx.
+    pub mean: f64,
+    /// Lower end of its interval, lx.
+    pub low: f64,
+    /// Upper end, lx.
+    pub high: f64,
+}
+
+/// `invlight map --json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MapReport {
+    /// The surface mapped.
+    pub surface: String,
+    /// The largest cell side asked for, m.
+    pub cell: f32,
+    /// The cells' sides along u and v, m.
+    pub cell_size: [f32; 2],
+    /// Columns and rows.
+    pub cells: [u32; 2],
+    /// Photons traced.
+    pub photons: u64,
+    /// How departures were counted: `connected` or `arrivals`.
+    pub estimator: String,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// Seconds of the trace.
+    pub seconds: f64,
+    /// The cells the surface covers, row by row.
+    pub points: Vec<MapPoint>,
+    /// EN 12464-1's figures over the cells, lx (U0 a ratio).
+    pub emin: f64,
+    /// Area-weighted mean.
+    pub eavg: f64,
+    /// Largest cell mean.
+    pub emax: f64,
+    /// Emin / Eavg.
+    pub u0: f64,
+}
+
+/// A row of the map's CSV: one cell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MapCsvRow {
+    /// Column (along u).
+    pub column: u32,
+    /// Row (along v).
+    pub row: u32,
+    /// The cell's centre, m.
+    pub x: f32,
+    /// ″
+    pub y: f32,
+    /// ″
+    pub z: f32,
+    /// The part the surface covers, m².
+    pub area: f64,
+    /// Mean illuminance, lx.
+    pub mean: f64,
+    /// Lower end of its interval, lx.
+    pub low: f64,
+    /// Upper end, lx.
+    pub high: f64,
+    /// Standard error of the mean, lx.
+    pub std_error: f64,
+    /// Photon arrivals counted.
+    pub hits: u64,
+}
+
+impl MapReport {
+    /// The report's figures for people: the grid, Emin, Eavg, Emax and U0.
+    pub fn summary(&self) -> String {
+        use invlight_stats::significant;
+        format!(
+            "{}: {}×{} cells of {:.3}×{:.3} m, {} photons, {:.2} s\nEmin {} lx  Eavg {} lx  Emax {} lx  U0 = Emin/Eavg {:.3}\n",
+            self.surface,
+            self.cells[0],
+            self.cells[1],
+            self.cell_size[0],
+            self.cell_size[1],
+            self.photons,
+            self.seconds,
+            significant(self.emin),
+            significant(self.eavg),
+            significant(self.emax),
+            self.u0
+        )
+    }
+}
+
 impl IlluminanceMap {
+    /// The CSV rows of the cells the surface covers, intervals at `confidence`.
+    pub fn csv_rows(&self, confidence: Confidence) -> Vec<MapCsvRow> {
+        let z = confidence.z();
+        self.cells
+            .iter()
+            .flatten()
+            .map(|cell| {
+                let e = cell.estimate;
+                let i = e.interval(z);
+                MapCsvRow {
+                    column: cell.index.0,
+                    row: cell.index.1,
+                    x: cell.centre.x,
+                    y: cell.centre.y,
+                    z: cell.centre.z,
+                    area: cell.area,
+                    mean: e.mean,
+                    low: i.low,
+                    high: i.high,
+                    std_error: e.std_error,
+                    hits: cell.hits,
+                }
+            })
+            .collect()
+    }
+
+    /// Writes the CSV rows to `path`.
+    pub fn write_csv(&self, path: &std::path::Path, confidence: Confidence) -> csv::Result<()> {
+        let mut w = csv::Writer::from_path(path)?;
+        for row in self.csv_rows(confidence) {
+            w.serialize(row)?;
+        }
+        w.flush()?;
+        Ok(())
+    }
+
+    /// The `--json` report of this map of `surface` (asked for with `settings`), traced
+    /// in `seconds`.
+    pub fn report(
+        &self,
+        surface: &str,
+        settings: &MapSettings,
+        confidence: Confidence,
+        seconds: f64,
+    ) -> MapReport {
+        let summary = self.summary();
+        let points = self
+            .csv_rows(confidence)
+            .into_iter()
+            .map(|r| MapPoint {
+                position: [r.x, r.y, r.z],
+                mean: r.mean,
+                low: r.low,
+                high: r.high,
+            })
+            .collect();
+        MapReport {
+            surface: surface.to_string(),
+            cell: settings.cell,
+            cell_size: [self.cell_u, self.cell_v],
+            cells: [self.columns, self.rows],
+            photons: self.photons,
+            estimator: settings.estimator.name().into(),
+            confidence: confidence.level(),
+            seconds,
+            points,
+            emin: summary.emin,
+            eavg: summary.eavg,
+            emax: summary.emax,
+            u0: summary.u0,
+        }
+    }
+
     /// Emin, Eavg, Emax and U0 over the cells. Emin and Emax are taken over the cells the
     /// surface covers at least half of: a sliver's estimate rests on few photons and
     /// would decide the extremes by noise.

@@ -3,13 +3,14 @@
 //! that do not depend on the number of threads; the plot files.
 
 use glam::{Mat4, Vec3};
-use invlight_photon::Rng;
+use invlight_photon::{Estimator, TraceSettings};
 use invlight_render::{
-    IlluminanceImage, Image, Integrator, Lights, MapError, MapSettings, Mark, Paths, PhotonMap,
+    AreaLights, IlluminanceImage, Image, Integrator, MapError, MapSettings, Mark, Paths, PhotonMap,
     PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
     render, render_illuminance,
 };
 use invlight_scene::{Camera, Light, LightKind, Material, Mesh, Scene};
+use invlight_stats::Pcg32;
 use invlight_trace::Accel;
 use std::f32::consts::PI;
 
@@ -119,7 +120,7 @@ fn plane_radiance_is_proportional_to_closed_form_illuminance() {
     let kd = 0.6;
     let (scene, lights) = lit_plane(kd);
     let accel = Accel::new(&scene);
-    let sky = Lights::new(&scene);
+    let sky = AreaLights::new(&scene);
     let cam = camera(Vec3::new(0.1, -0.2, 3.0), Vec3::NEG_Z, Vec3::Y, 60.0);
     let s = settings(40, 30);
     let view = View::from_camera(&cam, 40.0 / 30.0);
@@ -222,7 +223,7 @@ fn white_furnace_renders_a_uniform_image() {
     // Expected arrivals per photon: 1 + ρ + ρ² + … = 1/(1 − ρ).
     let expected_stored = photons.photons as f32 / (1.0 - rho);
     let m_disc = expected_stored * PI * radius * radius / (4.0 * PI);
-    let sky = Lights::new(&scene);
+    let sky = AreaLights::new(&scene);
     let s = settings(24, 18);
     let cam = camera(Vec3::new(0.05, 0.02, -0.03), Vec3::X, Vec3::Z, 90.0);
     let view = View::from_camera(&cam, 24.0 / 18.0);
@@ -316,7 +317,7 @@ fn render_room(threads: usize) -> (Image, IlluminanceImage, Image) {
             },
             None,
         );
-        let sky = Lights::new(&scene);
+        let sky = AreaLights::new(&scene);
         let s = RenderSettings {
             samples: 2,
             ..settings(32, 24)
@@ -398,14 +399,6 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
         },
     });
     let accel = Accel::new(&scene);
-    let settings = MapSettings {
-        cell: 0.5,
-        photons: 400_000,
-        seed: 11,
-        max_bounces: 4,
-    };
-    let map = illuminance_map(&scene, &accel, 0, &settings, None).unwrap();
-    assert_eq!((map.columns, map.rows), (4, 4));
     let exact = |x0: f64, y0: f64| {
         let n = 64;
         let mut sum = 0.0;
@@ -419,29 +412,59 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
         }
         sum / (n * n) as f64
     };
-    let mut total = 0.0;
-    for cell in map.cells.iter().map(|c| c.unwrap()) {
-        assert!((cell.area - 0.25).abs() < 1e-6);
-        let corner =
-            map.origin + map.u * (cell.index.0 as f32 * 0.5) + map.v * (cell.index.1 as f32 * 0.5);
-        let e = exact(corner.x as f64, corner.y as f64);
-        let est = cell.estimate;
-        assert!(
-            (est.mean - e).abs() < 4.0 * est.std_error,
-            "cell {:?}: {} ± {} vs {e}",
-            cell.index,
-            est.mean,
-            est.std_error
-        );
-        // The check above means something only if the interval is informative.
-        assert!(
-            est.std_error < 0.05 * e,
-            "cell {:?}: σ {}",
-            cell.index,
-            est.std_error
-        );
-        total += est.mean * cell.area;
+    // Both estimators within 4 σ of every cell's exact value; the connected one's mean
+    // relative σ below half the arrivals' (direct light on a black floor is where a
+    // connection per departure pays most).
+    let mut relative_errors = Vec::new();
+    let mut last = None;
+    for estimator in [Estimator::ArrivalsOnly, Estimator::Connected] {
+        let settings = MapSettings {
+            cell: 0.5,
+            trace: TraceSettings {
+                photons: 400_000,
+                seed: 11,
+                max_bounces: 4,
+            },
+            estimator,
+        };
+        let map = illuminance_map(&scene, &accel, 0, &settings, None).unwrap();
+        assert_eq!((map.columns, map.rows), (4, 4));
+        let mut total = 0.0;
+        let mut relative = 0.0;
+        for cell in map.cells.iter().map(|c| c.unwrap()) {
+            assert!((cell.area - 0.25).abs() < 1e-6);
+            let corner = map.origin
+                + map.u * (cell.index.0 as f32 * 0.5)
+                + map.v * (cell.index.1 as f32 * 0.5);
+            let e = exact(corner.x as f64, corner.y as f64);
+            let est = cell.estimate;
+            assert!(
+                (est.mean - e).abs() < 4.0 * est.std_error,
+                "{estimator:?} cell {:?}: {} ± {} vs {e}",
+                cell.index,
+                est.mean,
+                est.std_error
+            );
+            // The check above means something only if the interval is informative.
+            assert!(
+                est.std_error < 0.05 * e,
+                "cell {:?}: σ {}",
+                cell.index,
+                est.std_error
+            );
+            relative += est.std_error / e / 16.0;
+            total += est.mean * cell.area;
+        }
+        relative_errors.push(relative);
+        last = Some((map, total));
     }
+    assert!(
+        relative_errors[1] < 0.5 * relative_errors[0],
+        "relative σ: arrivals {}, connected {}",
+        relative_errors[0],
+        relative_errors[1]
+    );
+    let (map, total) = last.unwrap();
     let summary = map.summary();
     assert!((summary.eavg - total / 4.0).abs() < 1e-9 * total);
     assert!((summary.u0 - summary.emin / summary.eavg).abs() < 1e-12);
@@ -460,9 +483,12 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
     let accel = Accel::new(&scene);
     let settings = MapSettings {
         cell: 0.25,
-        photons: 1000,
-        seed: 1,
-        max_bounces: 4,
+        trace: TraceSettings {
+            photons: 1000,
+            seed: 1,
+            max_bounces: 4,
+        },
+        estimator: Estimator::Connected,
     };
     assert!(matches!(
         illuminance_map(&scene, &accel, 0, &settings, None),
@@ -472,7 +498,10 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
     let accel = Accel::new(&room);
     let red = room.surface("Red").unwrap();
     let settings = MapSettings {
-        photons: 50_000,
+        trace: TraceSettings {
+            photons: 50_000,
+            ..settings.trace
+        },
         ..settings
     };
     let run = |threads| {
@@ -491,7 +520,7 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
 fn search_plots_are_written_at_their_size() {
     let dir = std::env::temp_dir().join(format!("invlight-plot-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut rng = Rng::new(5, 0);
+    let mut rng = Pcg32::new(5, 0);
     let mut points = Vec::new();
     for i in 0..40 {
         let (u, v) = (rng.uniform() as f64 * 3.0, rng.uniform() as f64 * 2.0);

@@ -1,8 +1,8 @@
 //! Scene pieces and closed forms shared by the photon tests (`closed_forms.rs`,
 //! `connections.rs`).
 
-use invlight_photon::Estimate;
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec2, Vec3};
+use invlight_stats::Estimate;
 
 /// Standard errors an estimate may miss its exact value by: a 4 σ miss has probability
 /// 6·10⁻⁵ for an honest interval.
