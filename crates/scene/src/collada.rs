@@ -228,7 +228,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         let world = *parent * local_transform(ctx, node)?;
         let name = node.attribute("name").or(node.attribute("id"));
         let placement = match (placement, name) {
-            (None, Some(n)) if n.ends_with("__Geometry") => {
+            (None, Some(n)) if crate::model::is_placement_name(n) => {
                 self.scene.placements.push(Placement {
                     name: n.to_string(),
                     vertices: Vec::new(),

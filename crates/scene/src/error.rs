@@ -1,17 +1,20 @@
-//! The one error type of every loader: it names the file, the place in it and what was
-//! expected, and may carry a hint, so a user can fix the file without reading our code
-//! (ripgrep's `WithPath`/`WithLineNumber`, pbrt-v4's `file:line:col`).
+//! The one error type of every file invlight reads (scene files, problem files, later
+//! photometric files): it names the file, the place in it and what was expected, and may
+//! carry a hint, so a user can fix the file without reading our code (ripgrep's
+//! `WithPath`/`WithLineNumber`, pbrt-v4's `file:line:col`). Warnings have the same shape.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// A scene file could not be read or understood.
+/// A message about a file: an error, or a warning the reader carries along.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LoadError {
+pub struct Diagnostic {
     /// The file at fault.
     pub path: PathBuf,
-    /// Where in the file: `line 12`, `<node id="Cube">`, `nodes[3]`; empty when the
-    /// whole file is at fault (unreadable, unknown format).
+    /// 1-based line, when the message is about a line of a text file.
+    pub line: Option<u32>,
+    /// Where in the file otherwise: `<node id="Cube">`, `nodes[3]`, `light 'Sun'`; empty
+    /// when the line says it or the whole file is at fault (unreadable, unknown format).
     pub location: String,
     /// What is wrong, phrased as what was expected.
     pub message: String,
@@ -19,22 +22,34 @@ pub struct LoadError {
     pub hint: Option<String>,
 }
 
-impl LoadError {
-    /// An error about the whole file.
+/// A scene file could not be read or understood.
+pub type LoadError = Diagnostic;
+
+impl Diagnostic {
+    /// A message about the whole file.
     pub fn new(path: &Path, message: impl Into<String>) -> Self {
-        LoadError {
+        Diagnostic {
             path: path.to_path_buf(),
+            line: None,
             location: String::new(),
             message: message.into(),
             hint: None,
         }
     }
 
-    /// An error at a place in the file (a line, an element, a JSON path).
+    /// A message about a place in the file (an element, a JSON path, a named thing).
     pub fn at(path: &Path, location: impl Into<String>, message: impl Into<String>) -> Self {
-        LoadError {
+        Diagnostic {
             location: location.into(),
-            ..LoadError::new(path, message)
+            ..Diagnostic::new(path, message)
+        }
+    }
+
+    /// A message about line `line` of a text file.
+    pub fn at_line(path: &Path, line: u32, message: impl Into<String>) -> Self {
+        Diagnostic {
+            line: Some(line),
+            ..Diagnostic::new(path, message)
         }
     }
 
@@ -45,9 +60,12 @@ impl LoadError {
     }
 }
 
-impl fmt::Display for LoadError {
+impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.path.display())?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
         if !self.location.is_empty() {
             write!(f, ": {}", self.location)?;
         }
@@ -59,4 +77,4 @@ impl fmt::Display for LoadError {
     }
 }
 
-impl std::error::Error for LoadError {}
+impl std::error::Error for Diagnostic {}

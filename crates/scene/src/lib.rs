@@ -26,21 +26,32 @@
 //! ```
 #![deny(missing_docs)]
 
+mod atomic;
 mod collada;
 mod error;
 mod gltf;
 mod image_file;
 mod light;
 mod load;
+mod lookup;
 mod material;
 mod mesh;
 mod model;
 mod obj;
+mod summary;
+mod world;
 
-pub use error::LoadError;
+pub use atomic::write_atomically;
+pub use error::{Diagnostic, LoadError};
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 pub use light::{Camera, Light, LightKind, luminance};
 pub use load::{LoadOptions, UpAxis, load};
+pub use lookup::known_names;
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
-pub use model::{Instance, InstanceId, MaterialId, MeshId, Placement, Scene, Surface, SurfaceId};
+pub use model::{
+    Instance, InstanceId, MaterialId, MeshId, PLACEMENT_SUFFIX, Placement, Scene, Surface,
+    SurfaceId, is_placement_name, placement_name,
+};
+pub use summary::{CameraSummary, LightSummary, SceneSummary, SurfaceSummary};
+pub use world::WorldTriangle;

@@ -36,6 +36,22 @@ pub struct Surface {
     pub instances: Vec<InstanceId>,
 }
 
+/// The suffix of ILPSolver's placement rectangles: a node named `Cone__Geometry` is not
+/// part of the lit scene but the rectangle a problem file places `Cone` on. The
+/// loaders set such nodes aside as [`Placement`]s; problem files name them.
+pub const PLACEMENT_SUFFIX: &str = "__Geometry";
+
+/// Whether a node name follows the placement convention ([`PLACEMENT_SUFFIX`]).
+pub fn is_placement_name(name: &str) -> bool {
+    name.ends_with(PLACEMENT_SUFFIX)
+}
+
+/// The placement rectangle's name for an object named `object` (`Cone` →
+/// `Cone__Geometry`).
+pub fn placement_name(object: &str) -> String {
+    format!("{object}{PLACEMENT_SUFFIX}")
+}
+
 /// A placement rectangle (a node named `*__Geometry`, ILPSolver's convention): not part
 /// of the lit scene, kept so that a problem file can place objects on it.
 #[derive(Debug, Clone, PartialEq)]

@@ -321,3 +321,13 @@ fn broken_files_name_the_place() {
     assert_eq!(e.location, "GLB header");
     assert!(e.message.contains("the header says"), "{e}");
 }
+
+/// An emissive texture is refused with the material and the place named, not spread
+/// evenly over the whole surface.
+#[test]
+fn emissive_textures_are_refused() {
+    let e = error("emissive_texture.gltf");
+    assert_eq!(e.location, "materials[0].emissiveTexture");
+    assert!(e.message.contains("'Lantern'"), "{e}");
+    assert!(e.hint.as_ref().unwrap().contains("emissiveFactor"), "{e}");
+}

@@ -264,6 +264,14 @@ def broken():
     d.gltf = json.loads(json.dumps(doc))
     d.gltf["meshes"][0]["primitives"][0]["mode"] = 9
     d.write("bad_mode.gltf", "embedded")
+    d.gltf = json.loads(json.dumps(doc))
+    d.gltf["meshes"][0]["primitives"][0]["material"] = 0
+    d.gltf["materials"] = [
+        {"name": "Lantern", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}}
+    ]
+    d.gltf["textures"] = [{"source": 0}]
+    d.gltf["images"] = [{"uri": "external 0.png"}]
+    d.write("emissive_texture.gltf", "embedded")
     with open(os.path.join(HERE, "hierarchy.gltf"), "rb") as f:
         text = f.read()
     with open(os.path.join(HERE, "malformed.gltf"), "wb") as f:

@@ -119,8 +119,17 @@ pub(super) fn read(
         }
         None => {}
     }
-    if let Some(Value::Color(c)) = value("emission")? {
-        m.emission = c.truncate().max(Vec3::ZERO);
+    match value("emission")? {
+        Some(Value::Color(c)) => m.emission = c.truncate().max(Vec3::ZERO),
+        Some(Value::Image(file)) => {
+            return Err(ctx
+                .error(
+                    shading,
+                    format!("material '{name}' emits through a texture ({}), which invlight does not read", file.display()),
+                )
+                .with_hint("give the emitting material an emission colour (its luminance in cd/m²) instead"));
+        }
+        None => {}
     }
     if let Some(Value::Color(c)) = value("reflective")? {
         m.specular = c.truncate() * float("reflectivity")?.unwrap_or(1.0);

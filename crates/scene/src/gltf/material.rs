@@ -67,6 +67,14 @@ impl Builder<'_> {
         if !emission.is_finite() || factors.iter().any(|f| !f.is_finite()) {
             return Err(self.err(&here, "a factor is not a finite number"));
         }
+        if m.emissive_texture.is_some() && emission.max_element() > 0.0 {
+            return Err(self
+                .err(
+                    &format!("{here}.emissiveTexture"),
+                    format!("material '{name}' emits through a texture, which invlight does not read: it would emit emissiveFactor uniformly over the whole surface"),
+                )
+                .with_hint("bake the texture's mean into emissiveFactor (or split the emitting part into its own material), or set emissiveFactor to 0 if the surface should not emit"));
+        }
 
         let material = if ior.is_some_and(|ior| ior < 1.0) {
             // ILPSolver marks apertures by an index of refraction below 1 (DESIGN.md §2).

@@ -10,9 +10,6 @@ use gltf_json as json;
 use json::extensions::scene::khr_lights_punctual::Type as LightType;
 use json::validation::Checked;
 
-/// ILPSolver's suffix of placement rectangles.
-const PLACEMENT_SUFFIX: &str = "__Geometry";
-
 const TREE_HINT: &str =
     "glTF node hierarchies are trees: a node has one parent at most and is listed once";
 
@@ -116,7 +113,7 @@ impl Builder<'_> {
             let placement = node
                 .name
                 .as_deref()
-                .is_some_and(|n| n.ends_with(PLACEMENT_SUFFIX));
+                .is_some_and(crate::model::is_placement_name);
             if placement {
                 self.placement(i, world)?;
             } else if let Some(mesh) = node.mesh {

@@ -35,6 +35,8 @@ struct Record {
     ni: Option<f32>,
     illum: u32,
     map_kd: Option<String>,
+    /// Line of a `map_Ke` statement.
+    map_ke: Option<usize>,
 }
 
 impl Record {
@@ -49,6 +51,7 @@ impl Record {
             ni: None,
             illum: 1,
             map_kd: None,
+            map_ke: None,
         }
     }
 }
@@ -86,8 +89,21 @@ pub(super) fn parse(
                 record.illum = value as u32;
             }
             b"map_Kd" => record.map_kd = texture_file(line),
+            b"map_Ke" => record.map_ke = Some(number),
             _ => {}
         }
+    }
+    if let Some((r, line)) = records.iter().find_map(|r| {
+        r.map_ke
+            .filter(|_| r.ke.max_element() > 0.0)
+            .map(|l| (r, l))
+    }) {
+        return Err(LoadError::at(
+            path,
+            format!("line {line}"),
+            format!("material '{}' emits through a texture (map_Ke), which invlight does not read: it would emit Ke uniformly over the whole surface", r.name),
+        )
+        .with_hint("bake the texture's mean into Ke, or remove Ke if the surface should not emit"));
     }
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut decoded: HashMap<String, Option<u32>> = HashMap::new();
@@ -230,6 +246,32 @@ mod tests {
         let mut m = parse(text.as_bytes(), Path::new("t.mtl"), &mut textures).unwrap();
         assert_eq!(m.len(), 1);
         m.remove(0)
+    }
+
+    /// An emission texture is refused, not silently spread evenly over the surface; a
+    /// texture on a surface that does not emit is harmless.
+    #[test]
+    fn emission_textures_are_refused() {
+        let mut textures = Vec::new();
+        let e = parse(
+            b"newmtl lamp\nKe 5 5 5\nmap_Ke glow.png\n",
+            Path::new("t.mtl"),
+            &mut textures,
+        )
+        .unwrap_err();
+        assert_eq!(e.location, "line 3");
+        assert!(
+            e.message.contains("map_Ke") && e.message.contains("'lamp'"),
+            "{e}"
+        );
+        assert!(
+            parse(
+                b"newmtl dark\nmap_Ke glow.png\n",
+                Path::new("t.mtl"),
+                &mut textures
+            )
+            .is_ok()
+        );
     }
 
     #[test]
