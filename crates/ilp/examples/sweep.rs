@@ -22,9 +22,10 @@
 //! standard error).
 
 use glam::{DVec2, DVec3};
-use invlight_ilp::{Binding, Domain, Evaluate, PhotonEvaluator, Problem, SplitMix64};
+use invlight_ilp::{Binding, Domain, Evaluate, PhotonEvaluator, Problem, VariableKind};
 use invlight_photon::TraceSettings;
 use invlight_scene::{LoadOptions, Scene, SurfaceId};
+use invlight_stats::SplitMix64;
 use std::error::Error;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -150,17 +151,17 @@ fn main() {
 
 fn run(args: &Args) -> Result<(), Box<dyn Error>> {
     let problem = Problem::read(&args.problem)?;
-    let mut scene = invlight_scene::load(&problem.scene, &LoadOptions::default())?;
+    let mut scene = problem.load_scene(&LoadOptions::default(), None, None)?;
     let binding = Binding::new(&problem, &mut scene)?;
     let (k, rect) = match binding
-        .kinds
+        .specs
         .iter()
         .zip(binding.space.variables())
         .enumerate()
-        .find(|(_, (kind, _))| **kind == "lightInSurface")
+        .find(|(_, (spec, _))| matches!(spec.kind, VariableKind::LightInSurface(_)))
     {
         Some((k, (_, v))) => match &v.domain {
-            Domain::Rectangle(r) => (k, r.clone()),
+            Domain::Parallelogram(r) => (k, r.clone()),
             _ => return Err("the lightInSurface variable has no rectangle".into()),
         },
         None => return Err("the problem has no lightInSurface variable".into()),

@@ -4,16 +4,21 @@
 
 use crate::space::Cell;
 use crate::vns::Verdict;
-use invlight_photon::Estimate;
+use invlight_stats::Estimate;
 use std::collections::HashMap;
 
-/// What is remembered of an evaluated cell.
+/// What is remembered of a cell drawn before.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Entry {
-    /// The most precise estimate made of it.
-    pub estimate: Estimate,
-    /// What the search decided.
-    pub verdict: Verdict,
+pub enum Entry {
+    /// It was traced.
+    Evaluated {
+        /// The most precise estimate made of it.
+        estimate: Estimate,
+        /// What the search decided.
+        verdict: Verdict,
+    },
+    /// The evaluator refused it untraced (it would put an object outside the scene).
+    Refused,
 }
 
 /// Evaluated cells.

@@ -11,9 +11,9 @@
 //! (z·sqrt(σx² + σy²) ≤ z·(σx + σy)), and overlapping intervals on a line have a common
 //! point (Helly's theorem in one dimension): the SIISOC is always a real interval.
 
-use crate::compare::{Comparison, Interval, compare};
 use crate::space::{Cell, Configuration};
-use invlight_photon::Estimate;
+use invlight_stats::Estimate;
+use invlight_stats::{Comparison, Interval, compare};
 
 /// A member of the ISOC.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,6 +65,14 @@ impl Isoc {
         &self.members
     }
 
+    /// The first of [`Isoc::by_mean`], found without sorting (for progress shown after
+    /// every evaluation).
+    pub fn best(&self) -> Option<&Member> {
+        self.members
+            .iter()
+            .min_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean))
+    }
+
     /// The members, highest mean first (equal means oldest first): the order a reader
     /// expects in `result.json`, the pictures and the printed table, though the members
     /// cannot be told apart at the chosen confidence.
@@ -89,7 +97,7 @@ impl Isoc {
     pub fn reaches(&self, e: &Estimate) -> bool {
         match self.siisoc {
             None => true,
-            Some(s) => !Interval::of(e, self.z).below(&s),
+            Some(s) => !e.interval(self.z).below(&s),
         }
     }
 
@@ -119,10 +127,7 @@ impl Isoc {
     /// The intersection of all members' intervals (see the module doc for why it is
     /// never empty while there are members).
     fn intersection(&self) -> Option<Interval> {
-        let mut it = self
-            .members
-            .iter()
-            .map(|m| Interval::of(&m.estimate, self.z));
+        let mut it = self.members.iter().map(|m| m.estimate.interval(self.z));
         let first = it.next()?;
         let low = it.clone().fold(first.low, |l, i| l.max(i.low));
         let high = it.fold(first.high, |h, i| h.min(i.high));
@@ -147,7 +152,7 @@ mod tests {
             estimate: Estimate {
                 mean,
                 std_error,
-                photons: 1000,
+                samples: 1000,
             },
         }
     }

@@ -2,22 +2,27 @@
 //!
 //! The core types:
 //! - [`Problem`]: an ILPSolver XML problem file, read with located errors and warnings
-//!   (`docs/problem-file.md`).
+//!   ([`Diagnostic`], `docs/problem-file.md`).
 //! - [`Binding`]: a problem bound to a [`Scene`](invlight_scene::Scene): the [`Space`]
-//!   of its variables ([`Variable`], [`Domain`]: placement [`Rectangle`]s, sun
+//!   of its variables ([`Variable`], [`Domain`]: placement [`Parallelogram`]s, sun
 //!   [`Hemisphere`]s, colour segments) with their neighbourhoods N(x, r) and cells, the
-//!   initial [`Configuration`], and [`Binding::apply`], which changes only what moved.
+//!   initial [`Configuration`], [`Binding::apply`], which changes only what moved, and
+//!   [`Binding::configuration`], the way back from world values to a configuration.
 //! - [`Search`]: the adapted VNS, generic over an [`Evaluate`] function returning an
 //!   [`Estimate`] with its standard error; it keeps the [`Isoc`] (the indistinguishable
 //!   set of optimum configurations) and a tabu cache of evaluated cells, and reports
-//!   every evaluation to an [`Observer`].
-//! - [`PhotonEvaluator`]: the objective by photon tracing; [`Output`]: `solutions.csv`
-//!   and `result.json`, and [`read_solutions`] to resume.
+//!   every evaluation to an [`Observer`]. It uses `invlight-stats` alone, so it is
+//!   tested on synthetic functions without the tracer.
+//! - [`PhotonEvaluator`]: the objective by photon tracing.
+//! - The files of a run, one typed schema each, read and written by the same struct:
+//!   [`SolutionRow`] (`solutions.csv`), [`ResultFile`] (`result.json`), [`RunFile`]
+//!   (`run.json`), kept by [`Output`] as the search goes.
+//! - [`visits`]: what the search visited, for its plots.
 //!
 //! ```
 //! use invlight_ilp::{Configuration, Domain, Evaluate, Search, Settings, Space, Strategy,
-//!     Variable, Observer, Record, Isoc, Estimate};
-//! use std::sync::atomic::AtomicBool;
+//!     Variable, Observer, Record, Isoc};
+//! use invlight_stats::{Confidence, Estimate};
 //!
 //! // Maximise 1 − (V − 0.3)² over a colour value V ∈ [0, 1] (exact, σ = 0).
 //! struct Parabola;
@@ -25,7 +30,7 @@
 //!     type Error = ();
 //!     fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, ()> {
 //!         let v = c.coords[0];
-//!         Ok(Estimate { mean: 1.0 - (v - 0.3).powi(2), std_error: 0.0, photons })
+//!         Ok(Estimate { mean: 1.0 - (v - 0.3).powi(2), std_error: 0.0, samples: photons })
 //!     }
 //! }
 //! struct Quiet;
@@ -38,38 +43,45 @@
 //! );
 //! let settings = Settings {
 //!     max_iterations: 200, photons: 1000, fast_quality: 0.25,
-//!     strategy: Strategy::RefineOnIntersection, confidence: 0.95, cap: None, seed: 1,
+//!     strategy: Strategy::RefineOnIntersection, confidence: Confidence::DEFAULT, cap: None, seed: 1,
 //!     tries_per_radius: None,
 //! };
 //! let mut search = Search::new(&space, settings, &Configuration { coords: vec![0.9] });
-//! search.run(&mut Parabola, &mut Quiet, &AtomicBool::new(false)).unwrap();
+//! search.run(&mut Parabola, &mut Quiet).unwrap();
 //! // The best cell is [0.3, 0.4), evaluated at its centre 0.35.
 //! assert_eq!(search.isoc().members()[0].config.coords, vec![0.35]);
 //! ```
 #![deny(missing_docs)]
 
-mod apply;
+mod binding;
 mod cache;
-mod compare;
+mod history;
 mod isoc;
+mod member;
 mod output;
 mod photons;
 mod problem;
-mod rng;
 mod space;
 mod vns;
 
-pub use apply::{Binding, Value, hsv_to_rgb};
+pub use binding::{Binding, Bounds, VariableValue, hsv_to_rgb};
 pub use cache::{Cache, Entry};
-pub use compare::{Comparison, Interval, compare};
-pub use invlight_photon::Estimate;
+pub use history::{Axes, Role, Visit, visits};
+pub use invlight_scene::Diagnostic;
+pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};
 pub use isoc::{Admission, Isoc, Member};
-pub use output::{ObjectiveInfo, Output, RunSettings, csv_header, read_solutions};
+pub use member::MemberRef;
+pub use output::{
+    FolderLock, ObjectiveInfo, Output, OutputError, RESULT_SCHEMA, RUN_FILES, RUN_SCHEMA,
+    ResultEstimate, ResultFile, ResultMember, ResultValue, Run, RunFile, SolutionRow, Solutions,
+    Start, csv_header, csv_line, is_run_picture,
+};
 pub use photons::PhotonEvaluator;
-pub use problem::{Objective, Problem, ProblemError, VariableKind, VariableSpec};
-pub use rng::{SplitMix64, mix};
+pub use problem::{
+    Anchor, Objective, PlacementSpec, Problem, SceneRef, VariableKind, VariableSpec,
+};
 pub use space::{
-    Cell, Configuration, Domain, Hemisphere, Rectangle, RectangleError, Space, Variable,
+    Cell, Configuration, Domain, Hemisphere, Parallelogram, ParallelogramError, Space, Variable,
 };
 pub use vns::{
     Evaluate, Observer, Outcome, Record, Search, SearchError, Settings, Strategy, Verdict,

@@ -8,11 +8,12 @@
 //! difference is far less noisy than either value, and a fast estimate with n photons
 //! is the first n photons of the full one.
 
-use crate::apply::Binding;
+use crate::binding::Binding;
 use crate::space::Configuration;
 use crate::vns::Evaluate;
-use invlight_photon::{Estimate, TraceSettings, trace};
+use invlight_photon::{Estimator, TraceSettings, measure, photons_traced};
 use invlight_scene::Scene;
+use invlight_stats::Estimate;
 use invlight_trace::Accel;
 use std::convert::Infallible;
 
@@ -21,7 +22,6 @@ pub struct PhotonEvaluator<'b> {
     binding: &'b Binding,
     scene: Scene,
     accel: Accel,
-    area: f64,
     seed: u64,
     max_bounces: u32,
     rays: u64,
@@ -33,12 +33,10 @@ impl<'b> PhotonEvaluator<'b> {
     /// `seed` and at most `max_bounces` bounces.
     pub fn new(binding: &'b Binding, scene: Scene, seed: u64, max_bounces: u32) -> Self {
         let accel = Accel::with_movable(&scene, &binding.movable_instances());
-        let area = scene.surface_area(binding.objective) as f64;
         PhotonEvaluator {
             binding,
             scene,
             accel,
-            area,
             seed,
             max_bounces,
             rays: 0,
@@ -60,20 +58,32 @@ impl Evaluate for PhotonEvaluator<'_> {
             self.accel.update_instances(&self.scene);
         }
         let settings = TraceSettings {
-            photons,
+            photons: self.samples(photons),
             seed: self.seed,
             max_bounces: self.max_bounces,
-            connect: true,
         };
-        let r = trace(
+        let m = measure(
             &self.scene,
             &self.accel,
             &[self.binding.objective],
             &settings,
+            Estimator::Connected,
             None,
         );
-        self.rays += r.rays;
-        self.photons += r.photons;
-        Ok(r.estimate(0, self.area))
+        self.rays += m.rays + m.connection_rays;
+        self.photons += m.photons;
+        Ok(m.estimate(0))
+    }
+
+    /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is
+    /// held at the largest whole number of groups (no run gets near either).
+    fn samples(&self, requested: u64) -> u64 {
+        photons_traced(requested).unwrap_or(u64::MAX - u64::MAX % invlight_photon::GROUP)
+    }
+
+    fn refuses(&self, config: &Configuration) -> Option<String> {
+        self.binding
+            .leaves_scene(config)
+            .map(|id| format!("it puts '{id}' outside the scene"))
     }
 }

@@ -15,8 +15,8 @@
 //! `meshSize[dimension % len]`), and a configuration is evaluated at its cell's
 //! reference point, the cell centre.
 
-use crate::rng::SplitMix64;
 use glam::DVec3;
+use invlight_stats::SplitMix64;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt;
 
@@ -26,7 +26,7 @@ use std::fmt;
 /// point in the plane's metric coordinates (u along e1, v ⟂ u in the plane), clipped to
 /// the parallelogram, so N(x, 1) covers it from any point (§3.2's property (c)).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Rectangle {
+pub struct Parallelogram {
     /// Vertex A, the reference point of the placed object at (0, 0).
     pub a: DVec3,
     /// Edge from A to its first neighbour (B).
@@ -41,19 +41,19 @@ pub struct Rectangle {
 
 /// Why four points do not make a placement parallelogram.
 #[derive(Debug, Clone, PartialEq)]
-pub enum RectangleError {
+pub enum ParallelogramError {
     /// Two edges from A are parallel or of zero length.
     Degenerate,
     /// The vertex opposite A is off the parallelogram spanned by its neighbours by this
     /// distance (relative to the diagonal): the quad is not planar or not a parallelogram.
-    NotParallelogram(f64),
+    Skewed(f64),
 }
 
-impl fmt::Display for RectangleError {
+impl fmt::Display for ParallelogramError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            RectangleError::Degenerate => write!(f, "its vertices are collinear or repeated"),
-            RectangleError::NotParallelogram(d) => write!(
+            ParallelogramError::Degenerate => write!(f, "its vertices are collinear or repeated"),
+            ParallelogramError::Skewed(d) => write!(
                 f,
                 "it is not a planar parallelogram (the vertex opposite A is {:.1} % of the diagonal away from where it should be)",
                 100.0 * d
@@ -62,12 +62,12 @@ impl fmt::Display for RectangleError {
     }
 }
 
-impl Rectangle {
+impl Parallelogram {
     /// The parallelogram of corners `a` (reference vertex) and `others` (B, C, D in any
     /// order: the one farthest from A is taken as opposite, so both ILPSolver's labelling
     /// (D opposite) and A-B-C-D around the quad (C opposite) work). e1 points to the first
     /// of the others that is a neighbour of A.
-    pub fn from_corners(a: DVec3, others: [DVec3; 3]) -> Result<Rectangle, RectangleError> {
+    pub fn from_corners(a: DVec3, others: [DVec3; 3]) -> Result<Parallelogram, ParallelogramError> {
         let far = (0..3)
             .max_by(|&i, &j| {
                 a.distance_squared(others[i])
@@ -77,28 +77,33 @@ impl Rectangle {
         let mut near = (0..3).filter(|&i| i != far).map(|i| others[i]);
         let (n1, n2) = match (near.next(), near.next()) {
             (Some(n1), Some(n2)) => (n1, n2),
-            _ => return Err(RectangleError::Degenerate),
+            _ => return Err(ParallelogramError::Degenerate),
         };
         let (e1, e2) = (n1 - a, n2 - a);
         let l1 = e1.length();
         let area = e1.cross(e2).length();
         if l1 == 0.0 || e2.length() == 0.0 || area <= 1e-9 * l1 * e2.length() {
-            return Err(RectangleError::Degenerate);
+            return Err(ParallelogramError::Degenerate);
         }
         let diagonal = (e1 + e2).length().max((e1 - e2).length());
         let off = (others[far] - (a + e1 + e2)).length() / diagonal;
         if off > 1e-3 {
-            return Err(RectangleError::NotParallelogram(off));
+            return Err(ParallelogramError::Skewed(off));
         }
         let u = e1 / l1;
         let metric = [l1, e2.dot(u), area / l1];
-        Ok(Rectangle {
+        Ok(Parallelogram {
             a,
             e1,
             e2,
             metric,
             diagonal,
         })
+    }
+
+    /// The longer diagonal's length, m.
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
     }
 
     /// The world point at (s, t).
@@ -213,7 +218,7 @@ impl Hemisphere {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Domain {
     /// A position on a placement parallelogram (2 dimensions: s, t).
-    Rectangle(Rectangle),
+    Parallelogram(Parallelogram),
     /// A direction in a hemisphere (2 dimensions: φ, θ).
     Hemisphere(Hemisphere),
     /// A scalar in [min, max] (1 dimension).
@@ -229,7 +234,7 @@ impl Domain {
     /// Number of normalised coordinates.
     pub fn dimensions(&self) -> usize {
         match self {
-            Domain::Rectangle(_) | Domain::Hemisphere(_) => 2,
+            Domain::Parallelogram(_) | Domain::Hemisphere(_) => 2,
             Domain::Segment { .. } => 1,
         }
     }
@@ -237,7 +242,7 @@ impl Domain {
     /// Writes a neighbour of `x` (this variable's coordinates) at radius r into `out`.
     fn neighbour(&self, x: &[f64], r: f64, rng: &mut SplitMix64, out: &mut [f64]) {
         match self {
-            Domain::Rectangle(rect) => {
+            Domain::Parallelogram(rect) => {
                 let (s, t) = rect.neighbour(x[0], x[1], r, rng);
                 out[0] = s;
                 out[1] = t;
@@ -377,8 +382,8 @@ impl Space {
 mod tests {
     use super::*;
 
-    fn square(side: f64) -> Rectangle {
-        Rectangle::from_corners(
+    fn square(side: f64) -> Parallelogram {
+        Parallelogram::from_corners(
             DVec3::ZERO,
             [
                 DVec3::new(side, 0.0, 0.0),
@@ -397,8 +402,8 @@ mod tests {
             a + DVec3::new(2.0, 0.0, 1.0),
             a + DVec3::Z,
         );
-        let around = Rectangle::from_corners(a, [b, c, d]).unwrap();
-        let ilpsolver = Rectangle::from_corners(a, [b, d, c]).unwrap();
+        let around = Parallelogram::from_corners(a, [b, c, d]).unwrap();
+        let ilpsolver = Parallelogram::from_corners(a, [b, d, c]).unwrap();
         assert_eq!(around.e1, b - a);
         assert_eq!(around.e2, d - a);
         assert_eq!(ilpsolver, around);
@@ -409,16 +414,19 @@ mod tests {
 
     #[test]
     fn non_planar_quad_is_rejected() {
+        let err = Parallelogram::from_corners(
+            DVec3::ZERO,
+            [DVec3::X, DVec3::new(1.0, 0.3, 1.0), DVec3::Z],
+        );
+        assert!(matches!(err, Err(ParallelogramError::Skewed(_))));
         let err =
-            Rectangle::from_corners(DVec3::ZERO, [DVec3::X, DVec3::new(1.0, 0.3, 1.0), DVec3::Z]);
-        assert!(matches!(err, Err(RectangleError::NotParallelogram(_))));
-        let err = Rectangle::from_corners(DVec3::ZERO, [DVec3::X, DVec3::X * 2.0, DVec3::X * 3.0]);
-        assert_eq!(err, Err(RectangleError::Degenerate));
+            Parallelogram::from_corners(DVec3::ZERO, [DVec3::X, DVec3::X * 2.0, DVec3::X * 3.0]);
+        assert_eq!(err, Err(ParallelogramError::Degenerate));
     }
 
     #[test]
     fn rectangle_neighbours_lie_in_disc_and_rectangle() {
-        let rect = Rectangle::from_corners(
+        let rect = Parallelogram::from_corners(
             DVec3::ZERO,
             [
                 DVec3::new(4.0, 0.0, 0.0),
@@ -468,7 +476,7 @@ mod tests {
             vec![
                 Variable {
                     id: "a".into(),
-                    domain: Domain::Rectangle(square(1.0)),
+                    domain: Domain::Parallelogram(square(1.0)),
                 },
                 Variable {
                     id: "c".into(),

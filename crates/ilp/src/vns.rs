@@ -18,13 +18,11 @@
 //! 4. with `REFINE_ISOC_ON_END`, re-evaluate the ISOC with N samples and rebuild it.
 
 use crate::cache::{Cache, Entry};
-use crate::compare::Interval;
 use crate::isoc::{Admission, Isoc, Member};
-use crate::rng::{SplitMix64, mix};
 use crate::space::{Cell, Configuration, Space};
-use invlight_photon::{Estimate, z_two_sided};
+use invlight_stats::{Confidence, Estimate};
+use invlight_stats::{SplitMix64, mix};
 use std::fmt;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// When candidates are evaluated with the full sample count N (ILPSolver's strategies).
@@ -128,7 +126,7 @@ pub struct Settings {
     /// When to use N.
     pub strategy: Strategy,
     /// Confidence 1 − α of intervals and comparisons (the thesis fixed 95 %).
-    pub confidence: f64,
+    pub confidence: Confidence,
     /// `maxRadiosity`: a configuration whose interval lies entirely above it is invalid.
     pub cap: Option<f64>,
     /// Seed of the search's own random numbers.
@@ -138,12 +136,13 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// n, the samples of a fast evaluation: q·N rounded up, at least 256 (the thesis'
-    /// floor of 16²), at most N.
-    pub fn fast_photons(&self) -> u64 {
-        ((self.fast_quality * self.photons as f64).ceil() as u64)
-            .max(256)
-            .min(self.photons)
+    /// n and N, the samples of a fast and of a full evaluation as `eval` will take
+    /// them ([`Evaluate::samples`]: the photon tracer traces whole groups, at least
+    /// 2 048 photons): n from q·N rounded up, never more than N.
+    pub fn sample_counts<E: Evaluate>(&self, eval: &E) -> (u64, u64) {
+        let full = eval.samples(self.photons);
+        let fast = eval.samples((self.fast_quality * self.photons as f64).ceil() as u64);
+        (fast.min(full), full)
     }
 
     /// I for a space of `dimensions` coordinates.
@@ -161,6 +160,19 @@ pub trait Evaluate {
     /// Estimates the objective at `config` from `photons` samples. Evaluations with the
     /// same sample count should share random numbers (common random numbers).
     fn evaluate(&mut self, config: &Configuration, photons: u64) -> Result<Estimate, Self::Error>;
+
+    /// The samples an evaluation asked for `requested` really takes (the photon tracer
+    /// rounds up to whole groups and a minimum): the search sizes its evaluations by
+    /// it, so the two layers never disagree about what a fast evaluation is.
+    fn samples(&self, requested: u64) -> u64 {
+        requested.max(1)
+    }
+
+    /// Why `config` must not be evaluated at all (it puts an object outside the
+    /// scene), or `None`. A refused candidate costs an iteration and no samples.
+    fn refuses(&self, _config: &Configuration) -> Option<String> {
+        None
+    }
 }
 
 /// One evaluation, as reported and written to `solutions.csv`.
@@ -190,6 +202,15 @@ pub trait Observer {
     ) -> std::io::Result<()>;
     /// After every candidate drawn (cache hits included).
     fn iteration(&mut self, _iteration: u64) {}
+
+    /// A candidate the evaluator refused untraced, and why.
+    fn refused(&mut self, _iteration: u64, _why: &str) {}
+
+    /// Asked before every candidate: `true` stops the search there (Ctrl-C), leaving
+    /// everything reported so far valid.
+    fn should_stop(&mut self) -> bool {
+        false
+    }
 }
 
 /// Why a search stopped early.
@@ -219,8 +240,21 @@ pub enum Outcome {
     Finished,
     /// Every cell was evaluated.
     Exhausted,
-    /// The stop flag was raised; the ISOC is as it was (not refined).
+    /// The observer asked to stop; the ISOC is as it was (not refined).
     Interrupted,
+}
+
+impl Outcome {
+    /// What a user should know about it, if anything.
+    pub fn note(self) -> Option<&'static str> {
+        match self {
+            Outcome::Finished => None,
+            Outcome::Exhausted => Some("every cell was evaluated"),
+            Outcome::Interrupted => Some(
+                "interrupted: the files are complete up to the last evaluation; continue with --resume",
+            ),
+        }
+    }
 }
 
 /// A search in progress.
@@ -241,7 +275,7 @@ pub struct Search<'s> {
 impl<'s> Search<'s> {
     /// A search of `space` from `initial` (snapped to its cell).
     pub fn new(space: &'s Space, settings: Settings, initial: &Configuration) -> Search<'s> {
-        let z = z_two_sided(settings.confidence);
+        let z = settings.confidence.z();
         let rng = SplitMix64::new(mix(settings.seed ^ 0x5EA5_C4F0_0D15_EA5E));
         Search {
             space,
@@ -314,7 +348,7 @@ impl<'s> Search<'s> {
             }
             self.cache.insert(
                 cell,
-                Entry {
+                Entry::Evaluated {
                     estimate: rec.estimate,
                     verdict: rec.verdict,
                 },
@@ -326,12 +360,12 @@ impl<'s> Search<'s> {
         self.rng = SplitMix64::new(mix(self.settings.seed ^ mix(self.iteration)));
     }
 
-    /// Runs (or continues) the search until `max_iterations`, exhaustion or `stop`.
+    /// Runs (or continues) the search until `max_iterations`, exhaustion or the
+    /// observer asks to stop.
     pub fn run<E: Evaluate, O: Observer>(
         &mut self,
         eval: &mut E,
         observer: &mut O,
-        stop: &AtomicBool,
     ) -> Result<Outcome, SearchError<E::Error>> {
         if !self.started {
             self.initial(eval, observer)?;
@@ -342,7 +376,7 @@ impl<'s> Search<'s> {
             // Radius r = k·0.05 for k = 1…19 (Algorithm 3.1), counted in integers.
             let mut k = 1u32;
             while k < 20 {
-                if stop.load(Ordering::Relaxed) {
+                if observer.should_stop() {
                     return Ok(Outcome::Interrupted);
                 }
                 if self.exhausted() {
@@ -351,13 +385,12 @@ impl<'s> Search<'s> {
                 if self.iteration >= max {
                     break 'vns;
                 }
-                let improved =
-                    self.first_improvement(k as f64 * 0.05, tries, eval, observer, stop)?;
-                k = if improved { 1 } else { k + 1 };
+                match self.first_improvement(k as f64 * 0.05, tries, eval, observer)? {
+                    Some(true) => k = 1,
+                    Some(false) => k += 1,
+                    None => return Ok(Outcome::Interrupted),
+                }
             }
-        }
-        if stop.load(Ordering::Relaxed) {
-            return Ok(Outcome::Interrupted);
         }
         let outcome = if self.exhausted() && self.iteration < max {
             Outcome::Exhausted
@@ -377,7 +410,7 @@ impl<'s> Search<'s> {
     fn invalid(&self, e: &Estimate) -> bool {
         self.settings
             .cap
-            .is_some_and(|cap| Interval::of(e, self.isoc.z()).low > cap)
+            .is_some_and(|cap| e.interval(self.isoc.z()).low > cap)
     }
 
     /// Step 1: the initial configuration, with N samples under
@@ -387,9 +420,10 @@ impl<'s> Search<'s> {
         eval: &mut E,
         observer: &mut O,
     ) -> Result<(), SearchError<E::Error>> {
+        let (fast, full) = self.settings.sample_counts(eval);
         let photons = match self.settings.strategy {
-            Strategy::RefineOnIntersection => self.settings.photons,
-            _ => self.settings.fast_photons(),
+            Strategy::RefineOnIntersection => full,
+            _ => fast,
         };
         let config = self.start.clone();
         let cell = self.space.cell(&config);
@@ -416,21 +450,21 @@ impl<'s> Search<'s> {
         self.report(observer, cell, record)
     }
 
-    /// Algorithm 3.2: up to `tries` candidates in N(x, r); true on the first improvement.
+    /// Algorithm 3.2: up to `tries` candidates in N(x, r); `Some(true)` on the first
+    /// improvement, `None` when the observer asked to stop.
     fn first_improvement<E: Evaluate, O: Observer>(
         &mut self,
         r: f64,
         tries: u32,
         eval: &mut E,
         observer: &mut O,
-        stop: &AtomicBool,
-    ) -> Result<bool, SearchError<E::Error>> {
+    ) -> Result<Option<bool>, SearchError<E::Error>> {
         for _ in 0..tries {
-            if self.iteration >= self.settings.max_iterations
-                || stop.load(Ordering::Relaxed)
-                || self.exhausted()
-            {
-                return Ok(false);
+            if observer.should_stop() {
+                return Ok(None);
+            }
+            if self.iteration >= self.settings.max_iterations || self.exhausted() {
+                return Ok(Some(false));
             }
             let members = self.isoc.members();
             let centre = if members.is_empty() {
@@ -448,11 +482,16 @@ impl<'s> Search<'s> {
             if self.cache.get(&cell).is_some() {
                 continue;
             }
+            if let Some(why) = eval.refuses(&candidate) {
+                self.cache.insert(cell, Entry::Refused);
+                observer.refused(iteration, &why);
+                continue;
+            }
             if self.candidate(iteration, candidate, cell, eval, observer)? == Verdict::Better {
-                return Ok(true);
+                return Ok(Some(true));
             }
         }
-        Ok(false)
+        Ok(Some(false))
     }
 
     /// Evaluates a new cell, in two stages under `REFINE_ISOC_ON_INTERSECTION` (§4.7).
@@ -464,7 +503,7 @@ impl<'s> Search<'s> {
         eval: &mut E,
         observer: &mut O,
     ) -> Result<Verdict, SearchError<E::Error>> {
-        let (n, full) = (self.settings.fast_photons(), self.settings.photons);
+        let (n, full) = self.settings.sample_counts(eval);
         if self.settings.strategy == Strategy::RefineOnIntersection && n < full {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
             let verdict = if self.invalid(&fast) {
@@ -529,13 +568,14 @@ impl<'s> Search<'s> {
         eval: &mut E,
         observer: &mut O,
     ) -> Result<(), SearchError<E::Error>> {
-        if self.settings.fast_photons() >= self.settings.photons {
+        let (fast, full) = self.settings.sample_counts(eval);
+        if fast >= full {
             return Ok(());
         }
         let members = self.isoc.members().to_vec();
         self.isoc = Isoc::new(self.isoc.z());
         for m in members {
-            let (estimate, seconds) = self.evaluate(eval, &m.config, self.settings.photons)?;
+            let (estimate, seconds) = self.evaluate(eval, &m.config, full)?;
             if !self.invalid(&estimate) {
                 self.isoc.admit(Member {
                     estimate,
@@ -576,7 +616,8 @@ impl<'s> Search<'s> {
         record: Record,
     ) -> Result<(), SearchError<X>> {
         let (estimate, verdict) = (record.estimate, record.verdict);
-        self.cache.insert(cell, Entry { estimate, verdict });
+        self.cache
+            .insert(cell, Entry::Evaluated { estimate, verdict });
         let changed = matches!(
             verdict,
             Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final
@@ -599,7 +640,7 @@ mod tests {
             Ok(Estimate {
                 mean: c.coords[0],
                 std_error: 0.5 / (photons as f64).sqrt(),
-                photons,
+                samples: photons,
             })
         }
     }
@@ -626,7 +667,7 @@ mod tests {
             photons: 4096,
             fast_quality: 0.25,
             strategy: Strategy::RefineOnIntersection,
-            confidence: 0.95,
+            confidence: Confidence::DEFAULT,
             cap: None,
             seed: 3,
             tries_per_radius: None,
@@ -634,9 +675,7 @@ mod tests {
         let start = Configuration { coords: vec![0.0] };
         let mut search = Search::new(&space, settings.clone(), &start);
         let mut log = Log(Vec::new());
-        search
-            .run(&mut Slope, &mut log, &AtomicBool::new(false))
-            .unwrap();
+        search.run(&mut Slope, &mut log).unwrap();
         let i = log
             .0
             .iter()

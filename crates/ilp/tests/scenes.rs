@@ -11,12 +11,10 @@
 use glam::{DVec3, Mat4, Vec3};
 use invlight_ilp::{
     Binding, Configuration, Isoc, Member, ObjectiveInfo, Observer, Output, PhotonEvaluator,
-    Problem, Record, Search, Value, read_solutions,
+    Problem, Record, Search, Solutions, Start, VariableValue,
 };
-use invlight_photon::z_two_sided;
 use invlight_scene::{Light, LightKind, Material, Mesh, Placement, Scene};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
+use std::path::Path;
 
 struct Quiet;
 impl Observer for Quiet {
@@ -99,9 +97,7 @@ fn solve(name: &str, problem: &Problem, mut scene: Scene) -> Solved {
     let binding = Binding::new(problem, &mut scene).unwrap();
     let mut search = Search::new(&binding.space, problem.settings(), &binding.initial);
     let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, 64);
-    search
-        .run(&mut eval, &mut Quiet, &AtomicBool::new(false))
-        .unwrap();
+    search.run(&mut eval, &mut Quiet).unwrap();
     let isoc = search.isoc().clone();
     let evaluations = search.evaluations();
     let secs = start.elapsed().as_secs_f64();
@@ -120,7 +116,7 @@ fn solve(name: &str, problem: &Problem, mut scene: Scene) -> Solved {
 
 /// The optimum's cell is a member and every member is statistically as good as the
 /// best (see the file's doc).
-fn check(solved: &Solved, optimum: &Configuration, truth: impl Fn(&[Value]) -> f64) {
+fn check(solved: &Solved, optimum: &Configuration, truth: impl Fn(&[VariableValue]) -> f64) {
     let b = &solved.binding;
     let want = b.space.cell(optimum);
     let cells: Vec<_> = solved
@@ -155,9 +151,9 @@ fn check(solved: &Solved, optimum: &Configuration, truth: impl Fn(&[Value]) -> f
     }
 }
 
-fn position(v: &Value) -> DVec3 {
+fn position(v: &VariableValue) -> DVec3 {
     match v {
-        Value::Position(p) => *p,
+        VariableValue::Position { point, .. } => *point,
         other => panic!("{other:?} is not a position"),
     }
 }
@@ -332,7 +328,7 @@ fn object_on_floor_goes_under_the_lamp() {
     // The truth: the top face's share dominates; sides are lit too. Integrate the five
     // faces that can see the lamp, area-weighted over the whole box (bottom included).
     let l = lamp.as_dvec3();
-    let truth = |v: &[Value]| {
+    let truth = |v: &[VariableValue]| {
         let c = position(&v[0]);
         let top = point_on_square(l, 100.0, c + DVec3::new(0.2, 0.1, 0.2), 0.4) * 0.16;
         let side = |centre: DVec3, n: DVec3, w: f64| {
@@ -413,7 +409,7 @@ fn skylight_lets_the_sun_onto_the_board() {
     let optimum = Configuration {
         coords: vec![(2.8 - shift - 0.3) / 3.4, 1.3 / 3.4],
     };
-    let truth = |v: &[Value]| {
+    let truth = |v: &[VariableValue]| {
         let c = position(&v[0]) + DVec3::new(0.3 + shift, 0.0, 0.3);
         1000.0 * -sun.y * overlap(0.6, 0.6, c.x - 2.8) * overlap(0.6, 0.6, c.z - 1.6) / 0.36
     };
@@ -517,8 +513,8 @@ fn sun_through_window_onto_board() {
     let optimum = Configuration {
         coords: vec![17.5 / 36.0, 7.5 / 9.0],
     };
-    let truth = |v: &[Value]| match v[0] {
-        Value::Direction(d) if d.x > 0.0 => {
+    let truth = |v: &[VariableValue]| match v[0] {
+        VariableValue::Direction(d) if d.x > 0.0 => {
             let hit = w + d * (5.99 / d.x);
             1000.0 * d.x * overlap(1.5, 1.5, hit.y - b.y) * overlap(1.5, 1.5, hit.z - b.z) / 2.25
         }
@@ -531,23 +527,24 @@ fn sun_through_window_onto_board() {
 fn lamp_files(threads: usize, dir: &Path) -> String {
     let (mut scene, pb) = lamp_scene();
     let binding = Binding::new(&pb, &mut scene).unwrap();
-    let z = z_two_sided(pb.confidence);
     let mut search = Search::new(&binding.space, pb.settings(), &binding.initial);
     let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64);
     let info = ObjectiveInfo {
         surface: "Desk".into(),
+        sense: "maximize".into(),
+        unit: "lx".into(),
         cap: None,
-        photons: pb.photons,
     };
-    let mut out = Output::create(dir, &binding, info, z, None, 0.0).unwrap();
+    let start = Start::Fresh { replace: false };
+    let mut out = Output::create(dir, &binding, info, &pb.settings(), 64, &start).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| search.run(&mut eval, &mut out, &AtomicBool::new(false)))
-        .unwrap();
-    let (records, _) = read_solutions(&dir.join("solutions.csv"), &binding, z).unwrap();
-    assert_eq!(records.len() as u64, search.evaluations());
+    pool.install(|| search.run(&mut eval, &mut out)).unwrap();
+    drop(out);
+    let rows = Solutions::read(&dir.join("solutions.csv"), &binding).unwrap();
+    assert_eq!(rows.records.len() as u64, search.evaluations());
     // Everything but the time columns (seconds, elapsed).
     std::fs::read_to_string(dir.join("solutions.csv"))
         .unwrap()
@@ -563,11 +560,9 @@ fn lamp_files(threads: usize, dir: &Path) -> String {
 
 #[test]
 fn same_solutions_on_one_and_two_threads() {
-    let base: PathBuf =
-        std::env::temp_dir().join(format!("invlight-ilp-threads-{}", std::process::id()));
-    let one = lamp_files(1, &base.join("1"));
-    let two = lamp_files(2, &base.join("2"));
+    let base = tempfile::tempdir().unwrap();
+    let one = lamp_files(1, &base.path().join("1"));
+    let two = lamp_files(2, &base.path().join("2"));
     assert!(one.lines().count() > 10);
     assert_eq!(one, two);
-    std::fs::remove_dir_all(&base).unwrap();
 }

@@ -5,11 +5,11 @@
 
 use glam::DVec3;
 use invlight_ilp::{
-    Cell, Configuration, Domain, Estimate, Evaluate, Hemisphere, Isoc, Observer, Outcome, Record,
-    Rectangle, Search, Settings, Space, SplitMix64, Strategy, Variable, Verdict, mix,
+    Cell, Confidence, Configuration, Domain, Estimate, Evaluate, Hemisphere, Isoc, Observer,
+    Outcome, Parallelogram, Record, Search, Settings, Space, Strategy, Variable, Verdict,
 };
+use invlight_stats::{SplitMix64, mix};
 use std::collections::HashSet;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// f(x) plus N(0, σ₁²/N) noise.
 struct Noisy<F: Fn(&[f64]) -> f64> {
@@ -49,27 +49,26 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
         Ok(Estimate {
             mean: (self.f)(&c.coords) + se * g,
             std_error: se,
-            photons,
+            samples: photons,
         })
     }
 }
 
+/// Every record, and a stop asked for (as Ctrl-C does) once `stop_after` are in.
 #[derive(Default)]
 struct Log {
     records: Vec<Record>,
     stop_after: Option<usize>,
-    flag: Option<&'static AtomicBool>,
 }
 
 impl Observer for Log {
     fn evaluated(&mut self, r: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
         self.records.push(r.clone());
-        if let (Some(n), Some(flag)) = (self.stop_after, self.flag)
-            && self.records.len() >= n
-        {
-            flag.store(true, Ordering::Relaxed);
-        }
         Ok(())
+    }
+
+    fn should_stop(&mut self) -> bool {
+        self.stop_after.is_some_and(|n| self.records.len() >= n)
     }
 }
 
@@ -79,7 +78,7 @@ fn settings(max_iterations: u64, strategy: Strategy) -> Settings {
         photons: 10_000,
         fast_quality: 0.25,
         strategy,
-        confidence: 0.95,
+        confidence: Confidence::DEFAULT,
         cap: None,
         seed: 7,
         tries_per_radius: None,
@@ -94,7 +93,7 @@ fn segment(id: &str) -> Variable {
 }
 
 fn rectangle(id: &str, w: f64, h: f64) -> Variable {
-    let rect = Rectangle::from_corners(
+    let rect = Parallelogram::from_corners(
         DVec3::ZERO,
         [
             DVec3::new(w, 0.0, 0.0),
@@ -105,7 +104,7 @@ fn rectangle(id: &str, w: f64, h: f64) -> Variable {
     .unwrap();
     Variable {
         id: id.into(),
-        domain: Domain::Rectangle(rect),
+        domain: Domain::Parallelogram(rect),
     }
 }
 
@@ -117,7 +116,7 @@ fn run<F: Fn(&[f64]) -> f64>(
 ) -> (Isoc, Vec<Record>, Outcome) {
     let mut search = Search::new(space, settings, &Configuration { coords: start });
     let mut log = Log::default();
-    let outcome = search.run(eval, &mut log, &AtomicBool::new(false)).unwrap();
+    let outcome = search.run(eval, &mut log).unwrap();
     (search.isoc().clone(), log.records, outcome)
 }
 
@@ -167,7 +166,7 @@ fn one_dimension_peak() {
     assert_eq!(records[0].verdict, Verdict::Initial);
     assert_eq!(records[0].iteration, 0);
     for m in isoc.members() {
-        assert_eq!(m.estimate.photons, 10_000, "members are refined to N");
+        assert_eq!(m.estimate.samples, 10_000, "members are refined to N");
     }
 }
 
@@ -289,7 +288,7 @@ fn every_strategy_finds_the_peak() {
             10_000
         };
         assert!(
-            isoc.members().iter().all(|m| m.estimate.photons == want),
+            isoc.members().iter().all(|m| m.estimate.samples == want),
             "{strategy:?}"
         );
         let finals = records
@@ -331,7 +330,6 @@ fn same_seed_same_records() {
 
 #[test]
 fn interrupted_run_resumes_without_retracing() {
-    static STOP: AtomicBool = AtomicBool::new(false);
     let f = |x: &[f64]| 100.0 - 30.0 * ((x[0] - 0.52).powi(2) + (x[1] - 0.71).powi(2));
     let space = Space::new(vec![rectangle("lamp", 1.0, 1.0)], &[10]);
     let mut eval = Noisy::new(f, 50.0);
@@ -344,12 +342,16 @@ fn interrupted_run_resumes_without_retracing() {
     );
     let mut log = Log {
         stop_after: Some(15),
-        flag: Some(&STOP),
         ..Log::default()
     };
     assert_eq!(
-        search.run(&mut eval, &mut log, &STOP).unwrap(),
+        search.run(&mut eval, &mut log).unwrap(),
         Outcome::Interrupted
+    );
+    assert_eq!(
+        log.records.len(),
+        15,
+        "the stop is asked before every candidate"
     );
     let before: Vec<Cell> = search
         .isoc()
@@ -381,9 +383,8 @@ fn interrupted_run_resumes_without_retracing() {
             .iteration()
             .max(log.records.last().unwrap().iteration + 1)
     );
-    STOP.store(false, Ordering::Relaxed);
     let mut log2 = Log::default();
-    resumed.run(&mut eval, &mut log2, &STOP).unwrap();
+    resumed.run(&mut eval, &mut log2).unwrap();
     assert!(log2.records.iter().all(|r| r.verdict != Verdict::Initial));
     check_optimum(&space, resumed.isoc(), &[0.52, 0.71], &f);
 }

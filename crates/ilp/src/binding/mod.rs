@@ -1,0 +1,602 @@
+//! Binding a problem's variables to a scene, and applying configurations to it (thesis
+//! §4.5). Applying changes only what moved, as OptiX transform nodes did for ILPSolver:
+//! instance transforms (so the acceleration structure rebuilds only its top level),
+//! light positions and directions, material K_d.
+
+mod colour;
+mod hole;
+mod placement;
+
+pub use colour::hsv_to_rgb;
+pub use placement::Bounds;
+
+use crate::problem::{Anchor, PlacementSpec, Problem, VariableKind, VariableSpec};
+use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
+use glam::{DVec3, Mat4, Vec3};
+use invlight_scene::{
+    Diagnostic, InstanceId, LightKind, MaterialId, Scene, SurfaceId, known_names,
+};
+use placement::{find_parallelogram, instance_bounds, onto_plane};
+
+/// A variable's value in world terms, for the outputs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VariableValue {
+    /// A placement: the placement point P (where the rule of the variable's anchor puts
+    /// it) and the anchor, the object's or light's own place.
+    Position {
+        /// P, m.
+        point: DVec3,
+        /// The light's position or the object's bounding-box centre on the placement
+        /// plane, m.
+        anchor: DVec3,
+    },
+    /// The unit vector the light travels along.
+    Direction(DVec3),
+    /// HSV value V and the resulting linear K_d.
+    Colour {
+        /// V.
+        value: f64,
+        /// K_d, linear RGB.
+        rgb: [f64; 3],
+    },
+}
+
+/// What a placement moves, and how P turns into a translation.
+#[derive(Debug, Clone)]
+struct Moved {
+    instances: Vec<(InstanceId, Mat4)>,
+    lights: Vec<(usize, Vec3)>,
+    /// The point P stands for as authored: vertex A (ILPSolver's rule) or the anchor.
+    reference: DVec3,
+    /// The anchor as authored.
+    anchor: DVec3,
+    /// What moves, as authored (instances' boxes and light positions).
+    bounds: Bounds,
+}
+
+/// What a variable changes in the scene, with the state it started from.
+#[derive(Debug, Clone)]
+enum Target {
+    /// Instances and point/spot lights translated by P − reference.
+    Move(Moved),
+    /// A directional light's direction.
+    Sun { light: usize },
+    /// Materials' K_d.
+    Colour {
+        materials: Vec<MaterialId>,
+        hue: f64,
+        saturation: f64,
+    },
+}
+
+/// A problem bound to a scene: the search space, where it starts, the objective and the
+/// means to apply a configuration.
+#[derive(Debug, Clone)]
+pub struct Binding {
+    /// The variables' space.
+    pub space: Space,
+    /// The scene as authored, as a configuration.
+    pub initial: Configuration,
+    /// The surface whose illuminance is maximised.
+    pub objective: SurfaceId,
+    /// The problem file's variables, in the space's order.
+    pub specs: Vec<VariableSpec>,
+    /// Warnings found while binding (e.g. a `lightInSurface` object that emits nothing).
+    pub warnings: Vec<Diagnostic>,
+    targets: Vec<Target>,
+    /// Where placed things may go: everything no variable moves, and every moved thing
+    /// as authored.
+    bounds: Option<Bounds>,
+}
+
+impl Binding {
+    /// Binds `problem` to `scene`. The scene is changed once here: the objects of
+    /// `holeInSurface` variables get a hole material on a copy of their meshes.
+    pub fn new(problem: &Problem, scene: &mut Scene) -> Result<Binding, Diagnostic> {
+        let path = problem.path.as_path();
+        let mut variables = Vec::new();
+        let mut targets = Vec::new();
+        let mut initial = Vec::new();
+        let mut warnings = Vec::new();
+        for spec in &problem.variables {
+            let err = |msg: String| Diagnostic::at_line(path, spec.line, msg);
+            let (domain, target) = match &spec.kind {
+                VariableKind::ObjectInSurface(p) | VariableKind::HoleInSurface(p) => {
+                    let s = find_surface(scene, &spec.id, spec, &err)?;
+                    if matches!(spec.kind, VariableKind::HoleInSurface(_)) {
+                        hole::make_hole(scene, s, &spec.id);
+                    }
+                    placed(scene, spec, p, Some(s), None, &err, &mut warnings)?
+                }
+                VariableKind::LightInSurface(p) => match scene.light(&spec.id) {
+                    Some(l) => {
+                        if matches!(scene.lights[l].kind, LightKind::Directional { .. }) {
+                            return Err(err(format!(
+                                "'{}' is a directional light, expected a point or spot light or an emissive object (use <directionalLight> for a sun)",
+                                spec.id
+                            )));
+                        }
+                        placed(scene, spec, p, None, Some(l), &err, &mut warnings)?
+                    }
+                    None => {
+                        let s = scene.surface(&spec.id).ok_or_else(|| {
+                            err(format!(
+                                "no light or surface named '{}' in the scene, expected a point or spot light or an emissive object",
+                                spec.id
+                            ))
+                            .with_hint(known_names(scene.lights.iter().map(|l| l.name.as_str()), "lights"))
+                        })?;
+                        if !surface_materials(scene, s)
+                            .iter()
+                            .any(|&m| scene.materials[m as usize].is_emissive())
+                        {
+                            warnings.push(err(format!(
+                                "'{}' emits no light; moving it only moves its shadow",
+                                spec.id
+                            )));
+                        }
+                        placed(scene, spec, p, Some(s), None, &err, &mut warnings)?
+                    }
+                },
+                VariableKind::DirectionalLight => {
+                    let light = scene
+                        .light(&spec.id)
+                        .filter(|&l| matches!(scene.lights[l].kind, LightKind::Directional { .. }))
+                        .ok_or_else(|| {
+                            err(format!(
+                                "no directional light named '{}' in the scene",
+                                spec.id
+                            ))
+                            .with_hint(known_names(
+                                scene
+                                    .lights
+                                    .iter()
+                                    .filter(|l| matches!(l.kind, LightKind::Directional { .. }))
+                                    .map(|l| l.name.as_str()),
+                                "directional lights",
+                            ))
+                        })?;
+                    let hemi = Hemisphere::new(scene.up.as_dvec3());
+                    (Domain::Hemisphere(hemi), Target::Sun { light })
+                }
+                VariableKind::Color {
+                    hue,
+                    saturation,
+                    min,
+                    max,
+                } => {
+                    let materials = colour_materials(scene, &spec.id).ok_or_else(|| {
+                        err(format!(
+                            "no material or surface named '{}' in the scene, expected the material (or the surface) whose colour varies",
+                            spec.id
+                        ))
+                        .with_hint(known_names(scene.materials.iter().map(|m| m.name.as_str()), "materials"))
+                    })?;
+                    // The problem states the colour (hue, saturation, free value); a
+                    // base-colour texture would multiply it into another one, and the
+                    // variable would no longer be the colour the file names.
+                    for &m in &materials {
+                        let material = &mut scene.materials[m as usize];
+                        if material.texture.take().is_some() {
+                            warnings.push(err(format!(
+                                "material '{}' has a base-colour texture; the colour variable '{}' replaces it by the uniform colour HSV({hue}°, {saturation}, V)",
+                                material.name, spec.id
+                            )));
+                        }
+                    }
+                    (
+                        Domain::Segment {
+                            min: *min,
+                            max: *max,
+                        },
+                        Target::Colour {
+                            materials,
+                            hue: *hue,
+                            saturation: *saturation,
+                        },
+                    )
+                }
+            };
+            initial.extend(initial_coords(scene, &domain, &target));
+            variables.push(Variable {
+                id: spec.id.clone(),
+                domain,
+            });
+            targets.push(target);
+        }
+        let objective = scene.surface(&problem.objective.surface).ok_or_else(|| {
+            Diagnostic::at_line(
+                path,
+                problem.objective.line,
+                format!(
+                    "no surface named '{}' in the scene, expected the surface to light",
+                    problem.objective.surface
+                ),
+            )
+            .with_hint(known_names(
+                scene.surfaces.iter().map(|s| s.name.as_str()),
+                "surfaces",
+            ))
+        })?;
+        // Illuminance is flux over area: a surface without area has none.
+        if scene.surface_area(objective) <= 0.0 {
+            return Err(Diagnostic::at_line(
+                path,
+                problem.objective.line,
+                format!(
+                    "the surface '{}' has no area, expected a surface to light",
+                    problem.objective.surface
+                ),
+            ));
+        }
+        let bounds = reachable_bounds(scene, &targets);
+        Ok(Binding {
+            space: Space::new(variables, &problem.cells_per_dimension),
+            initial: Configuration { coords: initial },
+            objective,
+            specs: problem.variables.clone(),
+            warnings,
+            targets,
+            bounds,
+        })
+    }
+
+    /// The instances a configuration may move (objects, emissive objects and holes
+    /// placed on rectangles), in variable order: the acceleration structure keeps them
+    /// separate and bakes everything else into one tree.
+    pub fn movable_instances(&self) -> Vec<InstanceId> {
+        let mut out = Vec::new();
+        for t in &self.targets {
+            if let Target::Move(m) = t {
+                out.extend(m.instances.iter().map(|&(i, _)| i));
+            }
+        }
+        out
+    }
+
+    /// The world value of every variable at `config`.
+    pub fn values(&self, config: &Configuration) -> Vec<VariableValue> {
+        self.space
+            .variables()
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let x = self.space.slice(config, i);
+                match (&v.domain, &self.targets[i]) {
+                    (Domain::Parallelogram(r), Target::Move(m)) => {
+                        let point = r.point(x[0], x[1]);
+                        VariableValue::Position {
+                            point,
+                            anchor: m.anchor + (point - m.reference),
+                        }
+                    }
+                    (Domain::Hemisphere(h), _) => VariableValue::Direction(h.direction(x[0], x[1])),
+                    (Domain::Segment { min, max }, target) => {
+                        let value = min + x[0] * (max - min);
+                        let rgb = match target {
+                            Target::Colour {
+                                hue, saturation, ..
+                            } => hsv_to_rgb(*hue, *saturation, value),
+                            _ => [value; 3],
+                        };
+                        VariableValue::Colour { value, rgb }
+                    }
+                    (Domain::Parallelogram(r), _) => {
+                        let point = r.point(x[0], x[1]);
+                        VariableValue::Position {
+                            point,
+                            anchor: point,
+                        }
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// The configuration whose variables have the world values `values` (as
+    /// [`Binding::values`] gives them and the outputs write them: the placement point,
+    /// the travel direction, the colour value) — the one way back from a result to the
+    /// scene, for `--resume` and `--config`. The configuration is that of the values'
+    /// cell (its reference point, where every evaluated configuration lies), so the
+    /// rounding of world values written as decimals is undone. Values may stray from
+    /// their domain by rounding (they are clamped); a value farther than 10⁻⁶ of the
+    /// domain outside it is an error naming the variable.
+    pub fn configuration(&self, values: &[VariableValue]) -> Result<Configuration, String> {
+        const SLACK: f64 = 1e-6;
+        if values.len() != self.space.variables().len() {
+            return Err(format!(
+                "{} values for {} variables",
+                values.len(),
+                self.space.variables().len()
+            ));
+        }
+        let mut coords = Vec::with_capacity(self.space.dimensions());
+        for (var, value) in self.space.variables().iter().zip(values) {
+            let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
+            let outside = || format!("the value of '{}' lies outside its domain", var.id);
+            match (&var.domain, value) {
+                (Domain::Parallelogram(r), VariableValue::Position { point, .. }) => {
+                    let (s, t) = r.coords(*point);
+                    if !(inside(s) && inside(t)) {
+                        return Err(outside());
+                    }
+                    coords.extend([s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]);
+                }
+                (Domain::Hemisphere(h), VariableValue::Direction(d)) => {
+                    let (phi, theta) = h.coords(*d);
+                    coords.extend([phi, theta]);
+                }
+                (Domain::Segment { min, max }, VariableValue::Colour { value, .. }) => {
+                    let x = if max > min {
+                        (value - min) / (max - min)
+                    } else {
+                        0.0
+                    };
+                    if !inside(x) {
+                        return Err(outside());
+                    }
+                    coords.push(x.clamp(0.0, 1.0));
+                }
+                _ => {
+                    return Err(format!(
+                        "the value of '{}' is not of its variable's kind",
+                        var.id
+                    ));
+                }
+            }
+        }
+        Ok(self.space.snap(&Configuration { coords }))
+    }
+
+    /// The id of the first variable that would put its object (or light) outside the
+    /// scene at `config`: beyond the bounds of everything no variable moves and of every
+    /// moved thing as authored. Such a candidate is not traced: a lamp outside the room
+    /// lights nothing a user means to light, and a cone through a wall is no answer.
+    pub fn leaves_scene(&self, config: &Configuration) -> Option<&str> {
+        let bounds = self.bounds?;
+        let slack = 1e-4 * (bounds.hi - bounds.lo).length();
+        for ((value, target), var) in self
+            .values(config)
+            .iter()
+            .zip(&self.targets)
+            .zip(self.space.variables())
+        {
+            if let (VariableValue::Position { point, .. }, Target::Move(m)) = (value, target)
+                && !bounds.holds(&m.bounds.shifted(*point - m.reference), slack)
+            {
+                return Some(&var.id);
+            }
+        }
+        None
+    }
+
+    /// Applies a configuration; returns whether any instance transform changed (then
+    /// the caller refits the acceleration structure's top level).
+    pub fn apply(&self, scene: &mut Scene, config: &Configuration) -> bool {
+        let mut moved = false;
+        for (value, target) in self.values(config).into_iter().zip(&self.targets) {
+            match (value, target) {
+                (VariableValue::Position { point, .. }, Target::Move(m)) => {
+                    let delta = (point - m.reference).as_vec3();
+                    let shift = Mat4::from_translation(delta);
+                    for &(inst, original) in &m.instances {
+                        let t = shift * original;
+                        let slot = &mut scene.instances[inst as usize].transform;
+                        if *slot != t {
+                            *slot = t;
+                            moved = true;
+                        }
+                    }
+                    for &(light, original) in &m.lights {
+                        match &mut scene.lights[light].kind {
+                            LightKind::Point { position, .. }
+                            | LightKind::Spot { position, .. } => *position = original + delta,
+                            LightKind::Directional { .. } => {}
+                        }
+                    }
+                }
+                (VariableValue::Direction(d), Target::Sun { light }) => {
+                    if let LightKind::Directional { direction, .. } = &mut scene.lights[*light].kind
+                    {
+                        *direction = d.as_vec3().normalize();
+                    }
+                }
+                (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
+                    for &m in materials {
+                        scene.materials[m as usize].diffuse =
+                            Vec3::new(rgb[0] as f32, rgb[1] as f32, rgb[2] as f32);
+                    }
+                }
+                _ => {}
+            }
+        }
+        moved
+    }
+}
+
+fn find_surface(
+    scene: &Scene,
+    name: &str,
+    spec: &VariableSpec,
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<SurfaceId, Diagnostic> {
+    scene.surface(name).ok_or_else(|| {
+        err(format!(
+            "no surface named '{name}' in the scene, expected the object that <{}> moves",
+            spec.kind.name()
+        ))
+        .with_hint(known_names(
+            scene.surfaces.iter().map(|s| s.name.as_str()),
+            "surfaces",
+        ))
+    })
+}
+
+/// The distinct materials of a surface's triangles, in order.
+fn surface_materials(scene: &Scene, s: SurfaceId) -> Vec<MaterialId> {
+    let mut out = Vec::new();
+    for &i in &scene.surfaces[s as usize].instances {
+        for &m in &scene.meshes[scene.instances[i as usize].mesh as usize].materials {
+            if !out.contains(&m) {
+                out.push(m);
+            }
+        }
+    }
+    out
+}
+
+/// The materials a colour variable named `id` changes: those named `id`, else those of
+/// the surface `id`; `None` when there are none.
+fn colour_materials(scene: &Scene, id: &str) -> Option<Vec<MaterialId>> {
+    let mut materials: Vec<MaterialId> = scene
+        .materials
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.name == id)
+        .map(|(i, _)| i as MaterialId)
+        .collect();
+    if materials.is_empty() {
+        materials = scene
+            .surface(id)
+            .map(|s| surface_materials(scene, s))
+            .unwrap_or_default();
+    }
+    (!materials.is_empty()).then_some(materials)
+}
+
+/// The domain and target of a placement variable moving the instances of `surface` or
+/// the light `light`, with a warning when ILPSolver's rule would search it away from
+/// where it was authored.
+fn placed(
+    scene: &Scene,
+    spec: &VariableSpec,
+    p: &PlacementSpec,
+    surface: Option<SurfaceId>,
+    light: Option<usize>,
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    let rect = find_parallelogram(scene, &p.surface, p.vertices, err)?;
+    let instances: Vec<(InstanceId, Mat4)> = surface
+        .map(|s| {
+            scene.surfaces[s as usize]
+                .instances
+                .iter()
+                .map(|&i| (i, scene.instances[i as usize].transform))
+                .collect()
+        })
+        .unwrap_or_default();
+    let lights: Vec<(usize, Vec3)> = light
+        .and_then(|l| scene.lights[l].kind.position().map(|p| (l, p)))
+        .into_iter()
+        .collect();
+    let ids: Vec<InstanceId> = instances.iter().map(|&(i, _)| i).collect();
+    let mut bounds = instance_bounds(scene, &ids);
+    for &(_, pos) in &lights {
+        let b = Bounds::point(pos.as_dvec3());
+        bounds = Some(bounds.map_or(b, |o| o.union(b)));
+    }
+    let bounds = bounds.ok_or_else(|| err(format!("'{}' has no geometry to place", spec.id)))?;
+    let anchor = match lights.first() {
+        Some(&(_, pos)) => pos.as_dvec3(),
+        None => onto_plane(&rect, bounds.centre()),
+    };
+    let reference = match p.anchor {
+        Anchor::VertexA => {
+            let offset = anchor - rect.a;
+            if offset.length() > 1e-3 * rect.diagonal().max(1.0) {
+                warnings.push(
+                    err(format!(
+                        "'{}' is authored at ({:.3}, {:.3}, {:.3}), {:.3} m from vertex A of '{}': by ILPSolver's rule it moves by P − A, so it is searched over that rectangle shifted by ({:.3}, {:.3}, {:.3}) m, and P is not where it is",
+                        spec.id,
+                        anchor.x,
+                        anchor.y,
+                        anchor.z,
+                        offset.length(),
+                        p.surface,
+                        offset.x,
+                        offset.y,
+                        offset.z
+                    ))
+                    .with_hint(format!(
+                        "add anchor=\"centre\" to <{}> to put {} itself on the rectangle; results give both P and its anchor",
+                        spec.kind.name(),
+                        if lights.is_empty() { "the object's centre" } else { "the light" }
+                    )),
+                );
+            }
+            rect.a
+        }
+        Anchor::Centre => anchor,
+    };
+    Ok((
+        Domain::Parallelogram(rect),
+        Target::Move(Moved {
+            instances,
+            lights,
+            reference,
+            anchor,
+            bounds,
+        }),
+    ))
+}
+
+/// The box everything may occupy: the scene's instances no variable moves, the lights
+/// no placement moves, and each moved thing as authored (`None` for an empty scene).
+fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
+    let mut moved_instances = vec![false; scene.instances.len()];
+    let mut moved_lights = vec![false; scene.lights.len()];
+    let mut out: Option<Bounds> = None;
+    let mut add = |b: Bounds| out = Some(out.map_or(b, |o: Bounds| o.union(b)));
+    for t in targets {
+        if let Target::Move(m) = t {
+            m.instances
+                .iter()
+                .for_each(|&(i, _)| moved_instances[i as usize] = true);
+            m.lights.iter().for_each(|&(l, _)| moved_lights[l] = true);
+            add(m.bounds);
+        }
+    }
+    let fixed: Vec<InstanceId> = (0..scene.instances.len() as InstanceId)
+        .filter(|&i| !moved_instances[i as usize])
+        .collect();
+    if let Some(b) = instance_bounds(scene, &fixed) {
+        add(b);
+    }
+    for (l, light) in scene.lights.iter().enumerate() {
+        if let (false, Some(p)) = (moved_lights[l], light.kind.position()) {
+            add(Bounds::point(p.as_dvec3()));
+        }
+    }
+    out
+}
+
+/// The normalised coordinates of the scene as authored.
+fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
+    match (domain, target) {
+        (Domain::Parallelogram(r), Target::Move(m)) => {
+            let (s, t) = r.coords(m.reference);
+            vec![s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]
+        }
+        (Domain::Hemisphere(h), Target::Sun { light }) => {
+            let d = scene.lights[*light]
+                .kind
+                .direction()
+                .map(|d| d.as_dvec3())
+                .unwrap_or(-h.up);
+            let (p, t) = h.coords(d);
+            vec![p, t]
+        }
+        (Domain::Segment { min, max }, Target::Colour { materials, .. }) => {
+            let v = materials
+                .first()
+                .map(|&m| scene.materials[m as usize].diffuse.max_element() as f64)
+                .unwrap_or(*max);
+            vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
+        }
+        (d, _) => vec![0.5; d.dimensions()],
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,138 @@
+//! Placement variables (thesis §4.4.1): the parallelogram an object, light or hole is
+//! placed on, and the object's anchor — the point of it a user means by "where it is".
+//!
+//! ILPSolver moves an object by P − A (P the placement point, A the rectangle's first
+//! vertex), so P is where vertex A goes and the object keeps its authored offset from
+//! A: an object authored at the rectangle's centre is searched over a rectangle shifted
+//! by half a diagonal. The anchor (a light's position; an object's bounding-box centre
+//! projected on the rectangle's plane) is what results report as the object's place,
+//! beside P, and with `anchor="centre"` what P stands for.
+
+use crate::space::Parallelogram;
+use glam::{DVec3, Vec3};
+use invlight_scene::{Diagnostic, InstanceId, Scene};
+
+/// An axis-aligned box in world space, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// Lowest corner.
+    pub lo: DVec3,
+    /// Highest corner.
+    pub hi: DVec3,
+}
+
+impl Bounds {
+    /// The box of one point.
+    pub fn point(p: DVec3) -> Bounds {
+        Bounds { lo: p, hi: p }
+    }
+
+    /// The smallest box holding both.
+    pub fn union(self, other: Bounds) -> Bounds {
+        Bounds {
+            lo: self.lo.min(other.lo),
+            hi: self.hi.max(other.hi),
+        }
+    }
+
+    /// The centre.
+    pub fn centre(&self) -> DVec3 {
+        0.5 * (self.lo + self.hi)
+    }
+
+    /// Whether `other` lies inside this box grown by `slack` on every side.
+    pub fn holds(&self, other: &Bounds, slack: f64) -> bool {
+        (other.lo - self.lo).min_element() >= -slack && (self.hi - other.hi).min_element() >= -slack
+    }
+
+    /// The box moved by `d`.
+    pub fn shifted(&self, d: DVec3) -> Bounds {
+        Bounds {
+            lo: self.lo + d,
+            hi: self.hi + d,
+        }
+    }
+}
+
+/// The world bounds of some instances, `None` when they have no vertices.
+pub fn instance_bounds(scene: &Scene, instances: &[InstanceId]) -> Option<Bounds> {
+    let mut out: Option<Bounds> = None;
+    for &i in instances {
+        let inst = &scene.instances[i as usize];
+        for &p in &scene.meshes[inst.mesh as usize].positions {
+            let b = Bounds::point(inst.transform.transform_point3(p).as_dvec3());
+            out = Some(out.map_or(b, |o| o.union(b)));
+        }
+    }
+    out
+}
+
+/// The point `p` projected along the parallelogram's normal onto its plane.
+pub fn onto_plane(rect: &Parallelogram, p: DVec3) -> DVec3 {
+    let n = rect.e1.cross(rect.e2).normalize();
+    p - (p - rect.a).dot(n) * n
+}
+
+/// The placement rectangle `name` with vertex indices A, B, C, D: a `*__Geometry`
+/// placement, else a surface with four distinct vertices, else `name__Geometry`.
+/// `message` makes a located error.
+pub fn find_parallelogram(
+    scene: &Scene,
+    name: &str,
+    idx: [usize; 4],
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<Parallelogram, Diagnostic> {
+    let vertices: Vec<Vec3> = if let Some(p) = scene.placement(name) {
+        p.vertices.clone()
+    } else if let Some(s) = scene.surface(name) {
+        let mut v: Vec<Vec3> = Vec::new();
+        for &i in &scene.surfaces[s as usize].instances {
+            let inst = &scene.instances[i as usize];
+            for &p in &scene.meshes[inst.mesh as usize].positions {
+                let w = inst.transform.transform_point3(p);
+                if !v.contains(&w) {
+                    v.push(w);
+                }
+                if v.len() > 4 {
+                    break;
+                }
+            }
+        }
+        v
+    } else if let Some(p) = scene.placement(&invlight_scene::placement_name(name)) {
+        p.vertices.clone()
+    } else {
+        return Err(err(format!(
+            "no placement rectangle or surface named '{name}' in the scene"
+        ))
+        .with_hint(invlight_scene::known_names(
+            scene.placements.iter().map(|p| p.name.as_str()),
+            "placement rectangles",
+        )));
+    };
+    if vertices.len() != 4 {
+        return Err(err(format!(
+            "placement '{name}' has {} distinct vertices, expected a planar quad (4)",
+            if vertices.len() > 4 {
+                "more than 4".to_string()
+            } else {
+                vertices.len().to_string()
+            }
+        )));
+    }
+    if let Some(&bad) = idx.iter().find(|&&i| i >= 4) {
+        return Err(err(format!(
+            "vertex index {bad} on '{name}', expected 0–3 (it has 4 vertices)"
+        )));
+    }
+    let mut sorted = idx;
+    sorted.sort();
+    if sorted != [0, 1, 2, 3] {
+        return Err(err(format!(
+            "vertex indices {idx:?} on '{name}', expected each of 0, 1, 2, 3 once"
+        )));
+    }
+    let v = |k: usize| vertices[idx[k]].as_dvec3();
+    Parallelogram::from_corners(v(0), [v(1), v(2), v(3)])
+        .map_err(|e| err(format!("placement '{name}' is not a planar quad: {e}")))
+}

@@ -1,0 +1,212 @@
+//! Binding tests on a small room built in code.
+
+use super::*;
+use glam::Vec3;
+use invlight_scene::{Light, Material, Mesh, Placement};
+use std::path::Path;
+
+/// A 4 m × 3 m floor (z = 0, up = +Z), a box "Chair" with its corner at the origin,
+/// a lamp, a sun, a window object, a placement rectangle on the floor.
+fn scene() -> Scene {
+    let mut s = Scene {
+        up: Vec3::Z,
+        ..Scene::default()
+    };
+    let grey = s.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let paint = s.add_material(Material::diffuse("Paint", Vec3::new(0.2, 0.4, 0.6)));
+    let floor = s.add_mesh(Mesh::quad(
+        [
+            Vec3::ZERO,
+            Vec3::new(4.0, 0.0, 0.0),
+            Vec3::new(4.0, 3.0, 0.0),
+            Vec3::new(0.0, 3.0, 0.0),
+        ],
+        paint,
+    ));
+    s.add_instance("Floor", floor, Mat4::IDENTITY);
+    let cube = s.add_mesh(Mesh::cuboid(Vec3::ZERO, Vec3::splat(0.5), grey));
+    s.add_instance(
+        "Chair",
+        cube,
+        Mat4::from_translation(Vec3::new(1.0, 1.0, 0.0)),
+    );
+    s.add_instance(
+        "Window",
+        cube,
+        Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0)),
+    );
+    s.lights.push(Light {
+        name: "Lamp".into(),
+        kind: LightKind::Point {
+            position: Vec3::new(1.0, 1.0, 2.5),
+            intensity: Vec3::ONE,
+        },
+    });
+    s.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: Vec3::new(0.0, 0.6, -0.8),
+            illuminance: Vec3::ONE,
+        },
+    });
+    s.placements.push(Placement {
+        name: "Floor__Geometry".into(),
+        vertices: vec![
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(3.0, 1.0, 0.0),
+            Vec3::new(3.0, 2.0, 0.0),
+            Vec3::new(1.0, 2.0, 0.0),
+        ],
+    });
+    s
+}
+
+fn problem(conditions: &str) -> Problem {
+    Problem::parse(
+        Path::new("/p/x.xml"),
+        &format!(
+            "<input><scene path=\"s.gltf\"/>\n<conditions meshSize=\"10\">\n{conditions}\n</conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"
+        ),
+    )
+    .unwrap()
+}
+
+#[test]
+fn object_moves_by_p_minus_a() {
+    let mut s = scene();
+    let b = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap();
+    assert_eq!(b.initial.coords, vec![0.0, 0.0]);
+    let config = Configuration {
+        coords: vec![0.75, 0.5],
+    };
+    // P = (2.5, 1.5, 0); the chair's box [1, 1.5]² × [0, 0.5] moves with it, its
+    // centre on the floor from (1.25, 1.25, 0) to (2.75, 1.75, 0).
+    assert_eq!(
+        b.values(&config),
+        vec![VariableValue::Position {
+            point: DVec3::new(2.5, 1.5, 0.0),
+            anchor: DVec3::new(2.75, 1.75, 0.0)
+        }]
+    );
+    assert!(b.apply(&mut s, &config));
+    // Chair authored at A = (1, 1, 0): now at P.
+    let t = s.instances[1].transform.w_axis.truncate();
+    assert!((t - Vec3::new(2.5, 1.5, 0.0)).length() < 1e-6);
+    assert!(!b.apply(&mut s, &config), "nothing moves twice");
+    assert_eq!(b.movable_instances(), vec![1]);
+    assert_eq!(
+        s.instances[2].transform.w_axis.truncate(),
+        Vec3::new(0.0, 0.0, 2.0)
+    );
+}
+
+#[test]
+fn light_hole_sun_and_colour() {
+    let mut s = scene();
+    let b = Binding::new(
+        &problem(
+            "<lightInSurface id=\"Lamp\" surface=\"Floor__Geometry\"/>\n<holeInSurface id=\"Window\" surface=\"Floor\" vertexAIndex=\"1\" vertexBIndex=\"0\" vertexCIndex=\"3\" vertexDIndex=\"2\"/>\n<directionalLight id=\"Sun\"/>\n<color id=\"Paint\" hue=\"120\" saturation=\"0.5\"/>",
+        ),
+        &mut s,
+    )
+    .unwrap();
+    let kinds: Vec<&str> = b.specs.iter().map(|s| s.kind.name()).collect();
+    assert_eq!(
+        kinds,
+        vec![
+            "lightInSurface",
+            "holeInSurface",
+            "directionalLight",
+            "color"
+        ]
+    );
+    // The window's mesh became a hole; the chair sharing the cube mesh did not.
+    let win = s.instances[2].mesh as usize;
+    assert!(
+        s.meshes[win]
+            .materials
+            .iter()
+            .all(|&m| s.materials[m as usize].hole)
+    );
+    assert!(!s.materials[s.meshes[s.instances[1].mesh as usize].materials[0] as usize].hole);
+    // Initial sun coordinates reproduce its direction; initial V is Paint's 0.6.
+    let init = b.values(&b.initial);
+    match init[2] {
+        VariableValue::Direction(d) => assert!((d - DVec3::new(0.0, 0.6, -0.8)).length() < 1e-6),
+        _ => panic!(),
+    }
+    assert!((b.initial.coords[6] - 0.6).abs() < 1e-6);
+    let config = Configuration {
+        coords: vec![0.5, 1.0, 1.0, 0.0, 0.25, 0.0, 0.8],
+    };
+    assert!(b.apply(&mut s, &config));
+    assert_eq!(s.lights[0].kind.position(), Some(Vec3::new(2.0, 2.0, 2.5)));
+    // Hole on the floor quad: A is vertex 1 (4, 0, 0), B vertex 0: s runs towards −x,
+    // so (s, t) = (1, 0) is the origin and the window moves by (−4, 0, 0).
+    let w = s.instances[2].transform.w_axis.truncate();
+    assert!((w - Vec3::new(-4.0, 0.0, 2.0)).length() < 1e-6, "{w}");
+    // θ = 0: the sun straight down.
+    assert!((s.lights[1].kind.direction().unwrap() + Vec3::Z).length() < 1e-6);
+    // V = 0.8, hue 120°, saturation 0.5: (0.4, 0.8, 0.4).
+    assert!((s.materials[1].diffuse - Vec3::new(0.4, 0.8, 0.4)).length() < 1e-6);
+}
+
+#[test]
+fn a_colour_variable_replaces_a_texture() {
+    // A textured Paint would make the variable "HSV × texture": the binding drops
+    // the texture and says so; an untextured colour gives no warning.
+    let mut s = scene();
+    let colour = problem("<color id=\"Paint\" hue=\"120\" saturation=\"0.5\"/>");
+    assert!(Binding::new(&colour, &mut s).unwrap().warnings.is_empty());
+    s.textures.push(invlight_scene::Texture {
+        width: 1,
+        height: 1,
+        pixels: vec![Vec3::new(0.1, 0.9, 0.1)],
+    });
+    let paint = s.materials.iter().position(|m| m.name == "Paint").unwrap();
+    s.materials[paint].texture = Some(0);
+    let b = Binding::new(&colour, &mut s).unwrap();
+    assert_eq!(s.materials[paint].texture, None);
+    assert_eq!(b.warnings.len(), 1);
+    assert!(
+        b.warnings[0].message.contains("'Paint'"),
+        "{}",
+        b.warnings[0]
+    );
+}
+
+#[test]
+fn bad_names_and_quads_name_the_line() {
+    let mut s = scene();
+    let e = Binding::new(
+        &problem(
+            "<directionalLight id=\"Sun\"/>\n<objectInSurface id=\"Table\" surface=\"Floor\"/>",
+        ),
+        &mut s,
+    )
+    .unwrap_err();
+    assert_eq!(e.line, Some(4));
+    assert!(
+        e.message.contains("'Table'") && e.hint.as_ref().unwrap().contains("Chair"),
+        "{e}"
+    );
+    let e = Binding::new(&problem("<directionalLight id=\"Lamp\"/>"), &mut s).unwrap_err();
+    assert!(e.message.contains("directional"), "{e}");
+    s.placements[0].vertices[2].z = 0.5;
+    let e = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap_err();
+    assert!(e.message.contains("not a planar quad"), "{e}");
+    let e = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Chair\"/>"),
+        &mut s,
+    )
+    .unwrap_err();
+    assert!(e.message.contains("more than 4 distinct vertices"), "{e}");
+}

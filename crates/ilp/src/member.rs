@@ -1,0 +1,55 @@
+//! A solve's configuration applied to its problem's scene: `RESULT#K`, member K of the
+//! ISOC in a `result.json` (counted from 1 in its order, as `isoc-01.png` … are), for
+//! `render`, `measure` and `map` to look at what a solve found.
+
+use crate::binding::Binding;
+use crate::output::ResultFile;
+use crate::problem::Problem;
+use invlight_scene::{Diagnostic, Scene};
+use std::path::PathBuf;
+use std::str::FromStr;
+
+/// `RESULT#K`, or `RESULT` for member 1 (the highest mean).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemberRef {
+    /// The `result.json`.
+    pub file: PathBuf,
+    /// K, from 1.
+    pub number: usize,
+}
+
+impl FromStr for MemberRef {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<MemberRef, String> {
+        match s.rsplit_once('#') {
+            Some((f, k)) => match k.parse::<usize>() {
+                Ok(number) if number >= 1 => Ok(MemberRef {
+                    file: PathBuf::from(f),
+                    number,
+                }),
+                _ => Err(format!(
+                    "'{k}' is not an ISOC member number (they count from 1, as isoc-01.png, isoc-02.png, …)"
+                )),
+            },
+            None => Ok(MemberRef {
+                file: PathBuf::from(s),
+                number: 1,
+            }),
+        }
+    }
+}
+
+impl MemberRef {
+    /// Applies the member to `scene`, the scene of `problem` as loaded: it is bound to
+    /// the problem (holes cut) and moved as the member says.
+    pub fn apply(&self, problem: &Problem, scene: &mut Scene) -> Result<(), Diagnostic> {
+        let binding = Binding::new(problem, scene)?;
+        let result = ResultFile::read(&self.file)?;
+        let config = result
+            .configuration(&binding, self.number)
+            .map_err(|e| Diagnostic::new(&self.file, e))?;
+        binding.apply(scene, &config);
+        Ok(())
+    }
+}

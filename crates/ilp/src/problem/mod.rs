@@ -1,0 +1,918 @@
+//! Reading an inverse lighting problem: ILPSolver's XML problem files, unchanged
+//! (thesis §4.2.1 and appendix D, and the later form of ILPSolver's examples), plus
+//! invlight's optional additions. `docs/problem-file.md` documents the format.
+//!
+//! Reading is forgiving where ILPSolver files differ and strict where a mistake would
+//! change the answer: an unknown element or attribute is a warning naming it; a missing
+//! required one, a malformed number or an unknown strategy is an error naming the file,
+//! the line and what was expected. Appendix D writes `maxIterations=1000` without
+//! quotes, which is not XML; such values are quoted before parsing, with a warning.
+
+mod bare_attributes;
+
+use crate::vns::{Settings, Strategy};
+use bare_attributes::quote_bare_attributes;
+use invlight_scene::{Diagnostic, LoadOptions, Scene, UpAxis};
+use invlight_stats::Confidence;
+use std::path::{Path, PathBuf};
+
+/// Which point of a placed object the placement point P of its rectangle stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Anchor {
+    /// `anchor="vertexA"` (the default, ILPSolver's rule): the object moves by P − A, so
+    /// P is where vertex A of the rectangle goes and the object keeps its authored offset
+    /// from A.
+    #[default]
+    VertexA,
+    /// `anchor="centre"`: the object's own anchor (a light's position, an object's
+    /// bounding-box centre on the rectangle's plane) is put at P, wherever it was
+    /// authored.
+    Centre,
+}
+
+impl Anchor {
+    /// The problem-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Anchor::VertexA => "vertexA",
+            Anchor::Centre => "centre",
+        }
+    }
+}
+
+/// Where a placement variable puts its object: a rectangle and how P relates to the
+/// object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlacementSpec {
+    /// The placement rectangle's name.
+    pub surface: String,
+    /// Indices of A, B, C, D among its distinct vertices.
+    pub vertices: [usize; 4],
+    /// What P stands for.
+    pub anchor: Anchor,
+}
+
+/// What a variable moves or changes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum VariableKind {
+    /// `objectInSurface`: an object (a named surface) placed on a rectangle.
+    ObjectInSurface(PlacementSpec),
+    /// `lightInSurface`: a point/spot light or an emissive object on a rectangle.
+    LightInSurface(PlacementSpec),
+    /// `holeInSurface`: an object that becomes an aperture, placed on a rectangle.
+    HoleInSurface(PlacementSpec),
+    /// `directionalLight`: the direction of a sun.
+    DirectionalLight,
+    /// `color`: the HSV value V of a material with fixed hue and saturation.
+    Color {
+        /// Hue, degrees.
+        hue: f64,
+        /// Saturation, 0–1.
+        saturation: f64,
+        /// Lowest V.
+        min: f64,
+        /// Highest V.
+        max: f64,
+    },
+}
+
+impl VariableKind {
+    /// The problem-file element name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            VariableKind::ObjectInSurface(_) => "objectInSurface",
+            VariableKind::LightInSurface(_) => "lightInSurface",
+            VariableKind::HoleInSurface(_) => "holeInSurface",
+            VariableKind::DirectionalLight => "directionalLight",
+            VariableKind::Color { .. } => "color",
+        }
+    }
+
+    /// The placement of a variable that places something on a rectangle.
+    pub fn placement(&self) -> Option<&PlacementSpec> {
+        match self {
+            VariableKind::ObjectInSurface(p)
+            | VariableKind::LightInSurface(p)
+            | VariableKind::HoleInSurface(p) => Some(p),
+            _ => None,
+        }
+    }
+}
+
+/// A free variable as written in the file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VariableSpec {
+    /// `id`: the object, light or material it changes.
+    pub id: String,
+    /// What it is.
+    pub kind: VariableKind,
+    /// Line of its element.
+    pub line: u32,
+}
+
+/// The objective: maximise a surface's mean illuminance, optionally under a cap.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Objective {
+    /// The surface's name.
+    pub surface: String,
+    /// `maxRadiosity`, in the objective's unit (lx): positive and finite.
+    pub cap: Option<f64>,
+    /// Line of its element.
+    pub line: u32,
+}
+
+/// The scene a problem is posed on: `<scene path="…" scale="…" up="…"/>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneRef {
+    /// The scene file, resolved against the problem file's folder.
+    pub path: PathBuf,
+    /// `scale`: metres per file unit (invlight; e.g. 0.001 for a file in millimetres).
+    pub scale: Option<f32>,
+    /// `up`: the file's up axis when it does not say or says wrongly (invlight).
+    pub up: Option<UpAxis>,
+    /// Line of its element.
+    pub line: u32,
+}
+
+/// A problem file, read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    /// The problem file.
+    pub path: PathBuf,
+    /// The scene and how to read it.
+    pub scene: SceneRef,
+    /// The output folder, resolved against the problem file's folder (default `output`).
+    pub output: PathBuf,
+    /// Cells per dimension, used in turn (`meshSize`, default 20).
+    pub cells_per_dimension: Vec<u32>,
+    /// The free variables, in file order.
+    pub variables: Vec<VariableSpec>,
+    /// What to maximise.
+    pub objective: Objective,
+    /// `maxIterations` (default 1000).
+    pub max_iterations: u64,
+    /// `fastEvaluationQuality`, q of §4.7 (default 0.25, the thesis' value).
+    pub fast_quality: f64,
+    /// `strategy` (default `REFINE_ISOC_ON_INTERSECTION`).
+    pub strategy: Strategy,
+    /// invlight: `photons`, N (default 100 000).
+    pub photons: u64,
+    /// invlight: `seed` of photons and search (default 1).
+    pub seed: u64,
+    /// invlight: `confidence` 1 − α (default 0.95).
+    pub confidence: Confidence,
+    /// invlight: `maxBounces` per photon path (default: the tracer's own).
+    pub max_bounces: Option<u32>,
+    /// Warnings: unknown elements and attributes, repaired syntax.
+    pub warnings: Vec<Diagnostic>,
+}
+
+const TOP: &[&str] = &["scene", "output", "conditions", "objectives"];
+const VARIABLES: &[&str] = &[
+    "objectInSurface",
+    "lightInSurface",
+    "holeInSurface",
+    "directionalLight",
+    "color",
+];
+const VERTEX_ATTRS: [&str; 4] = [
+    "vertexAIndex",
+    "vertexBIndex",
+    "vertexCIndex",
+    "vertexDIndex",
+];
+
+impl Problem {
+    /// Reads a problem file.
+    pub fn read(path: &Path) -> Result<Problem, Diagnostic> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Diagnostic::new(path, format!("cannot read the problem file: {e}")))?;
+        Problem::parse(path, &text)
+    }
+
+    /// Loads the problem's scene with `base`'s options and `<scene>`'s `scale` and `up`
+    /// unless `scale` and `up` (the command line's) say otherwise. A missing file is
+    /// named with the problem file's line: its path is relative to the problem file,
+    /// not to the current directory.
+    pub fn load_scene(
+        &self,
+        base: &LoadOptions,
+        scale: Option<f32>,
+        up: Option<UpAxis>,
+    ) -> Result<Scene, Diagnostic> {
+        let path = &self.scene.path;
+        if !path.exists() {
+            let dir = self.path.parent().unwrap_or(Path::new("."));
+            return Err(Diagnostic::at_line(
+                &self.path,
+                self.scene.line,
+                format!("the scene file {} does not exist", path.display()),
+            )
+            .with_hint(format!(
+                "a <scene path> is relative to the problem file's folder, {}",
+                if dir.as_os_str().is_empty() {
+                    Path::new(".").display()
+                } else {
+                    dir.display()
+                }
+            )));
+        }
+        let mut options = *base;
+        options.scale = scale.or(self.scene.scale).unwrap_or(1.0);
+        options.up = up.or(self.scene.up);
+        invlight_scene::load(path, &options)
+    }
+
+    /// The search settings the file asks for.
+    pub fn settings(&self) -> Settings {
+        Settings {
+            max_iterations: self.max_iterations,
+            photons: self.photons,
+            fast_quality: self.fast_quality,
+            strategy: self.strategy,
+            confidence: self.confidence,
+            cap: self.objective.cap,
+            seed: self.seed,
+            tries_per_radius: None,
+        }
+    }
+
+    /// Parses problem-file text; `path` names it in messages and anchors relative paths.
+    pub fn parse(path: &Path, text: &str) -> Result<Problem, Diagnostic> {
+        let mut warnings = Vec::new();
+        let fixed = quote_bare_attributes(text, path, &mut warnings);
+        let doc = roxmltree::Document::parse(&fixed).map_err(|e| {
+            let pos = e.pos();
+            Diagnostic::at_line(path, pos.row, format!("not well-formed XML: {e}"))
+        })?;
+        let r = Reader {
+            path,
+            doc: &doc,
+            warnings: std::cell::RefCell::new(warnings),
+        };
+        let problem = r.problem()?;
+        Ok(Problem {
+            warnings: r.warnings.into_inner(),
+            ..problem
+        })
+    }
+}
+
+struct Reader<'a, 'i> {
+    path: &'a Path,
+    doc: &'a roxmltree::Document<'i>,
+    warnings: std::cell::RefCell<Vec<Diagnostic>>,
+}
+
+type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
+
+impl<'a, 'i> Reader<'a, 'i> {
+    fn line(&self, node: Node) -> u32 {
+        self.doc.text_pos_at(node.range().start).row
+    }
+
+    fn error(&self, node: Node, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::at_line(self.path, self.line(node), message)
+    }
+
+    fn warn(&self, node: Node, message: String) {
+        let w = Diagnostic::at_line(self.path, self.line(node), message);
+        self.warnings.borrow_mut().push(w);
+    }
+
+    /// Warns about attributes of `node` not in `known`.
+    fn check_attributes(&self, node: Node, known: &[&str]) {
+        for a in node.attributes() {
+            if !known.contains(&a.name()) {
+                self.warn(
+                    node,
+                    format!(
+                        "unknown attribute '{}' of <{}> ignored (expected one of: {})",
+                        a.name(),
+                        node.tag_name().name(),
+                        known.join(", ")
+                    ),
+                );
+            }
+        }
+    }
+
+    fn elements(&self, node: Node<'a, 'i>) -> impl Iterator<Item = Node<'a, 'i>> {
+        node.children().filter(|c| c.is_element())
+    }
+
+    fn required(&self, node: Node, attr: &str) -> Result<String, Diagnostic> {
+        match node.attribute(attr) {
+            Some(v) if !v.trim().is_empty() => Ok(v.trim().to_string()),
+            _ => Err(self.error(
+                node,
+                format!(
+                    "<{}> needs a non-empty '{attr}' attribute",
+                    node.tag_name().name()
+                ),
+            )),
+        }
+    }
+
+    fn number<T: std::str::FromStr>(
+        &self,
+        node: Node,
+        attr: &str,
+        what: &str,
+    ) -> Result<Option<T>, Diagnostic> {
+        match node.attribute(attr) {
+            None => Ok(None),
+            Some(v) => v.trim().parse().map(Some).map_err(|_| {
+                self.error(
+                    node,
+                    format!(
+                        "'{attr}' of <{}> is '{v}', expected {what}",
+                        node.tag_name().name()
+                    ),
+                )
+            }),
+        }
+    }
+
+    /// A finite real number: `NaN` and `inf` parse as f64 but mean nothing here.
+    fn real(&self, node: Node, attr: &str, what: &str) -> Result<Option<f64>, Diagnostic> {
+        match self.number::<f64>(node, attr, what)? {
+            Some(x) if !x.is_finite() => Err(self.error(
+                node,
+                format!(
+                    "'{attr}' of <{}> is {x}, expected {what}",
+                    node.tag_name().name()
+                ),
+            )),
+            x => Ok(x),
+        }
+    }
+
+    fn unit(&self, node: Node, attr: &str, lo: f64, hi: f64) -> Result<Option<f64>, Diagnostic> {
+        let v = self.real(node, attr, &format!("a number in [{lo}, {hi}]"))?;
+        match v {
+            Some(x) if !(lo..=hi).contains(&x) => Err(self.error(
+                node,
+                format!(
+                    "'{attr}' of <{}> is {x}, expected a number in [{lo}, {hi}]",
+                    node.tag_name().name()
+                ),
+            )),
+            _ => Ok(v),
+        }
+    }
+
+    fn problem(&self) -> Result<Problem, Diagnostic> {
+        let root = self.doc.root_element();
+        if root.tag_name().name() != "input" {
+            return Err(self.error(
+                root,
+                format!(
+                    "the root element is <{}>, expected <input>",
+                    root.tag_name().name()
+                ),
+            ));
+        }
+        self.check_attributes(root, &[]);
+        for e in self.elements(root) {
+            if !TOP.contains(&e.tag_name().name()) {
+                self.warn(
+                    e,
+                    format!(
+                        "unknown element <{}> ignored (expected one of: {})",
+                        e.tag_name().name(),
+                        TOP.join(", ")
+                    ),
+                );
+            }
+        }
+        let only = |name: &str| -> Result<Option<Node<'a, 'i>>, Diagnostic> {
+            let mut found = self.elements(root).filter(|e| e.tag_name().name() == name);
+            let first = found.next();
+            if let Some(second) = found.next() {
+                return Err(self.error(second, format!("a second <{name}>, expected one")));
+            }
+            Ok(first)
+        };
+        let dir = self.path.parent().unwrap_or(Path::new("."));
+
+        let scene_el = only("scene")?
+            .ok_or_else(|| self.error(root, "no <scene path=\"…\"/>, expected one in <input>"))?;
+        self.check_attributes(scene_el, &["path", "scale", "up"]);
+        let scale = match self.real(scene_el, "scale", "metres per file unit (e.g. 0.001)")? {
+            Some(s) if s <= 0.0 => {
+                return Err(self.error(
+                    scene_el,
+                    format!("'scale' of <scene> is {s}, expected a positive number of metres per file unit (e.g. 0.001 for millimetres)"),
+                ));
+            }
+            s => s.map(|s| s as f32),
+        };
+        let up = match scene_el.attribute("up").map(str::trim) {
+            None => None,
+            Some("y" | "Y") => Some(UpAxis::Y),
+            Some("z" | "Z") => Some(UpAxis::Z),
+            Some(other) => {
+                return Err(self.error(
+                    scene_el,
+                    format!("'up' of <scene> is '{other}', expected y or z"),
+                ));
+            }
+        };
+        let scene = SceneRef {
+            path: dir.join(self.required(scene_el, "path")?),
+            scale,
+            up,
+            line: self.line(scene_el),
+        };
+
+        let output = match only("output")? {
+            Some(o) => {
+                self.check_attributes(o, &["path"]);
+                dir.join(self.required(o, "path")?)
+            }
+            None => dir.join("output"),
+        };
+
+        let conditions = only("conditions")?.ok_or_else(|| {
+            self.error(
+                root,
+                "no <conditions>, expected one with the free variables",
+            )
+        })?;
+        self.check_attributes(conditions, &["meshSize"]);
+        let cells_per_dimension = match conditions.attribute("meshSize") {
+            None => vec![20],
+            Some(m) => parse_mesh(m).ok_or_else(|| {
+                self.error(
+                    conditions,
+                    format!(
+                        "meshSize is '{m}', expected cells per dimension: a positive integer or several joined by 'x' (\"20\", \"20x6\")"
+                    ),
+                )
+            })?,
+        };
+        let mut variables = Vec::new();
+        for v in self.elements(conditions) {
+            if let Some(spec) = self.variable(v)? {
+                if variables.iter().any(|w: &VariableSpec| w.id == spec.id) {
+                    return Err(self.error(
+                        v,
+                        format!(
+                            "a second variable with id '{}', expected distinct ids",
+                            spec.id
+                        ),
+                    ));
+                }
+                variables.push(spec);
+            }
+        }
+        if variables.is_empty() {
+            return Err(self
+                .error(
+                    conditions,
+                    "no variables in <conditions>, expected at least one",
+                )
+                .with_hint(format!("variables are: {}", VARIABLES.join(", "))));
+        }
+
+        let objectives = only("objectives")?.ok_or_else(|| {
+            self.error(
+                root,
+                "no <objectives>, expected one with <maximizeRadiance surface=\"…\"/>",
+            )
+        })?;
+        self.check_attributes(
+            objectives,
+            &[
+                "maxIterations",
+                "fastEvaluationQuality",
+                "strategy",
+                "photons",
+                "seed",
+                "confidence",
+                "maxBounces",
+            ],
+        );
+        let max_iterations = self
+            .number(objectives, "maxIterations", "a non-negative integer")?
+            .unwrap_or(1000);
+        let fast_quality =
+            match self.real(objectives, "fastEvaluationQuality", "a number in (0, 1]")? {
+                Some(q) if !(q > 0.0 && q <= 1.0) => {
+                    return Err(self.error(
+                        objectives,
+                        format!("fastEvaluationQuality is {q}, expected a number in (0, 1]"),
+                    ));
+                }
+                q => q.unwrap_or(0.25),
+            };
+        let strategy = match objectives.attribute("strategy") {
+            None => Strategy::RefineOnIntersection,
+            Some(s) => Strategy::parse(s.trim()).ok_or_else(|| {
+                self.error(
+                    objectives,
+                    format!(
+                        "strategy is '{s}', expected REFINE_ISOC_ON_INTERSECTION, REFINE_ISOC_ON_END or NO_REFINE_ISOC"
+                    ),
+                )
+            })?,
+        };
+        let photons = match self.number::<u64>(objectives, "photons", "a positive integer")? {
+            Some(0) => {
+                return Err(self.error(objectives, "photons is 0, expected a positive integer"));
+            }
+            p => p.unwrap_or(100_000),
+        };
+        let seed = self
+            .number(objectives, "seed", "a non-negative integer")?
+            .unwrap_or(1);
+        let confidence = match self.real(objectives, "confidence", "a number in (0, 1)")? {
+            None => Confidence::DEFAULT,
+            Some(c) => Confidence::new(c).map_err(|e| self.error(objectives, e.to_string()))?,
+        };
+        let max_bounces = self.number(objectives, "maxBounces", "a non-negative integer")?;
+        let mut objective = None;
+        for o in self.elements(objectives) {
+            if o.tag_name().name() != "maximizeRadiance" {
+                self.warn(
+                    o,
+                    format!(
+                        "unknown objective <{}> ignored (expected maximizeRadiance)",
+                        o.tag_name().name()
+                    ),
+                );
+                continue;
+            }
+            if objective.is_some() {
+                return Err(self.error(o, "a second <maximizeRadiance>, expected one objective"));
+            }
+            self.check_attributes(o, &["surface", "maxRadiosity"]);
+            let cap = match self.real(o, "maxRadiosity", "a positive illuminance (lx)")? {
+                Some(c) if c <= 0.0 => {
+                    return Err(self
+                        .error(
+                            o,
+                            format!("'maxRadiosity' of <maximizeRadiance> is {c}, expected a positive illuminance (lx)"),
+                        )
+                        .with_hint("every lit configuration would exceed a cap of zero or less; leave the attribute out for no cap"));
+                }
+                c => c,
+            };
+            objective = Some(Objective {
+                surface: self.required(o, "surface")?,
+                cap,
+                line: self.line(o),
+            });
+        }
+        let objective = objective.ok_or_else(|| {
+            self.error(
+                objectives,
+                "no <maximizeRadiance surface=\"…\"/> in <objectives>, expected one",
+            )
+        })?;
+
+        Ok(Problem {
+            path: self.path.to_path_buf(),
+            scene,
+            output,
+            cells_per_dimension,
+            variables,
+            objective,
+            max_iterations,
+            fast_quality,
+            strategy,
+            photons,
+            seed,
+            confidence,
+            max_bounces,
+            warnings: Vec::new(),
+        })
+    }
+
+    fn vertices(&self, v: Node) -> Result<[usize; 4], Diagnostic> {
+        let mut out = [0, 1, 2, 3];
+        for (k, attr) in VERTEX_ATTRS.iter().enumerate() {
+            if let Some(i) = self.number(v, attr, "a vertex index (0, 1, 2, …)")? {
+                out[k] = i;
+            }
+        }
+        Ok(out)
+    }
+
+    fn variable(&self, v: Node) -> Result<Option<VariableSpec>, Diagnostic> {
+        let name = v.tag_name().name();
+        let kind = match name {
+            "objectInSurface" | "lightInSurface" | "holeInSurface" => {
+                let mut known = vec!["id", "surface", "anchor"];
+                known.extend(VERTEX_ATTRS);
+                self.check_attributes(v, &known);
+                let anchor = match v.attribute("anchor").map(str::trim) {
+                    None | Some("vertexA") => Anchor::VertexA,
+                    Some("centre" | "center") => Anchor::Centre,
+                    Some(other) => {
+                        return Err(self.error(
+                            v,
+                            format!("'anchor' of <{name}> is '{other}', expected vertexA (P is where vertex A goes, ILPSolver's rule) or centre (P is where the object's own centre or the light goes)"),
+                        ));
+                    }
+                };
+                let spec = PlacementSpec {
+                    surface: self.required(v, "surface")?,
+                    vertices: self.vertices(v)?,
+                    anchor,
+                };
+                match name {
+                    "objectInSurface" => VariableKind::ObjectInSurface(spec),
+                    "lightInSurface" => VariableKind::LightInSurface(spec),
+                    _ => VariableKind::HoleInSurface(spec),
+                }
+            }
+            "directionalLight" => {
+                self.check_attributes(v, &["id"]);
+                VariableKind::DirectionalLight
+            }
+            "color" => {
+                self.check_attributes(v, &["id", "hue", "saturation", "min", "max"]);
+                let need = |attr: &str, lo: f64, hi: f64| -> Result<f64, Diagnostic> {
+                    self.unit(v, attr, lo, hi)?.ok_or_else(|| {
+                        self.error(
+                            v,
+                            format!("<color> needs '{attr}', a number in [{lo}, {hi}]"),
+                        )
+                    })
+                };
+                let hue = need("hue", 0.0, 360.0)?;
+                let saturation = need("saturation", 0.0, 1.0)?;
+                let min = self.unit(v, "min", 0.0, 1.0)?.unwrap_or(0.0);
+                let max = self.unit(v, "max", 0.0, 1.0)?.unwrap_or(1.0);
+                if min >= max {
+                    return Err(self.error(
+                        v,
+                        format!("<color> has min {min} ≥ max {max}, expected min < max"),
+                    ));
+                }
+                VariableKind::Color {
+                    hue,
+                    saturation,
+                    min,
+                    max,
+                }
+            }
+            other => {
+                self.warn(
+                    v,
+                    format!(
+                        "unknown variable <{other}> ignored (expected one of: {})",
+                        VARIABLES.join(", ")
+                    ),
+                );
+                return Ok(None);
+            }
+        };
+        Ok(Some(VariableSpec {
+            id: self.required(v, "id")?,
+            kind,
+            line: self.line(v),
+        }))
+    }
+}
+
+/// `"20"` → [20]; `"20x6"` → [20, 6].
+fn parse_mesh(s: &str) -> Option<Vec<u32>> {
+    let v: Option<Vec<u32>> = s
+        .trim()
+        .split(['x', 'X'])
+        .map(|p| p.trim().parse().ok().filter(|&n| n > 0))
+        .collect();
+    v.filter(|v| !v.is_empty())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Problem, Diagnostic> {
+        Problem::parse(Path::new("/p/problem.xml"), text)
+    }
+
+    #[test]
+    fn later_form_with_everything() {
+        let p = parse(
+            r#"<?xml version="1.0"?>
+<input>
+  <scene path="room.gltf" scale="0.001" up="z"/>
+  <output path="out"/>
+  <conditions meshSize="20x6">
+    <objectInSurface id="Cone" surface="Cone__Geometry" vertexAIndex="3" vertexBIndex="0" vertexCIndex="2" vertexDIndex="1"/>
+    <lightInSurface id="Lamp" surface="Ceiling" anchor="centre"/>
+    <holeInSurface id="Hole" surface="Roof"/>
+    <directionalLight id="Sun"/>
+    <color id="Walls" hue="39" saturation="0.23" max="0.9"/>
+  </conditions>
+  <objectives maxIterations="50" fastEvaluationQuality="0.0078125" strategy="REFINE_ISOC_ON_END" photons="5000" seed="3" confidence="0.9" maxBounces="4">
+    <maximizeRadiance surface="Floor" maxRadiosity="300"/>
+  </objectives>
+</input>"#,
+        )
+        .unwrap();
+        assert_eq!(p.scene.path, Path::new("/p/room.gltf"));
+        assert_eq!((p.scene.scale, p.scene.up), (Some(0.001), Some(UpAxis::Z)));
+        assert_eq!(p.output, Path::new("/p/out"));
+        assert_eq!(p.cells_per_dimension, vec![20, 6]);
+        assert_eq!(p.variables.len(), 5);
+        assert_eq!(
+            p.variables[0].kind,
+            VariableKind::ObjectInSurface(PlacementSpec {
+                surface: "Cone__Geometry".into(),
+                vertices: [3, 0, 2, 1],
+                anchor: Anchor::VertexA,
+            })
+        );
+        assert_eq!(
+            p.variables[1].kind.placement().map(|p| p.anchor),
+            Some(Anchor::Centre)
+        );
+        assert_eq!(p.variables[0].line, 6);
+        assert_eq!(
+            p.variables[4].kind,
+            VariableKind::Color {
+                hue: 39.0,
+                saturation: 0.23,
+                min: 0.0,
+                max: 0.9
+            }
+        );
+        assert_eq!(p.objective.cap, Some(300.0));
+        assert_eq!(p.strategy, Strategy::RefineOnEnd);
+        assert_eq!(
+            (p.photons, p.seed, p.max_bounces, p.max_iterations),
+            (5000, 3, Some(4), 50)
+        );
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+    }
+
+    #[test]
+    fn thesis_form_with_bare_attribute() {
+        let p = parse(
+            "<input>\n<scene path=\"cube.dae\"/>\n<conditions>\n<directionalLight id=\"Sun\"/>\n</conditions>\n<objectives maxIterations=1000>\n<maximizeRadiance surface=\"S\"/>\n</objectives>\n</input>",
+        )
+        .unwrap();
+        assert_eq!(p.max_iterations, 1000);
+        assert_eq!(p.cells_per_dimension, vec![20]);
+        assert_eq!(p.warnings.len(), 1);
+        assert_eq!(p.warnings[0].line, Some(6));
+        assert_eq!(p.strategy, Strategy::RefineOnIntersection);
+        assert_eq!((p.photons, p.confidence), (100_000, Confidence::DEFAULT));
+    }
+
+    #[test]
+    fn unknown_things_are_warnings() {
+        let p = parse(
+            "<input><scene path=\"s.obj\" units=\"mm\"/><camera/>\n<conditions meshSize=\"4\"><color id=\"W\" hue=\"0\" saturation=\"0\"/><spin id=\"x\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><minimizeGlare/></objectives></input>",
+        )
+        .unwrap();
+        let msgs: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
+        assert_eq!(msgs.len(), 4, "{msgs:?}");
+        assert!(
+            msgs.iter()
+                .any(|m| m.contains("'units'") && m.starts_with("/p/problem.xml:1:"))
+        );
+        assert!(msgs.iter().any(|m| m.contains("<camera>")));
+        assert!(
+            msgs.iter()
+                .any(|m| m.contains("<spin>") && m.contains(":2:"))
+        );
+        assert!(
+            msgs.iter()
+                .any(|m| m.contains("<minimizeGlare>") && m.contains(":3:"))
+        );
+    }
+
+    #[test]
+    fn nonsense_values_are_errors() {
+        for (objectives, what) in [
+            (
+                "<maximizeRadiance surface=\"F\" maxRadiosity=\"NaN\"/>",
+                "maxRadiosity",
+            ),
+            (
+                "<maximizeRadiance surface=\"F\" maxRadiosity=\"0\"/>",
+                "positive",
+            ),
+            (
+                "<maximizeRadiance surface=\"F\" maxRadiosity=\"-3\"/>",
+                "positive",
+            ),
+        ] {
+            let e = parse(&format!("<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions>\n<objectives>{objectives}</objectives></input>")).unwrap_err();
+            assert_eq!(e.line, Some(2), "{e}");
+            assert!(e.to_string().contains(what), "{e}");
+        }
+        let e = parse("<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions><objectives confidence=\"inf\"><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert!(e.message.contains("confidence"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\" scale=\"-1\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert!(e.message.contains("scale"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\" up=\"x\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert!(e.message.contains("'up'"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\"/><conditions><lightInSurface id=\"L\" surface=\"C\" anchor=\"middle\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert!(e.message.contains("centre"), "{e}");
+    }
+
+    /// A scene path that does not exist is named with the problem file's line and the
+    /// folder it is relative to.
+    #[test]
+    fn a_missing_scene_says_where_paths_are_relative_to() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("problem.xml");
+        std::fs::write(&path, "<input>\n<scene path=\"nowhere.gltf\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap();
+        let p = Problem::read(&path).unwrap();
+        let e = p
+            .load_scene(&LoadOptions::default(), None, None)
+            .unwrap_err();
+        assert_eq!(e.line, Some(2));
+        let text = e.to_string();
+        assert!(
+            text.contains("nowhere.gltf") && text.contains("relative to the problem file"),
+            "{text}"
+        );
+        assert!(text.contains(&dir.path().display().to_string()), "{text}");
+    }
+
+    #[test]
+    fn errors_name_line_and_expectation() {
+        let e = parse("<input>\n<scene path=\"s.obj\"/>\n<conditions>\n<lightInSurface id=\"L\"/>\n</conditions>\n<objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert_eq!(e.line, Some(4));
+        assert!(e.message.contains("'surface'"), "{e}");
+        let e = parse("<input>\n<scene path=\"s.obj\"/>\n<conditions meshSize=\"20y\"><directionalLight id=\"S\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert_eq!(e.line, Some(3));
+        assert!(e.message.contains("meshSize"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions>\n\n<objectives strategy=\"FAST\"><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert_eq!(e.line, Some(3));
+        assert!(e.message.contains("REFINE_ISOC_ON_END"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions></input>").unwrap_err();
+        assert!(e.message.contains("<objectives>"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\"/>\n<conditions><color id=\"W\" hue=\"400\" saturation=\"0.2\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap_err();
+        assert_eq!(e.line, Some(2));
+        assert!(e.message.contains("[0, 360]"), "{e}");
+        let e = parse("<input><scene path=\"s.obj\"></input>").unwrap_err();
+        assert!(e.message.contains("XML"), "{e}");
+    }
+
+    #[test]
+    fn mesh_sizes() {
+        assert_eq!(parse_mesh("20"), Some(vec![20]));
+        assert_eq!(parse_mesh(" 20x6 "), Some(vec![20, 6]));
+        assert_eq!(parse_mesh("0"), None);
+        assert_eq!(parse_mesh("x"), None);
+    }
+}
+
+#[cfg(test)]
+mod files {
+    use super::*;
+
+    #[test]
+    fn ilpsolver_examples_parse() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/ilpsolver");
+        let mut n = 0;
+        for entry in std::fs::read_dir(&dir).expect("tests/data/ilpsolver") {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "xml") {
+                let p = Problem::read(&path).unwrap_or_else(|e| panic!("{e}"));
+                assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+                assert!(!p.variables.is_empty());
+                n += 1;
+            }
+        }
+        assert_eq!(n, 7);
+        let cone = Problem::read(&dir.join("cornell-move-cone.xml")).unwrap();
+        assert_eq!(cone.cells_per_dimension, vec![200]);
+        assert_eq!(cone.strategy, Strategy::RefineOnEnd);
+        assert_eq!(cone.fast_quality, 0.00390625);
+        let color = Problem::read(&dir.join("sponza-color.xml")).unwrap();
+        assert_eq!(color.objective.cap, Some(0.0003));
+    }
+
+    #[test]
+    fn thesis_appendix_d_parses() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/ilp/appendix-d.xml");
+        let p = Problem::read(&path).unwrap();
+        let kinds: Vec<&str> = p.variables.iter().map(|v| v.kind.name()).collect();
+        assert_eq!(
+            kinds,
+            [
+                "holeInSurface",
+                "directionalLight",
+                "lightInSurface",
+                "objectInSurface",
+                "color"
+            ]
+        );
+        assert_eq!(p.max_iterations, 1000);
+        assert_eq!(p.warnings.len(), 1, "the unquoted maxIterations");
+        assert_eq!(p.warnings[0].line, Some(28));
+        assert_eq!(p.objective.surface, "Suzzane");
+    }
+}
