@@ -11,9 +11,10 @@ use crate::camera::View;
 use crate::photon_map::PhotonMap;
 use glam::Vec3;
 use invlight_photon::{
-    Rng, cosine_hemisphere, emissive_triangles, fresnel_dielectric, reflect, refract,
+    cosine_hemisphere, emissive_triangles, fresnel_dielectric, reflect, refract,
 };
 use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use invlight_stats::{Distribution1D, Pcg32};
 use invlight_trace::{Accel, Interaction, Ray};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -85,25 +86,25 @@ struct AreaTriangle {
     area: f32,
 }
 
-/// Every light of a scene, ready for shadow rays.
+/// The emissive triangles of a scene, to sample by shadow rays. Photons are drawn from
+/// every light by `invlight_photon::Emitters`; the camera's direct light needs only the
+/// area lights as a distribution (each punctual and directional light is evaluated in
+/// turn), and their points with the probability of drawing them.
 #[derive(Debug, Clone)]
-pub struct Lights {
+pub struct AreaLights {
     triangles: Vec<AreaTriangle>,
-    /// Cumulative emitted luminous power of `triangles`, to choose one ∝ its power.
-    cdf: Vec<f64>,
+    /// The triangles by emitted luminous power.
+    by_power: Distribution1D,
 }
 
-impl Lights {
-    /// Collects the emissive triangles of `scene` (the point, spot and directional lights
-    /// are read from the scene as they are).
-    pub fn new(scene: &Scene) -> Lights {
+impl AreaLights {
+    /// Collects the emissive triangles of `scene`.
+    pub fn new(scene: &Scene) -> AreaLights {
         let mut triangles = Vec::new();
-        let mut cdf = Vec::new();
-        let mut acc = 0.0f64;
+        let mut power = Vec::new();
         for t in emissive_triangles(scene) {
             let [a, b, c] = t.corners;
-            acc += (luminance(t.emission) * t.area) as f64;
-            cdf.push(acc);
+            power.push((luminance(t.emission) * t.area) as f64);
             triangles.push(AreaTriangle {
                 p0: a,
                 e1: b - a,
@@ -113,20 +114,17 @@ impl Lights {
                 area: t.area,
             });
         }
-        Lights { triangles, cdf }
+        AreaLights {
+            triangles,
+            by_power: Distribution1D::new(power),
+        }
     }
 
     /// Picks an emissive triangle ∝ its power: (triangle, probability).
     #[inline]
     fn pick(&self, u: f32) -> (&AreaTriangle, f32) {
-        let total = self.cdf[self.cdf.len() - 1];
-        let target = u as f64 * total;
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= target)
-            .min(self.cdf.len() - 1);
-        let below = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-        (&self.triangles[i], ((self.cdf[i] - below) / total) as f32)
+        let i = self.by_power.sample(u);
+        (&self.triangles[i], self.by_power.pmf(i) as f32)
     }
 }
 
@@ -135,7 +133,7 @@ impl Lights {
 pub struct Integrator<'a> {
     scene: &'a Scene,
     accel: &'a Accel,
-    lights: &'a Lights,
+    lights: &'a AreaLights,
     map: Option<&'a PhotonMap>,
     settings: RenderSettings,
     gather: Option<(&'a PhotonMap, u32)>,
@@ -151,7 +149,7 @@ impl<'a> Integrator<'a> {
     pub fn new(
         scene: &'a Scene,
         accel: &'a Accel,
-        lights: &'a Lights,
+        lights: &'a AreaLights,
         map: Option<&'a PhotonMap>,
         settings: RenderSettings,
     ) -> Self {
@@ -184,7 +182,7 @@ impl<'a> Integrator<'a> {
         rays: u32,
         at: &Interaction,
         n: Vec3,
-        rng: &mut Rng,
+        rng: &mut Pcg32,
     ) -> Rgb {
         let mut sum = Vec3::ZERO;
         for _ in 0..rays {
@@ -216,7 +214,7 @@ impl<'a> Integrator<'a> {
     /// E = I·f(θ_s)·cos θ/d², the sun E⊥·cos θ, each if its shadow ray is free; area
     /// lights by `light_samples` points drawn by area (pdf p_tri/A_tri), each adding
     /// L·cos θ·cos θ_l/(d²·pdf) (pbrt-v4 §12.2, area sampling).
-    pub fn direct(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
+    pub fn direct(&self, at: &Interaction, n: Vec3, rng: &mut Pcg32) -> Rgb {
         let mut e = Vec3::ZERO;
         for light in &self.scene.lights {
             match light.kind {
@@ -286,7 +284,7 @@ impl<'a> Integrator<'a> {
 
     /// Total illuminance (RGB) at `at` on side `n`: direct plus the photon map's plus
     /// the final gather's (only the map's when it holds direct light too).
-    pub fn irradiance(&self, at: &Interaction, n: Vec3, rng: &mut Rng) -> Rgb {
+    pub fn irradiance(&self, at: &Interaction, n: Vec3, rng: &mut Pcg32) -> Rgb {
         let mut e = match self.map {
             Some(map) if map.includes_direct() => return map.irradiance(at.point, n),
             Some(map) => self.direct(at, n, rng) + map.irradiance(at.point, n),
@@ -299,11 +297,11 @@ impl<'a> Integrator<'a> {
     }
 
     /// Radiance (RGB luminance, cd/m²) arriving along `ray`.
-    pub fn radiance(&self, ray: &Ray, rng: &mut Rng) -> Rgb {
+    pub fn radiance(&self, ray: &Ray, rng: &mut Pcg32) -> Rgb {
         self.radiance_at_depth(ray, rng, 0, 1.0)
     }
 
-    fn radiance_at_depth(&self, ray: &Ray, rng: &mut Rng, depth: u32, weight: f32) -> Rgb {
+    fn radiance_at_depth(&self, ray: &Ray, rng: &mut Pcg32, depth: u32, weight: f32) -> Rgb {
         let Some(hit) = self.accel.intersect(ray) else {
             return Vec3::ZERO;
         };
@@ -350,7 +348,7 @@ impl<'a> Integrator<'a> {
     }
 
     /// Illuminance (lx) and |cos| of the first surface along `ray`, if any.
-    pub fn illuminance(&self, ray: &Ray, rng: &mut Rng) -> Option<(f32, f32)> {
+    pub fn illuminance(&self, ray: &Ray, rng: &mut Pcg32) -> Option<(f32, f32)> {
         let hit = self.accel.intersect(ray)?;
         let at = self.accel.interaction(ray, &hit);
         let cos = at.normal.dot(ray.dir);
@@ -362,7 +360,7 @@ impl<'a> Integrator<'a> {
 /// The image point of sample `s` of pixel (x, y): the centre for the first sample,
 /// uniformly jittered for the others.
 #[inline]
-fn sample_point(x: u32, y: u32, s: u32, settings: &RenderSettings, rng: &mut Rng) -> (f32, f32) {
+fn sample_point(x: u32, y: u32, s: u32, settings: &RenderSettings, rng: &mut Pcg32) -> (f32, f32) {
     let (jx, jy) = if s == 0 {
         (0.5, 0.5)
     } else {
@@ -384,7 +382,7 @@ fn per_pixel<T: Send + Clone>(
     s: &RenderSettings,
     empty: T,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-    pixel: impl Fn(u32, u32, &mut Rng) -> T + Sync,
+    pixel: impl Fn(u32, u32, &mut Pcg32) -> T + Sync,
 ) -> Vec<T> {
     let mut pixels = vec![empty; s.width as usize * s.height as usize];
     let done = AtomicU64::new(0);
@@ -394,7 +392,7 @@ fn per_pixel<T: Send + Clone>(
         .for_each(|(y, row)| {
             for (x, px) in row.iter_mut().enumerate() {
                 let index = y as u64 * s.width as u64 + x as u64;
-                let mut rng = Rng::new(s.seed ^ PIXEL_STREAM, index);
+                let mut rng = Pcg32::new(s.seed ^ PIXEL_STREAM, index);
                 *px = pixel(x as u32, y as u32, &mut rng);
             }
             if let Some(report) = progress {

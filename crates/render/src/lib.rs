@@ -4,6 +4,8 @@
 //!
 //! - [`PhotonMap`]: photons stored where they arrive (indirect light and caustics) in a
 //!   hashed grid, and the density estimate of irradiance (thesis eq. 2.6).
+//! - [`Renderer`], [`choose_view`]: a picture from start to end — the view from a camera
+//!   name and a size, the photon maps, the pixels — as `render` and `solve` make them.
 //! - [`Integrator`], [`render`]: camera rays, direct light by shadow rays to every
 //!   light kind, the photon map for indirect light, mirrors and glass followed with
 //!   Fresnel; pixels in parallel, the same image on any number of threads.
@@ -21,6 +23,7 @@ mod false_colour;
 mod integrator;
 mod map;
 mod photon_map;
+mod picture;
 mod plot;
 mod tonemap;
 
@@ -32,11 +35,16 @@ pub use false_colour::{auto_max, false_colour};
 pub use image;
 pub use image::RgbImage;
 pub use integrator::{
-    IlluminanceImage, Image, Integrator, Lights, RenderSettings, render, render_illuminance,
+    AreaLights, IlluminanceImage, Image, Integrator, RenderSettings, render, render_illuminance,
 };
 pub use map::{
-    IlluminanceMap, MAX_CELLS, MapCell, MapError, MapSettings, MapSummary, illuminance_map,
+    IlluminanceMap, MAX_CELLS, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
+    MapSummary, illuminance_map,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
+pub use picture::{
+    Look, MAX_PIXELS, MapFigures, PictureSettings, Renderer, SaveError, ViewError, choose_view,
+    picture_format, save_picture,
+};
 pub use plot::{Mark, PLOT_SIZE, PlotKind, PlotPoint, SearchPlot, draw_search_plot};
 pub use tonemap::{Exposure, ToneMap, log_average, srgb_encode, tone_map};

@@ -200,8 +200,6 @@ impl PhotonMap {
             photons: settings.photons,
             seed: settings.seed,
             max_bounces: settings.max_bounces,
-            // A photon map stores arrivals; it connects nothing.
-            connect: false,
         };
         let mut photons = Vec::new();
         trace_chunks(
@@ -398,7 +396,7 @@ fn cell_of(p: Vec3, inv_cell: f32) -> [i32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use invlight_photon::Rng;
+    use invlight_stats::Pcg32;
 
     #[test]
     fn uniform_photons_give_their_density() {
@@ -407,7 +405,7 @@ mod tests {
         // of the kernel on the grid.
         let h = 0.01f32;
         let mut photons = Vec::new();
-        let mut rng = Rng::new(9, 0);
+        let mut rng = Pcg32::new(9, 0);
         for i in 0..200 {
             for j in 0..200 {
                 photons.push(Photon {

@@ -326,7 +326,7 @@ fn marks(
 
 impl SearchPlot {
     /// Draws the plot and writes it as a PNG.
-    pub fn write(&self, path: &std::path::Path) -> image::ImageResult<()> {
-        draw_search_plot(self).save_with_format(path, image::ImageFormat::Png)
+    pub fn write(&self, path: &std::path::Path) -> Result<(), crate::SaveError> {
+        crate::save_picture(&draw_search_plot(self), path)
     }
 }
