@@ -1,20 +1,28 @@
-//! Options shared by several subcommands.
+//! Options every command shares, so that a flag means the same thing everywhere:
+//! [`LoadArgs`] (how to read a scene), [`SceneArgs`] (a scene file, or a problem file
+//! and one of its solve's results) and [`TraceArgs`] (photons, seed, bounces,
+//! confidence, threads).
 
 use crate::InputError;
+use anyhow::Context;
 use clap::{Args, ValueEnum};
-use invlight_photon::{DEFAULT_MAX_BOUNCES, Emitters, TraceSettings};
-use invlight_scene::{LoadOptions, Scene, SurfaceId, UpAxis};
-use std::path::Path;
+use invlight_ilp::{MemberRef, Problem};
+use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photons_traced};
+use invlight_scene::{LoadOptions, Scene, UpAxis};
+use invlight_stats::Confidence;
+use std::path::PathBuf;
 
 /// How to read a scene file.
-#[derive(Args, Debug, Clone)]
+#[derive(Args, Debug, Clone, Default)]
 pub struct LoadArgs {
-    /// Metres per file unit, for files authored in other units (e.g. 0.001 for mm). Applied
-    /// after the file's own unit declaration (COLLADA <unit meter>).
-    #[arg(long, default_value_t = 1.0, value_name = "M")]
-    pub scale: f32,
-    /// The file's up axis when it does not say (OBJ) or says wrongly. Positions are never
-    /// swapped; this orients sun directions in problem files.
+    /// Metres per file unit, for files authored in other units (e.g. 0.001 for mm)
+    /// [default: 1, or a problem file's <scene scale>]. Applied after the file's own unit
+    /// declaration (COLLADA <unit meter>).
+    #[arg(long, value_name = "M", value_parser = positive::<f32>)]
+    pub scale: Option<f32>,
+    /// The file's up axis when it does not say (OBJ) or says wrongly [default: the
+    /// file's, or a problem file's <scene up>]. Positions are never swapped; the axis
+    /// orients sun directions and default views.
     #[arg(long, value_enum, value_name = "AXIS")]
     pub up: Option<Up>,
 }
@@ -28,172 +36,149 @@ pub enum Up {
     Z,
 }
 
+/// A positive finite number, as a flag's value parser.
+pub fn positive<T: std::str::FromStr + PartialOrd + Default + Copy + Into<f64>>(
+    s: &str,
+) -> Result<T, String> {
+    match s.parse::<T>() {
+        Ok(x) if x > T::default() && x.into().is_finite() => Ok(x),
+        _ => Err(format!("'{s}' is not a positive number")),
+    }
+}
+
+/// A finite number, as a flag's value parser.
+pub fn finite(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("'{s}' is not a finite number")),
+    }
+}
+
+/// A confidence level, as a flag's value parser.
+fn confidence(s: &str) -> Result<Confidence, String> {
+    let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    Confidence::new(c).map_err(|e| e.to_string())
+}
+
 impl LoadArgs {
-    /// Loads `path` with these options.
-    pub fn load(&self, path: &Path) -> anyhow::Result<Scene> {
-        if !(self.scale.is_finite() && self.scale > 0.0) {
-            return Err(InputError(format!(
-                "--scale {} is not a positive number of metres per unit",
-                self.scale
-            ))
-            .into());
-        }
-        let options = LoadOptions {
-            scale: self.scale,
-            up: self.up.map(|u| match u {
-                Up::Y => UpAxis::Y,
-                Up::Z => UpAxis::Z,
-            }),
-        };
-        Ok(invlight_scene::load(path, &options)?)
-    }
-}
-
-/// Finds the surface `name`, or explains which names exist.
-pub fn find_surface(scene: &Scene, path: &Path, name: &str) -> anyhow::Result<SurfaceId> {
-    if let Some(id) = scene.surface(name) {
-        // Illuminance is flux over area: a surface without area has none.
-        if scene.surface_area(id) <= 0.0 {
-            return Err(InputError(format!(
-                "{}: the surface '{name}' has no area (its triangles are degenerate)",
-                path.display()
-            ))
-            .into());
-        }
-        return Ok(id);
-    }
-    let mut msg = format!("{}: no surface named '{name}'", path.display());
-    let lower = name.to_lowercase();
-    let close: Vec<&str> = scene
-        .surfaces
-        .iter()
-        .map(|s| s.name.as_str())
-        .filter(|s| {
-            let s = s.to_lowercase();
-            s.contains(&lower) || lower.contains(&s) || edit_distance(&s, &lower) <= 2
+    fn up(&self) -> Option<UpAxis> {
+        self.up.map(|u| match u {
+            Up::Y => UpAxis::Y,
+            Up::Z => UpAxis::Z,
         })
-        .take(5)
-        .collect();
-    if !close.is_empty() {
-        msg += &format!("\n  hint: did you mean {}?", quoted(&close));
-    } else {
-        let all: Vec<&str> = scene
-            .surfaces
-            .iter()
-            .map(|s| s.name.as_str())
-            .take(12)
-            .collect();
-        msg += &format!(
-            "\n  hint: the scene's surfaces include {}{}; `invlight scene {}` lists them all",
-            quoted(&all),
-            if scene.surfaces.len() > all.len() {
-                ", …"
-            } else {
-                ""
-            },
-            path.display()
-        );
     }
-    if scene.placement(name).is_some() {
-        msg += "\n  note: it is a placement rectangle (*__Geometry), which is not lit";
-    }
-    Err(InputError(msg).into())
-}
 
-/// Levenshtein distance, for "did you mean" hints.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diag = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let next = (diag + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(row[j + 1] + 1);
-            diag = row[j + 1];
-            row[j + 1] = next;
+    /// The loader's options.
+    pub fn options(&self) -> LoadOptions {
+        LoadOptions {
+            scale: self.scale.unwrap_or(1.0),
+            up: self.up(),
         }
     }
-    row[b.len()]
+
+    /// Loads a problem file's scene, these options overriding its `<scene>`'s.
+    pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
+        Ok(problem.load_scene(&self.options(), self.scale, self.up())?)
+    }
 }
 
-fn quoted(names: &[&str]) -> String {
-    names
-        .iter()
-        .map(|n| format!("'{n}'"))
-        .collect::<Vec<_>>()
-        .join(", ")
+/// A scene to work on: a scene file, or a problem file (its scene) with optionally one
+/// of its solve's configurations applied.
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// Scene file: glTF 2.0 (.gltf, .glb), COLLADA (.dae) or Wavefront OBJ (.obj); or a
+    /// problem file (.xml), whose scene is read as its <scene> says.
+    pub scene: PathBuf,
+    /// With a problem file: apply configuration K of a solve's result (RESULT#K, a
+    /// result.json written by `invlight solve`; K counts from 1 in result.json's order,
+    /// as isoc-01.png, isoc-02.png, … do; RESULT alone is member 1, the highest mean).
+    #[arg(long, value_name = "RESULT#K")]
+    pub config: Option<String>,
+    #[command(flatten)]
+    pub load: LoadArgs,
+}
+
+impl SceneArgs {
+    /// Loads the scene, configured as `--config` says.
+    pub fn load(&self) -> anyhow::Result<Scene> {
+        let ext = self.scene.extension().map(|e| e.to_ascii_lowercase());
+        if ext.is_none_or(|e| e != "xml") {
+            if self.config.is_some() {
+                return Err(InputError(format!(
+                    "--config applies a solve's configuration to the scene of its problem file; {} is not a problem file (.xml)",
+                    self.scene.display()
+                ))
+                .into());
+            }
+            return Ok(invlight_scene::load(&self.scene, &self.load.options())?);
+        }
+        let problem = Problem::read(&self.scene)?;
+        let mut scene = self.load.load_problem(&problem)?;
+        if let Some(config) = &self.config {
+            let member: MemberRef = config
+                .parse()
+                .map_err(|e| InputError(format!("--config {config}: {e}")))?;
+            member.apply(&problem, &mut scene)?;
+        }
+        Ok(scene)
+    }
 }
 
 /// Options of every command that traces photons.
-#[derive(Args, Debug, Clone)]
+#[derive(Args, Debug, Clone, Default)]
 pub struct TraceArgs {
+    /// Photons to trace [default: measure and render 1 000 000, map 4 000 000, solve the
+    /// problem's `photons`]. The standard error falls as 1/√N. Measurements trace
+    /// whole groups of 64 photons, at least 2048; the output says how many.
+    #[arg(long, short = 'n', value_name = "N")]
+    pub photons: Option<u64>,
     /// Seed of the random streams: the same seed gives the same numbers on any number
-    /// of threads.
-    #[arg(long, default_value_t = 1, value_name = "S")]
-    pub seed: u64,
-    /// Surface interactions followed after the first hit. Russian roulette ends paths
-    /// without bias; this is a safety cap. 4 reproduces the thesis, which under-counts
-    /// light in bright rooms.
-    #[arg(long, default_value_t = DEFAULT_MAX_BOUNCES, value_name = "K")]
-    pub max_bounces: u32,
-    /// Confidence level of the reported intervals.
-    #[arg(long, default_value_t = 0.95, value_name = "C")]
-    pub confidence: f64,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "T")]
+    /// of threads [default: 1, solve the problem's `seed`].
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+    /// Surface interactions followed after the first hit [default: 1000, solve the
+    /// problem's `maxBounces`]. Russian roulette ends paths without bias; this is a
+    /// safety cap. 4 reproduces the thesis, which under-counts light in bright rooms.
+    #[arg(long, value_name = "K")]
+    pub max_bounces: Option<u32>,
+    /// Confidence level of the intervals and comparisons, in (0, 1) [default: 0.95,
+    /// solve the problem's `confidence`].
+    #[arg(long, value_name = "C", value_parser = confidence)]
+    pub confidence: Option<Confidence>,
+    /// Worker threads [default: one per core].
+    #[arg(long, short = 'j', value_name = "T")]
     pub threads: Option<usize>,
 }
 
 impl TraceArgs {
-    /// Checks the options together with the photon count, before anything is loaded.
-    pub fn check(&self, photons: u64) -> anyhow::Result<()> {
-        check_confidence(self.confidence)?;
-        if photons == 0 {
-            return Err(InputError("--photons must be at least 1".into()).into());
+    /// The photons to trace, `default` unless given, refused when 0 or when rounding up
+    /// to whole groups would overflow.
+    pub fn photons(&self, default: u64) -> anyhow::Result<u64> {
+        let n = self.photons.unwrap_or(default);
+        if n == 0 || photons_traced(n).is_none() {
+            return Err(InputError(format!(
+                "--photons {n}: expected a positive count below {}",
+                u64::MAX - 63
+            ))
+            .into());
         }
-        Ok(())
+        Ok(n)
     }
 
-    /// The tracing settings for `photons` photons.
-    pub fn settings(&self, photons: u64) -> TraceSettings {
-        TraceSettings {
-            photons,
-            seed: self.seed,
-            max_bounces: self.max_bounces,
-            connect: true,
-        }
+    /// The tracing settings with `default` photons.
+    pub fn settings(&self, default: u64) -> anyhow::Result<TraceSettings> {
+        Ok(TraceSettings {
+            photons: self.photons(default)?,
+            seed: self.seed.unwrap_or(1),
+            max_bounces: self.max_bounces.unwrap_or(DEFAULT_MAX_BOUNCES),
+        })
     }
 
-    /// The thread pool to trace in.
+    /// The thread pool to work in.
     pub fn pool(&self) -> anyhow::Result<rayon::ThreadPool> {
-        Ok(rayon::ThreadPoolBuilder::new()
+        rayon::ThreadPoolBuilder::new()
             .num_threads(self.threads.unwrap_or(0))
-            .build()?)
-    }
-}
-
-/// Refuses a scene that has nothing to trace photons from.
-pub fn require_light(scene: &Scene, path: &Path) -> anyhow::Result<()> {
-    if Emitters::new(scene).is_empty() {
-        return Err(InputError(format!(
-            "{}: the scene has no light: no point, spot or directional light and no emissive surface",
-            path.display()
-        ))
-        .into());
-    }
-    Ok(())
-}
-
-/// Checks a confidence level.
-pub fn check_confidence(c: f64) -> anyhow::Result<()> {
-    if c > 0.0 && c < 1.0 {
-        Ok(())
-    } else {
-        Err(InputError(format!(
-            "--confidence {c} must lie strictly between 0 and 1 (e.g. 0.95)"
-        ))
-        .into())
+            .build()
+            .context("starting the worker threads")
     }
 }

@@ -6,10 +6,11 @@ mod map;
 mod measure;
 mod progress;
 mod render;
-mod scene_info;
+mod scene;
 mod solve;
 
 use clap::{Parser, Subcommand};
+use std::io::Write;
 use std::process::ExitCode;
 
 /// Inverse lighting: measure the light on named surfaces of a 3D scene, and search a
@@ -18,6 +19,8 @@ use std::process::ExitCode;
 ///
 /// Light is estimated by photon tracing on all CPU cores, in lux, with confidence
 /// intervals. Scenes: glTF 2.0 (.gltf, .glb), COLLADA (.dae), Wavefront OBJ (.obj).
+/// Exit status: 0 done, 1 failed, 2 bad input (a file, a name, a value), 130 a solve
+/// interrupted by Ctrl-C (its files hold what it found).
 #[derive(Parser)]
 #[command(name = "invlight", version, about, long_about)]
 struct Cli {
@@ -31,10 +34,18 @@ enum Command {
     Measure(measure::MeasureArgs),
     /// What a scene file holds: surfaces, lights, cameras, bounds. Run it first to find
     /// the names to measure or to put in a problem file.
-    Scene(scene_info::SceneArgs),
+    Scene(scene::SceneInfoArgs),
     /// Search a problem's free variables for the configurations that maximise a
     /// surface's illuminance (the problem file is ILPSolver's XML; see
     /// docs/problem-file.md). Results are written as they are found.
+    ///
+    /// The output folder gets solutions.csv (one row per photon trace), result.json (the
+    /// best configurations, rewritten whenever they change) and run.json (the settings,
+    /// which --resume checks). Ctrl-C stops cleanly with exit status 130; --resume
+    /// continues from solutions.csv. A folder holding an earlier run is refused unless
+    /// --resume or --force is given. At the end, isoc-01.png, isoc-02.png, … render the
+    /// ISOC's configurations from the scene's camera and search.png plots the
+    /// configurations evaluated.
     Solve(solve::SolveArgs),
     /// Render a picture from a scene camera by photon mapping, or a false-colour
     /// illuminance picture with a lux scale.
@@ -56,24 +67,46 @@ impl std::fmt::Display for InputError {
 
 impl std::error::Error for InputError {}
 
+/// Writes `text` to standard output. A closed pipe (`invlight … --json | head`) is not
+/// an error of ours: it comes back as one, and `main` ends quietly on it, as ripgrep
+/// does.
+pub fn print(text: &str) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Pretty JSON of `value` and a newline, to standard output.
+pub fn print_json(value: &impl serde::Serialize) -> anyhow::Result<()> {
+    print(&(serde_json::to_string_pretty(value)? + "\n"))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Measure(args) => measure::run(args),
-        Command::Scene(args) => scene_info::run(args),
+        Command::Scene(args) => scene::run(args),
         Command::Solve(args) => solve::run(args),
         Command::Render(args) => render::run(args),
         Command::Map(args) => map::run(args),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         Err(err) => {
+            let broken_pipe = err.chain().any(|e| {
+                e.downcast_ref::<std::io::Error>()
+                    .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+            });
+            if broken_pipe {
+                return ExitCode::SUCCESS;
+            }
             eprintln!("error: {err:#}");
             // Bad input (a file, a name, a value) is exit code 2, as for clap's own
             // usage errors; anything else that fails (writing output) is 1.
             let input = err
                 .chain()
-                .any(|e| e.is::<InputError>() || e.is::<invlight_scene::LoadError>());
+                .any(|e| e.is::<InputError>() || e.is::<invlight_scene::Diagnostic>());
             ExitCode::from(if input { 2 } else { 1 })
         }
     }

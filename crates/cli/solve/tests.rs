@@ -1,0 +1,161 @@
+//! `invlight solve` in-process on the lamp room of `tests/data/ilp` (one lamp on a
+//! ceiling over a desk): the files it writes, resuming, refusing and replacing an
+//! earlier run, its pictures.
+
+use super::*;
+use invlight_ilp::ResultFile;
+use std::collections::HashSet;
+use std::path::Path;
+
+fn args(out: &Path) -> SolveArgs {
+    SolveArgs {
+        problem: Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ilp/lamp-room.xml"),
+        output: Some(out.to_path_buf()),
+        iterations: Some(40),
+        trace: TraceArgs {
+            photons: Some(8000),
+            threads: Some(2),
+            ..TraceArgs::default()
+        },
+        load: LoadArgs::default(),
+        json: false,
+        resume: false,
+        force: false,
+        image_width: 64,
+        image_photons: 2000,
+        no_images: true,
+    }
+}
+
+/// The rows without their timing columns (seconds, elapsed).
+fn untimed(rows: &[String]) -> Vec<String> {
+    rows.iter()
+        .map(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            let n = c.len();
+            [&c[..n - 3], &c[n - 1..]].concat().join(",")
+        })
+        .collect()
+}
+
+fn rows(out: &Path) -> Vec<String> {
+    std::fs::read_to_string(out.join("solutions.csv"))
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect()
+}
+
+/// The PNG files in `out`, by name, with their sizes.
+fn pngs(out: &Path) -> Vec<(String, (u32, u32))> {
+    let mut found: Vec<_> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "png"))
+        .map(|p| {
+            let size = invlight_render::image::image_dimensions(&p).unwrap();
+            (p.file_name().unwrap().to_string_lossy().into_owned(), size)
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+/// Solving writes a row per evaluation, result.json and a picture per ISOC member;
+/// --resume goes on from the rows without tracing a cell twice and leaves no picture
+/// of the earlier ISOC; a folder holding a run is refused without --resume or --force,
+/// and --force replaces it.
+#[test]
+fn solve_resume_refuse_and_replace() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut first_args = args(&out);
+    first_args.no_images = false;
+    assert_eq!(run(first_args).unwrap(), ExitCode::SUCCESS);
+    let first = rows(&out);
+    assert_eq!(
+        first[0],
+        "iteration,Lamp.x,Lamp.y,Lamp.z,Lamp.anchor.x,Lamp.anchor.y,Lamp.anchor.z,low,mean,high,std_error,photons,seconds,elapsed,verdict"
+    );
+    let result = ResultFile::read(&out.join("result.json")).unwrap();
+    assert_eq!(result.evaluations, first.len() as u64 - 1);
+    assert_eq!(result.objective.surface, "Desk");
+    // The lamp room has no camera: the default view is 4:3, 64×48 pixels.
+    let mut expected: Vec<_> = (1..=result.isoc.len())
+        .map(|k| (format!("isoc-{k:02}.png"), (64, 48)))
+        .collect();
+    expected.push(("search.png".to_string(), invlight_render::PLOT_SIZE));
+    assert_eq!(pngs(&out), expected);
+    // A picture of a larger earlier ISOC must not survive the next run's pictures.
+    std::fs::write(out.join("isoc-99.png"), b"stale").unwrap();
+
+    let err = run(args(&out)).unwrap_err();
+    assert!(err.chain().any(|e| e.is::<InputError>()), "{err:#}");
+    assert!(format!("{err:#}").contains("--force"), "{err:#}");
+    assert_eq!(
+        rows(&out),
+        first,
+        "a refused run leaves the folder as it was"
+    );
+
+    let mut more = args(&out);
+    more.iterations = Some(120);
+    more.resume = true;
+    more.no_images = false;
+    run(more).unwrap();
+    let second = rows(&out);
+    assert!(second.len() > first.len());
+    assert_eq!(second[..first.len()], first[..]);
+    let mut traced = HashSet::new();
+    for (i, r) in second[1..].iter().enumerate() {
+        let c: Vec<&str> = r.split(',').collect();
+        let refined = i > 0 && second[i].ends_with(",refine");
+        assert!(
+            traced.insert(c[1..4].join(",")) || refined,
+            "cell traced twice: {r}"
+        );
+    }
+    assert!(!out.join("isoc-99.png").exists());
+    // Rows traced with another seed cannot be continued: an input error that names
+    // the setting, and the folder is left as it was.
+    let mut other = args(&out);
+    other.resume = true;
+    other.trace.seed = Some(99);
+    let err = run(other).unwrap_err();
+    let text = format!("{err:#}");
+    assert!(
+        text.contains("seed 99") && text.contains("cannot resume"),
+        "{text}"
+    );
+    assert!(err.chain().any(|e| e.is::<InputError>()), "{text}");
+    assert_eq!(rows(&out), second);
+
+    let mut replace = args(&out);
+    replace.force = true;
+    run(replace).unwrap();
+    assert_eq!(
+        untimed(&rows(&out)),
+        untimed(&first),
+        "the same seed and budget give the same rows"
+    );
+    assert!(
+        pngs(&out).is_empty(),
+        "the earlier run's pictures went with it"
+    );
+}
+
+#[test]
+fn bad_input_is_an_input_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut missing = args(dir.path());
+    missing.problem = dir.path().join("no-such-problem.xml");
+    let err = run(missing).unwrap_err();
+    assert!(
+        err.chain().any(|e| e.is::<invlight_scene::Diagnostic>()),
+        "{err:#}"
+    );
+    let mut a = args(dir.path());
+    a.trace.photons = Some(u64::MAX);
+    let err = run(a).unwrap_err();
+    assert!(format!("{err:#}").contains("--photons"), "{err:#}");
+}
