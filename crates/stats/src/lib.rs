@@ -8,6 +8,7 @@
 //!   statistical order of thesis eq. 3.7; [`normal_quantile`] gives z.
 //! - [`SplitMix64`], [`Pcg32`], [`mix`]: reproducible random streams keyed by a seed
 //!   and an index, so results never depend on thread count or scheduling.
+//! - [`significant`]: numbers as tables and messages show them.
 //! - [`Distribution1D`]: a discrete distribution from weights, sampled by inversion
 //!   with the probability of what it returns.
 //!
@@ -25,10 +26,12 @@
 
 mod distribution;
 mod estimate;
+mod format;
 mod interval;
 mod rng;
 
 pub use distribution::Distribution1D;
 pub use estimate::{Estimate, normal_quantile};
+pub use format::significant;
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
 pub use rng::{Pcg32, SplitMix64, mix};
