@@ -7,6 +7,7 @@
 //!   [`Instance`]s, [`Material`]s, punctual and directional [`Light`]s, [`Camera`]s, the
 //!   named [`Surface`]s a user addresses, and the [`Placement`] rectangles of problem files.
 //! - [`load`]: reads a scene file, choosing the format from its extension.
+//! - [`daylight`]: sites and their compass, dates and times.
 //!
 //! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
 //! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
@@ -27,6 +28,7 @@
 #![deny(missing_docs)]
 
 mod collada;
+pub mod daylight;
 mod error;
 mod gltf;
 mod image_file;
