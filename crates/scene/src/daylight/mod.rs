@@ -5,11 +5,33 @@
 //!   azimuth clockwise from north) become scene vectors ([`Compass::to_sky`]).
 //! - [`Date`], [`TimeOfDay`]: civil dates and clock times read from `2003-10-17` and
 //!   `12:30:30`, refused when no calendar or clock has them.
+//! - [`SunPosition`]: NREL's Solar Position Algorithm (Reda & Andreas 2004) for a site
+//!   and local time, the direction sunlight travels in the scene, and the clear-sky
+//!   direct normal illuminance of IES RP-21-84; [`SunReport`] is all of it, serialisable.
+//!
+//! ```
+//! use invlight_scene::daylight::{Date, Site, SunOptions, SunPosition, TimeOfDay};
+//! use invlight_scene::Vec3;
+//! // Montevideo, 21 December 2025 at 10:00 local time (UTC−3), a Y-up scene.
+//! let site = Site::new(-34.9, -56.2, -3.0)?;
+//! let date: Date = "2025-12-21".parse()?;
+//! let time: TimeOfDay = "10:00".parse()?;
+//! let sun = SunPosition::new(&site, &date, &time, &SunOptions::default())?;
+//! assert!(sun.is_up() && sun.azimuth > 45.0 && sun.azimuth < 135.0); // morning: east
+//! let travel = sun.travel(&site.compass(Vec3::Y)?); // what a directional light takes
+//! assert!(travel.y < 0.0);
+//! # Ok::<(), invlight_scene::daylight::DaylightError>(())
+//! ```
 
 mod site;
+mod sun;
 mod time;
 
 pub use site::{Compass, Site};
+pub use sun::{
+    Atmosphere, CLEAR_SKY_EXTINCTION, SOLAR_ILLUMINANCE_CONSTANT, SunOptions, SunPosition,
+    SunReport, relative_air_mass,
+};
 pub use time::{Date, TimeOfDay, is_leap_year, julian_day};
 
 use std::fmt;
@@ -41,6 +63,8 @@ pub enum DaylightError {
         /// What it may be.
         range: &'static str,
     },
+    /// The solar position algorithm refused its inputs.
+    Spa(String),
 }
 
 impl fmt::Display for DaylightError {
@@ -51,6 +75,7 @@ impl fmt::Display for DaylightError {
             DaylightError::OutOfRange { what, value, range } => {
                 write!(f, "{what} {value} is out of range: expected {range}")
             }
+            DaylightError::Spa(message) => write!(f, "solar position: {message}"),
         }
     }
 }
