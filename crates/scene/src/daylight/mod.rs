@@ -12,6 +12,8 @@
 //!   scaled to a horizontal illuminance, with a sampling distribution over directions
 //!   and its density, for dome emitters and connections.
 //!
+//! docs/daylight.md states the conventions with a figure, the models and their sources.
+//!
 //! ```
 //! use invlight_scene::daylight::{Date, Site, Sky, SunOptions, SunPosition, TimeOfDay};
 //! use invlight_scene::Vec3;
