@@ -7,6 +7,9 @@
 //!   [`Instance`]s, [`Material`]s, punctual and directional [`Light`]s, [`Camera`]s, the
 //!   named [`Surface`]s a user addresses, and the [`Placement`] rectangles of problem files.
 //! - [`load`]: reads a scene file, choosing the format from its extension.
+//! - [`daylight`]: sites and their compass, dates and times, the sun's position (NREL
+//!   SPA) and clear-sky illuminance, and CIE skies with their sampling distributions
+//!   (docs/daylight.md).
 //!
 //! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
 //! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
@@ -28,6 +31,7 @@
 
 mod atomic;
 mod collada;
+pub mod daylight;
 mod error;
 mod gltf;
 mod image_file;
