@@ -1240,6 +1240,280 @@ mod solve {
     }
 }
 
+/// What a newcomer meets in the first hour (issue 11) and what careless input does
+/// (issue 19): each a clear message or a correct result, never a panic.
+mod first_hour {
+    use super::*;
+
+    /// The lamp room's problem and scene copied into `dir`, the scene edited by `edit`
+    /// (its JSON) and the problem by replacing `from` with `to`.
+    fn lamp_room(dir: &Path, edit: impl Fn(&mut Value), problem: (&str, &str)) -> PathBuf {
+        let mut scene: Value =
+            serde_json::from_str(&std::fs::read_to_string(data("ilp/lamp-room.gltf")).unwrap())
+                .unwrap();
+        edit(&mut scene);
+        std::fs::write(dir.join("lamp-room.gltf"), scene.to_string()).unwrap();
+        let xml = std::fs::read_to_string(data("ilp/lamp-room.xml")).unwrap();
+        assert!(xml.contains(problem.0), "{}", problem.0);
+        let path = dir.join("problem.xml");
+        std::fs::write(&path, xml.replace(problem.0, problem.1)).unwrap();
+        path
+    }
+
+    /// `invlight … --json | head -c 10` ends quietly when the pipe closes, as ripgrep
+    /// does, instead of panicking with "failed printing to stdout" (exit 101).
+    #[test]
+    fn a_closed_pipe_ends_quietly() {
+        let dir = tempfile::tempdir().unwrap();
+        let script = format!(
+            "set -o pipefail; '{}' map '{}' -s Floor --grid 0.01 -n 4096 -o '{}' --json | head -c 10 > /dev/null",
+            env!("CARGO_BIN_EXE_invlight"),
+            data("gltf/room_area.gltf").display(),
+            dir.path().join("m").display()
+        );
+        let out = Command::new("bash").args(["-c", &script]).output().unwrap();
+        let stderr = text(&out.stderr);
+        assert!(out.status.success(), "{:?}: {stderr}", out.status);
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+
+    /// `render -o x.jpg` writes a JPEG; another extension is refused before any work.
+    #[test]
+    fn render_writes_the_format_its_file_names() {
+        let dir = tempfile::tempdir().unwrap();
+        let jpg = dir.path().join("room.jpg");
+        let scene = data("gltf/room_area.gltf");
+        let out = invlight([
+            "render".as_ref(),
+            scene.as_os_str(),
+            "--width".as_ref(),
+            "32".as_ref(),
+            "-n".as_ref(),
+            "2000".as_ref(),
+            "-o".as_ref(),
+            jpg.as_os_str(),
+        ]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        assert_eq!(
+            std::fs::read(&jpg).unwrap()[..3],
+            [0xFF, 0xD8, 0xFF],
+            "JPEG magic"
+        );
+        let bmp = dir.path().join("room.bmp");
+        input_error(
+            [
+                "render".as_ref(),
+                scene.as_os_str(),
+                "-o".as_ref(),
+                bmp.as_os_str(),
+            ],
+            &["room.bmp", ".png, .jpg or .jpeg"],
+        );
+        assert!(!bmp.exists());
+        input_error(
+            [
+                "render".as_ref(),
+                scene.as_os_str(),
+                "-o".as_ref(),
+                jpg.as_os_str(),
+                "--exposure".as_ref(),
+                "NaN".as_ref(),
+            ],
+            &["--exposure"],
+        );
+    }
+
+    /// Every command that traces takes the same flags: -n for photons, -j for threads,
+    /// --seed, --confidence where intervals are printed, and the scene options.
+    #[test]
+    fn the_same_flags_mean_the_same_everywhere() {
+        for command in ["measure", "map", "render", "solve"] {
+            let out = invlight([command, "--help"]);
+            let help = text(&out.stdout);
+            for flag in [
+                "-n, --photons",
+                "-j, --threads",
+                "--seed",
+                "--max-bounces",
+                "--scale",
+                "--up",
+            ] {
+                assert!(help.contains(flag), "{command} --help lacks {flag}");
+            }
+        }
+        for command in ["measure", "map", "render", "scene"] {
+            let help = text(&invlight([command, "--help"]).stdout);
+            assert!(
+                help.contains("--config <RESULT#K>"),
+                "{command} --help lacks --config"
+            );
+        }
+    }
+
+    /// `solve --scale` reads the scene in other units, as `<scene scale>` does: every
+    /// placement doubles with a scale of 2.
+    #[test]
+    fn solve_takes_the_scene_options() {
+        let dir = tempfile::tempdir().unwrap();
+        let first_row = |extra: &[&str], problem: &Path, out: &str| {
+            let out = dir.path().join(out);
+            let mut a = vec![
+                "solve",
+                problem.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ];
+            a.extend(["-n", "2048", "--iterations", "1", "--no-images"]);
+            a.extend(extra);
+            let r = invlight(a);
+            assert!(r.status.success(), "{}", text(&r.stderr));
+            let csv = std::fs::read_to_string(out.join("solutions.csv")).unwrap();
+            let row: Vec<f64> = csv
+                .lines()
+                .nth(1)
+                .unwrap()
+                .split(',')
+                .skip(1)
+                .take(3)
+                .map(|c| c.parse().unwrap())
+                .collect();
+            row
+        };
+        let problem = data("ilp/lamp-room.xml");
+        let one = first_row(&[], &problem, "one");
+        let two = first_row(&["--scale", "2"], &problem, "two");
+        close3(
+            [two[0], two[1], two[2]],
+            [2.0 * one[0], 2.0 * one[1], 2.0 * one[2]],
+            1e-6,
+            "--scale 2",
+        );
+        let scaled = lamp_room(
+            dir.path(),
+            |_| {},
+            (
+                "<scene path=\"lamp-room.gltf\"/>",
+                "<scene path=\"lamp-room.gltf\" scale=\"2\"/>",
+            ),
+        );
+        let file = first_row(&[], &scaled, "file");
+        assert_eq!(file, two, "<scene scale> and --scale agree");
+    }
+
+    /// A light id that is not a light lists the lights, not the surfaces.
+    #[test]
+    fn a_wrong_light_id_lists_the_lights() {
+        let dir = tempfile::tempdir().unwrap();
+        let problem = lamp_room(
+            dir.path(),
+            |_| {},
+            ("<lightInSurface id=\"Lamp\"", "<lightInSurface id=\"Lmp\""),
+        );
+        let stderr = input_error(
+            [
+                "solve".as_ref(),
+                problem.as_os_str(),
+                "-o".as_ref(),
+                dir.path().join("o").as_os_str(),
+            ],
+            &["problem.xml:8", "'Lmp'", "the scene's lights: 'Lamp'"],
+        );
+        assert!(!stderr.contains("'Desk'"), "{stderr}");
+    }
+
+    /// A scene whose only light emits nothing is refused by solve as by measure.
+    #[test]
+    fn a_dark_scene_is_refused_by_every_command() {
+        let dir = tempfile::tempdir().unwrap();
+        let problem = lamp_room(
+            dir.path(),
+            |g| g["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 0.0.into(),
+            ("", ""),
+        );
+        let scene = dir.path().join("lamp-room.gltf");
+        for args in [
+            vec![
+                "solve".as_ref(),
+                problem.as_os_str(),
+                "-o".as_ref(),
+                dir.path().join("o").as_os_str(),
+            ],
+            vec![
+                "measure".as_ref(),
+                scene.as_os_str(),
+                "-s".as_ref(),
+                "Desk".as_ref(),
+            ],
+        ] {
+            input_error(args, &["no light", "'Lamp' emit no luminous flux"]);
+        }
+    }
+
+    /// `scene` says which way an emissive surface faces and that it emits from that side
+    /// only; a scene that spans kilometres gets a hint about its units.
+    #[test]
+    fn scene_shows_what_a_user_cannot_see() {
+        let out = invlight(["scene", data("collada/cornell.dae").to_str().unwrap()]);
+        let table = text(&out.stdout);
+        let light = table
+            .lines()
+            .find(|l| l.starts_with("Light ") && l.contains(" area "))
+            .expect(&table);
+        assert!(light.contains("(0.0000, 0.0000, -1.0000)"), "{light}");
+        assert!(table.contains("emit from their front side only"), "{table}");
+        let dir = tempfile::tempdir().unwrap();
+        let obj = dir.path().join("site.obj");
+        std::fs::write(&obj, "v 0 0 0\nv 20000 0 0\nv 0 20000 0\nf 1 2 3\n").unwrap();
+        let out = invlight(["scene", obj.to_str().unwrap()]);
+        assert!(out.status.success());
+        let stderr = text(&out.stderr);
+        assert!(
+            stderr.contains("warning: the scene spans 20000 m") && stderr.contains("--scale 0.001"),
+            "{stderr}"
+        );
+    }
+
+    /// A trace that will take more than an hour says so after a few seconds; the count
+    /// is checked before it is rounded, so 2⁶⁴ − 1 photons is refused, not wrapped.
+    #[test]
+    fn a_run_of_days_says_so() {
+        let scene = data("gltf/room_area.gltf");
+        input_error(
+            [
+                "measure",
+                scene.to_str().unwrap(),
+                "-s",
+                "Floor",
+                "-n",
+                "18446744073709551615",
+            ],
+            &["--photons 18446744073709551615"],
+        );
+        let mut child = Command::new(env!("CARGO_BIN_EXE_invlight"))
+            .args([
+                "measure",
+                scene.to_str().unwrap(),
+                "-s",
+                "Floor",
+                "-n",
+                "10000000000000",
+            ])
+            .stderr(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+        let mut line = String::new();
+        std::io::BufRead::read_line(&mut stderr, &mut line).unwrap();
+        child.kill().unwrap();
+        child.wait().unwrap();
+        assert!(
+            line.starts_with("warning: this measurement will take about") && line.contains("days"),
+            "{line}"
+        );
+    }
+}
+
 /// `--help` of every subcommand exits 0 and documents every option the issues name.
 mod help {
     use super::*;

@@ -488,7 +488,7 @@ def conference(scenes_dir, out):
     for z in PANEL_Z:
         for x in PANEL_X:
             k += 1
-            q = quad((-hx, 0.0, -hz), (-hx, 0.0, hz), (hx, 0.0, hz), (hx, 0.0, -hz))
+            q = quad((-hx, 0.0, -hz), (hx, 0.0, -hz), (hx, 0.0, hz), (-hx, 0.0, hz))
             gl.node("Panel%d" % k, mesh=gl.mesh("Panel%d" % k, *q, panel), translation=(x, y, z))
     # Window: a hole box through the window wall's blinds and outer wall.
     lo, hi = WINDOW_LO, WINDOW_HI

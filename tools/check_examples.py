@@ -26,23 +26,22 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def cornell_cone(r):
-    # Cone centre = P + (authored centre − A) = P + (−0.752, +0.850); the panel covers
+    # The cone's centre (its anchor: result.json gives it beside the placement point P,
+    # which is P + (authored centre − A) = P + (−0.752, +0.850)); the panel covers
     # x ∈ [−0.39, 0.86], y ∈ [0.93, 2.17]: under it, within 0.5 m.
-    x, y, _ = r["variables"]["Cone"]["position"]
-    cx, cy = x - 0.752, y + 0.850
+    cx, cy, _ = r["variables"]["Cone"]["anchor"]
     return -0.89 <= cx <= 1.36 and 0.43 <= cy <= 2.67, "cone centre (%.2f, %.2f)" % (cx, cy)
 
 
 def cornell_light(r):
-    # Panel centre = P + (2.741, −3.607). The optimum is not over the cone's axis
+    # The panel's centre, its anchor (= P + (2.741, −3.607)). The optimum is not over the cone's axis
     # (2.26, −7.01) but 0.19 m toward the box's middle: the sweep of the README's
     # "Independent check" (crates/ilp/examples/sweep.rs, 49 cells of 2 M photons) fits
     # its maximum at (2.11, −6.89) ± 0.013 m; directly above the cone with direct light
     # only. Within 0.75 m of it (a cell is 0.28 m × 0.66 m), and the 1.24 m panel whole
     # inside the walls x = 3.15, y = −7.97: a panel through a wall loses the light it
     # sends outside (the sweep's `*` cells).
-    x, y, _ = r["variables"]["Light"]["position"]
-    cx, cy = x + 2.741, y - 3.607
+    cx, cy, _ = r["variables"]["Light"]["anchor"]
     d = math.hypot(cx - 2.11, cy + 6.89)
     whole = cx <= 3.15 - 0.62 and cy >= -7.97 + 0.62
     return d <= 0.75 and whole, "panel centre (%.2f, %.2f), %.2f m from the sweep's optimum%s" % (
@@ -52,7 +51,7 @@ def cornell_light(r):
 def atrium_skylight(r):
     # The sun reaches the jar's centre through a hole centred at x = −4.07, z = 0; the
     # whole jar stays lit within ±0.7 m; one cell (0.99 m in x) of margin.
-    x, _, z = r["variables"]["Hole"]["position"]
+    x, _, z = r["variables"]["Hole"]["anchor"]
     return abs(x + 4.07) <= 1.0 and abs(z) <= 1.0, "hole centre (%.2f, %.2f)" % (x, z)
 
 

@@ -103,10 +103,14 @@ impl Binding {
             let (domain, target) = match &spec.kind {
                 VariableKind::ObjectInSurface(p) | VariableKind::HoleInSurface(p) => {
                     let s = find_surface(scene, &spec.id, spec, &err)?;
+                    let bound = placed(scene, spec, p, Some(s), None, &err, &mut warnings)?;
                     if matches!(spec.kind, VariableKind::HoleInSurface(_)) {
+                        if let (Domain::Parallelogram(rect), Target::Move(m)) = &bound {
+                            hole::check_size(rect, &m.bounds, &spec.id, &p.surface, &err)?;
+                        }
                         hole::make_hole(scene, s, &spec.id);
                     }
-                    placed(scene, spec, p, Some(s), None, &err, &mut warnings)?
+                    bound
                 }
                 VariableKind::LightInSurface(p) => match scene.light(&spec.id) {
                     Some(l) => {

@@ -210,3 +210,109 @@ fn bad_names_and_quads_name_the_line() {
     .unwrap_err();
     assert!(e.message.contains("more than 4 distinct vertices"), "{e}");
 }
+
+/// `anchor="centre"` puts the object's own centre (on the placement plane) at P; the
+/// default, ILPSolver's P − A, keeps the chair's offset from vertex A and says so.
+#[test]
+fn the_anchor_is_where_the_object_is() {
+    let mut s = scene();
+    let vertex_a = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap();
+    assert_eq!(vertex_a.warnings.len(), 1, "{:?}", vertex_a.warnings);
+    assert!(
+        vertex_a.warnings[0]
+            .message
+            .contains("0.354 m from vertex A"),
+        "{}",
+        vertex_a.warnings[0]
+    );
+    let mut s = scene();
+    let centre = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\" anchor=\"centre\"/>"),
+        &mut s,
+    )
+    .unwrap();
+    assert!(centre.warnings.is_empty(), "{:?}", centre.warnings);
+    // Authored with its centre at (1.25, 1.25) of the rectangle [1, 3] × [1, 2].
+    assert_eq!(centre.initial.coords, vec![0.125, 0.25]);
+    let config = Configuration {
+        coords: vec![0.5, 0.5],
+    };
+    let VariableValue::Position { point, anchor } = centre.values(&config)[0] else {
+        panic!("a position")
+    };
+    assert_eq!(point, DVec3::new(2.0, 1.5, 0.0));
+    assert_eq!(anchor, point);
+    centre.apply(&mut s, &config);
+    let corner = s.instances[1].transform.w_axis.truncate();
+    assert!(
+        (corner - Vec3::new(1.75, 1.25, 0.0)).length() < 1e-6,
+        "{corner}"
+    );
+}
+
+/// A candidate that puts the chair beyond everything else in the scene is refused;
+/// inside it is not.
+#[test]
+fn candidates_outside_the_scene_are_refused() {
+    let mut s = scene();
+    s.placements.push(Placement {
+        name: "Wide__Geometry".into(),
+        vertices: vec![
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(6.0, 1.0, 0.0),
+            Vec3::new(6.0, 2.0, 0.0),
+            Vec3::new(1.0, 2.0, 0.0),
+        ],
+    });
+    let b = Binding::new(
+        &problem("<objectInSurface id=\"Chair\" surface=\"Wide__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap();
+    assert_eq!(
+        b.leaves_scene(&Configuration {
+            coords: vec![0.5, 0.5]
+        }),
+        None
+    );
+    // P at x = 5.5: the chair's box [5.5, 6] is past the floor's x = 4.
+    assert_eq!(
+        b.leaves_scene(&Configuration {
+            coords: vec![0.9, 0.5]
+        }),
+        Some("Chair")
+    );
+}
+
+/// A hole as large as its placement rectangle would remove the whole wall wherever it
+/// goes: refused, with both sizes.
+#[test]
+fn a_hole_larger_than_its_wall_is_refused() {
+    let mut s = scene();
+    let big = s.add_mesh(Mesh::cuboid(
+        Vec3::ZERO,
+        Vec3::new(2.5, 1.5, 0.5),
+        s.meshes[0].materials[0],
+    ));
+    s.add_instance("Skylight", big, Mat4::IDENTITY);
+    let e = Binding::new(
+        &problem("<holeInSurface id=\"Skylight\" surface=\"Floor__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap_err();
+    assert!(
+        e.message.contains("2.500 m × 1.500 m") && e.message.contains("2.000 m × 1.000 m"),
+        "{e}"
+    );
+    assert!(
+        Binding::new(
+            &problem("<holeInSurface id=\"Window\" surface=\"Floor__Geometry\"/>"),
+            &mut s
+        )
+        .is_ok()
+    );
+}
