@@ -9,7 +9,8 @@
 //! - [`SplitMix64`], [`Pcg32`], [`mix`]: reproducible random streams keyed by a seed
 //!   and an index, so results never depend on thread count or scheduling.
 //! - [`Distribution1D`]: a discrete distribution from weights, sampled by inversion
-//!   with the probability of what it returns.
+//!   with the probability of what it returns; [`PiecewiseConstant2D`]: a density
+//!   constant on the cells of a grid, sampled with its exact density.
 //!
 //! ```
 //! use invlight_stats::{Confidence, Estimate, compare, Comparison};
@@ -24,11 +25,13 @@
 #![deny(missing_docs)]
 
 mod distribution;
+mod distribution2d;
 mod estimate;
 mod interval;
 mod rng;
 
 pub use distribution::Distribution1D;
+pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
 pub use rng::{Pcg32, SplitMix64, mix};
