@@ -106,7 +106,7 @@ impl PiecewiseConstant2D {
             .map(|row| Distribution1D::new(row.iter().copied()))
             .collect();
         let marginal = Distribution1D::new(conditional.iter().map(|c| c.total()));
-        if !(marginal.total() > 0.0) {
+        if marginal.total() <= 0.0 {
             return Err(Distribution2DError::Empty);
         }
         Ok(PiecewiseConstant2D {
@@ -305,7 +305,7 @@ mod tests {
         let d = uneven();
         let mut rng = SplitMix64::new(5);
         let n = 100_000;
-        let mut counts = vec![0u32; 4 * 3 * 4];
+        let mut counts = [0u32; 4 * 3 * 4];
         for _ in 0..n {
             let p = d.sample([rng.next_f64(), rng.next_f64()]);
             let (i, j) = p.cell;
