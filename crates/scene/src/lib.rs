@@ -36,6 +36,7 @@ mod material;
 mod mesh;
 mod model;
 mod obj;
+mod photometry;
 
 pub use error::LoadError;
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
@@ -44,3 +45,7 @@ pub use load::{LoadOptions, UpAxis, load};
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
 pub use model::{Instance, InstanceId, MaterialId, MeshId, Placement, Scene, Surface, SurfaceId};
+pub use photometry::{
+    DirectionSample, Opening, PhotometricSystem, Photometry, PhotometryFormat, Tilt, parse_ies,
+    parse_ldt, read_photometry,
+};
