@@ -111,7 +111,7 @@ impl Binding {
                         Some(l) => match scene.lights[l].kind {
                             LightKind::Directional { .. } => {
                                 return Err(err(format!(
-                                    "'{}' is a directional light, expected a point or spot light or an emissive object (use <directionalLight> for a sun)",
+                                    "'{}' is a directional light, expected a point, spot or goniometric light or an emissive object (use <directionalLight> for a sun)",
                                     spec.id
                                 )));
                             }
@@ -121,7 +121,7 @@ impl Binding {
                             let s = find_surface(scene, &spec.id, path, spec).map_err(|e| {
                                 ProblemError {
                                     message: format!(
-                                        "no light or surface named '{}' in the scene, expected a point or spot light or an emissive object",
+                                        "no light or surface named '{}' in the scene, expected a point, spot or goniometric light or an emissive object",
                                         spec.id
                                     ),
                                     ..e
@@ -317,10 +317,8 @@ impl Binding {
                         }
                     }
                     for &(light, original) in lights {
-                        match &mut scene.lights[light].kind {
-                            LightKind::Point { position, .. }
-                            | LightKind::Spot { position, .. } => *position = original + delta,
-                            LightKind::Directional { .. } => {}
+                        if let Some(position) = scene.lights[light].kind.position_mut() {
+                            *position = original + delta;
                         }
                     }
                 }

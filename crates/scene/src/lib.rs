@@ -38,9 +38,9 @@ mod model;
 mod obj;
 mod photometry;
 
-pub use error::LoadError;
+pub use error::{LoadError, PhotometryError};
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
-pub use light::{Camera, Light, LightKind, luminance};
+pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
 pub use load::{LoadOptions, UpAxis, load};
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;

@@ -1,12 +1,15 @@
 //! The IES LM-63 and EULUMDAT readers on the files of tests/data/photometry (written by
 //! make_photometry.py there, whose comments give each table's formula and closed-form
-//! flux), and on broken files written here.
+//! flux), and on broken files written here; glTF EXT_lights_ies and
+//! `Scene::set_photometry`, which put the tables in scenes.
 
 use invlight_scene::{
-    Opening, PhotometricSystem, Photometry, PhotometryFormat, parse_ies, parse_ldt, read_photometry,
+    Light, LightKind, LoadOptions, Opening, PhotometricSystem, Photometry, PhotometryError,
+    PhotometryFormat, Scene, Vec3, load, parse_ies, parse_ldt, read_photometry,
 };
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -309,4 +312,181 @@ fn flux_disagreeing_with_the_file_is_warned_about() {
         "{:?}",
         p.warnings
     );
+}
+
+/// glTF `EXT_lights_ies`: a profile by uri on a turned, scaled node and one embedded in
+/// a buffer view. The node's −Z is the aim and its +X the C0 plane; its scale changes
+/// nothing; `color × multiplier` scales the table.
+#[test]
+fn gltf_ext_lights_ies_places_and_turns_profiles() {
+    let scene =
+        load(&data("luminaires.gltf"), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.lights.len(), 2);
+    let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-5;
+    let ww = &scene.lights[scene.light("WallWasher").unwrap()].kind;
+    let LightKind::Goniometric {
+        position,
+        frame,
+        photometry,
+        multiplier,
+    } = ww
+    else {
+        panic!("{ww:?}")
+    };
+    assert!(close(*position, Vec3::new(1.0, 3.0, 0.0)));
+    assert!(close(ww.direction().unwrap(), Vec3::NEG_Y), "{frame}");
+    assert!(
+        close(frame.x_axis, Vec3::NEG_Z),
+        "C0 along world −Z: {frame}"
+    );
+    assert_eq!(*multiplier, Vec3::new(2.0, 1.0, 0.5));
+    assert_eq!(photometry.file, "asymmetric.ies");
+    // 45° below the horizon toward world −Z is C0: 200·cos 45°; toward +Z, C180: 0.
+    let toward_c0 = ww.intensity_toward(Vec3::new(0.0, -1.0, -1.0).normalize());
+    let i = 200.0 * std::f32::consts::FRAC_1_SQRT_2;
+    let expected = Vec3::new(2.0, 1.0, 0.5) * i;
+    assert!((toward_c0 - expected).length() < 1e-5 * i, "{toward_c0}");
+    assert_eq!(
+        ww.intensity_toward(Vec3::new(0.0, -1.0, 1.0).normalize()),
+        Vec3::ZERO
+    );
+    let flux = ww.flux();
+    assert!((flux.x as f64 - 2.0 * photometry.flux()).abs() < 1e-3);
+
+    let embedded = &scene.lights[scene.light("cosine").unwrap()].kind;
+    let LightKind::Goniometric { photometry, .. } = embedded else {
+        panic!("{embedded:?}")
+    };
+    assert!(rel(photometry.flux(), 100.0 * PI) < 5e-5);
+    assert!(close(
+        embedded.intensity_toward(Vec3::NEG_Y),
+        Vec3::splat(100.0)
+    ));
+}
+
+#[test]
+fn gltf_profile_errors_name_the_place() {
+    let text = std::fs::read_to_string(data("luminaires.gltf")).unwrap();
+    let dir = tempdir();
+    let write = |name: &str, s: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, s).unwrap();
+        p
+    };
+    let missing = write(
+        "missing.gltf",
+        &text.replace("\"light\": 0", "\"light\": 7"),
+    );
+    let e = load(&missing, &LoadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("nodes[0].extensions.EXT_lights_ies: light profile 7 does not exist"),
+        "{e}"
+    );
+    let no_file = write("nofile.gltf", &text);
+    let e = load(&no_file, &LoadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("extensions.EXT_lights_ies.lights[0]: missing file asymmetric.ies"),
+        "{e}"
+    );
+    let beside = std::fs::read_to_string(data("asymmetric.ies")).unwrap();
+    write("asymmetric.ies", &beside);
+    let mime = write(
+        "mime.gltf",
+        &text.replace("application/x-ies-lm-63", "text/plain"),
+    );
+    let e = load(&mime, &LoadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("lights[1]: a profile in a buffer view needs \"mimeType\""),
+        "{e}"
+    );
+}
+
+/// A unique empty folder under the target directory (no tempfile dependency here).
+fn tempdir() -> PathBuf {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    static N: AtomicU32 = AtomicU32::new(0);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "photometry-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// `Scene::set_photometry` turns a point light into the luminaire aimed down (−up) and
+/// a spot into one aimed along the spot, applies the IES tilt factor at the aim's angle
+/// from straight down, and refuses what it cannot do.
+#[test]
+fn set_photometry_replaces_point_and_spot_lights() {
+    let flood = Arc::new(read("floodlight.ies"));
+    let mut scene = Scene::default();
+    scene.lights.push(Light {
+        name: "Lamp".into(),
+        kind: LightKind::Point {
+            position: Vec3::new(0.0, 3.0, 0.0),
+            intensity: Vec3::ONE,
+        },
+    });
+    let aim = Vec3::new(0.5, -(3.0f32.sqrt()) / 2.0, 0.0);
+    scene.lights.push(Light {
+        name: "Spot".into(),
+        kind: LightKind::Spot {
+            position: Vec3::new(1.0, 3.0, 0.0),
+            direction: aim,
+            intensity: Vec3::ONE,
+            inner: 0.1,
+            outer: 0.2,
+        },
+    });
+    scene.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: Vec3::NEG_Y,
+            illuminance: Vec3::ONE,
+        },
+    });
+    scene.set_photometry("Lamp", flood.clone(), 2.0).unwrap();
+    scene.set_photometry("Spot", flood.clone(), 1.0).unwrap();
+    let LightKind::Goniometric {
+        position,
+        frame,
+        multiplier,
+        ..
+    } = &scene.lights[0].kind
+    else {
+        panic!()
+    };
+    assert_eq!(*position, Vec3::new(0.0, 3.0, 0.0));
+    assert!((-frame.z_axis - Vec3::NEG_Y).length() < 1e-6);
+    assert!((frame.x_axis - Vec3::X).length() < 1e-6);
+    assert_eq!(*multiplier, Vec3::splat(2.0));
+    let LightKind::Goniometric {
+        frame, multiplier, ..
+    } = &scene.lights[1].kind
+    else {
+        panic!()
+    };
+    assert!((-frame.z_axis - aim).length() < 1e-6);
+    // 30° from straight down: the floodlight's tilt factor 0.97.
+    assert!((multiplier.x - 0.97).abs() < 1e-6, "{multiplier}");
+    assert_eq!(
+        scene.set_photometry("Sun", flood.clone(), 1.0),
+        Err(PhotometryError::NotAtAPoint { name: "Sun".into() })
+    );
+    let e = scene
+        .set_photometry("Lmap", flood.clone(), 1.0)
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "no light named 'Lmap'; the scene's lights are Lamp, Spot, Sun"
+    );
+    assert!(scene.set_photometry("Lamp", flood, -1.0).is_err());
 }

@@ -191,3 +191,51 @@ ies("floodlight.ies", "IESNA:LM-63-2002",
      "[LUMINAIRE] Floodlight, symmetric beam", "[LAMP] 1 x HIT 250 W, 20000 lm", "[_ANALYTIC_FLUX] 14000"],
     frange(0, 90, 5), frange(-90, 90, 5), fl, lumens=20000.0, ptype=2, width=0.4, length=0.3,
     watts=270.0, tilt=(1, frange(0, 90, 15), [1.0, 0.99, 0.97, 0.94, 0.9, 0.86, 0.82]))
+
+# 5. A glTF placing two EXT_lights_ies profiles: asymmetric.ies by uri on a node turned
+# so that its aim (local −Z) is world −Y and its C0 (local +X) world −Z, with multiplier 2
+# and colour (1, 0.5, 0.25); cosine.ies embedded in a buffer view, aimed down.
+import base64
+import json
+
+
+def quat_mul(a, b):
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return [aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz]
+
+
+def quat_axis(axis, degrees):
+    s = math.sin(math.radians(degrees) / 2.0)
+    return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(math.radians(degrees) / 2.0)]
+
+
+down = quat_axis((1, 0, 0), -90.0)
+turned = quat_mul(quat_axis((0, 1, 0), 90.0), down)
+profile = open(os.path.join(HERE, "cosine.ies"), "rb").read()
+gltf = {
+    "asset": {"version": "2.0", "generator": "invlight tests/data/photometry/make_photometry.py"},
+    "extensionsUsed": ["EXT_lights_ies"],
+    "extensions": {"EXT_lights_ies": {"lights": [
+        {"uri": "asymmetric.ies"},
+        {"bufferView": 0, "mimeType": "application/x-ies-lm-63", "name": "cosine"},
+    ]}},
+    "buffers": [{"byteLength": len(profile),
+                 "uri": "data:application/octet-stream;base64," + base64.b64encode(profile).decode()}],
+    "bufferViews": [{"buffer": 0, "byteLength": len(profile)}],
+    "scene": 0,
+    "scenes": [{"nodes": [0, 1]}],
+    "nodes": [
+        {"name": "WallWasher", "translation": [1.0, 3.0, 0.0], "rotation": [round(x, 12) for x in turned],
+         "scale": [2.0, 2.0, 2.0],
+         "extensions": {"EXT_lights_ies": {"light": 0, "multiplier": 2.0, "color": [1.0, 0.5, 0.25]}}},
+        {"translation": [0.0, 2.0, 0.0], "rotation": [round(x, 12) for x in down],
+         "extensions": {"EXT_lights_ies": {"light": 1}}},
+    ],
+}
+with open(os.path.join(HERE, "luminaires.gltf"), "w") as f:
+    json.dump(gltf, f, indent=1)
+    f.write("\n")
