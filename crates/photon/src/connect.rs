@@ -86,12 +86,18 @@ impl Lobe<'_> {
     /// where that one's density is 0.
     #[inline]
     pub fn weight(&self, w: Vec3) -> f32 {
+        self.pdf_and_weight(w).1
+    }
+
+    /// [`Lobe::pdf`] and [`Lobe::weight`] along `w` from one look-up of the table.
+    #[inline]
+    pub fn pdf_and_weight(&self, w: Vec3) -> (f32, f32) {
         match *self {
             Lobe::Goniometric {
                 to_local,
                 photometry,
-            } => photometry.pdf_and_weight(to_local * w).1,
-            _ => 1.0,
+            } => photometry.pdf_and_weight(to_local * w),
+            _ => (self.pdf(w), 1.0),
         }
     }
 
@@ -156,17 +162,27 @@ impl Departure<'_> {
     /// Infinite for a specular lobe, whose arrivals no connection competes with.
     #[inline]
     pub fn arrival_density(&self, y: Vec3, n_y: Vec3) -> f32 {
+        self.density_and_weight(y, n_y).0
+    }
+
+    /// [`Departure::arrival_density`] at `y` and the lobe's [`Lobe::weight`] toward it,
+    /// from one look-up of a table.
+    #[inline]
+    fn density_and_weight(&self, y: Vec3, n_y: Vec3) -> (f32, f32) {
         match self.lobe {
-            Lobe::Specular => f32::INFINITY,
-            Lobe::Parallel { direction, area } => self.survival * n_y.dot(direction).abs() / area,
+            Lobe::Specular => (f32::INFINITY, 1.0),
+            Lobe::Parallel { direction, area } => {
+                (self.survival * n_y.dot(direction).abs() / area, 1.0)
+            }
             lobe => {
                 let d = y - self.point;
                 let r2 = d.length_squared();
                 if r2 <= 0.0 {
-                    return 0.0;
+                    return (0.0, 0.0);
                 }
                 let w = d / r2.sqrt();
-                self.survival * lobe.pdf(w) * n_y.dot(w).abs() / r2
+                let (pdf, weight) = lobe.pdf_and_weight(w);
+                (self.survival * pdf * n_y.dot(w).abs() / r2, weight)
             }
         }
     }
@@ -278,7 +294,8 @@ impl Targets {
         let y = p0 + e1 * b1 + e2 * b2;
         // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
         // is lumens·r/s · q/(1 + q) (r the lobe's weight toward y, 1 but for tables).
-        let q = shape.area * from.arrival_density(y, n_y);
+        let (density, weight) = from.density_and_weight(y, n_y);
+        let q = shape.area * density;
         if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
             return None;
         }
@@ -311,7 +328,6 @@ impl Targets {
         if !reached {
             return Some(0.0);
         }
-        let weight = from.lobe.weight(ray.dir);
         Some((from.lumens * weight / from.survival * q / (1.0 + q)) as f64)
     }
 }

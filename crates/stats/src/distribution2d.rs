@@ -79,6 +79,9 @@ pub struct PiecewiseConstant2D {
     marginal: Distribution1D,
     /// Per column i, over rows j, weights m_ij.
     conditional: Vec<Distribution1D>,
+    /// `density[i·ny + j]`: m_ij / (M·Δx_i·Δy_j), kept because a photon's draw and every
+    /// connection toward a luminaire read it.
+    density: Vec<f64>,
 }
 
 impl PiecewiseConstant2D {
@@ -106,14 +109,24 @@ impl PiecewiseConstant2D {
             .map(|row| Distribution1D::new(row.iter().copied()))
             .collect();
         let marginal = Distribution1D::new(conditional.iter().map(|c| c.total()));
-        if marginal.total() <= 0.0 {
+        let total = marginal.total();
+        if total <= 0.0 {
             return Err(Distribution2DError::Empty);
         }
+        let density = masses
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let (i, j) = (k / ny, k % ny);
+                m / (total * (x[i + 1] - x[i]) * (y[j + 1] - y[j]))
+            })
+            .collect();
         Ok(PiecewiseConstant2D {
             x,
             y,
             marginal,
             conditional,
+            density,
         })
     }
 
@@ -140,8 +153,7 @@ impl PiecewiseConstant2D {
     /// The density of cell (i, j) per unit area.
     #[inline]
     pub fn cell_pdf(&self, i: usize, j: usize) -> f64 {
-        let area = (self.x[i + 1] - self.x[i]) * (self.y[j + 1] - self.y[j]);
-        self.conditional[i].weight(j) / (self.total() * area)
+        self.density[i * (self.y.len() - 1) + j]
     }
 
     /// The cell holding (x, y), `None` outside the grid. A point on a breakpoint
