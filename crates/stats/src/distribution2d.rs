@@ -4,7 +4,6 @@
 //! grid's breakpoints need not be equally spaced: a photometric file measures every 2.5°
 //! near the beam and every 10° elsewhere, and its cells are sampled as they are.
 
-use crate::distribution::Distribution1D;
 use std::fmt;
 
 /// Why a [`PiecewiseConstant2D`] could not be built.
@@ -76,9 +75,9 @@ pub struct PiecewiseConstant2D {
     x: Vec<f64>,
     y: Vec<f64>,
     /// Over columns i, weights Σ_j m_ij.
-    marginal: Distribution1D,
+    marginal: Guided,
     /// Per column i, over rows j, weights m_ij.
-    conditional: Vec<Distribution1D>,
+    conditional: Vec<Guided>,
     /// `density[i·ny + j]`: m_ij / (M·Δx_i·Δy_j), kept because a photon's draw and every
     /// connection toward a luminaire read it.
     density: Vec<f64>,
@@ -104,11 +103,11 @@ impl PiecewiseConstant2D {
         if let Some(at) = masses.iter().position(|m| !(m.is_finite() && *m >= 0.0)) {
             return Err(Distribution2DError::BadMass { at });
         }
-        let conditional: Vec<Distribution1D> = masses
+        let conditional: Vec<Guided> = masses
             .chunks_exact(ny)
-            .map(|row| Distribution1D::new(row.iter().copied()))
+            .map(|row| Guided::new(row.iter().copied()))
             .collect();
-        let marginal = Distribution1D::new(conditional.iter().map(|c| c.total()));
+        let marginal = Guided::new(conditional.iter().map(|c| c.total()));
         let total = marginal.total();
         if total <= 0.0 {
             return Err(Distribution2DError::Empty);
@@ -188,6 +187,67 @@ impl PiecewiseConstant2D {
     }
 }
 
+/// A discrete distribution sampled by inversion through a guide table (H.-C. Chen and
+/// Y. Asau, "On generating random variates from an empirical distribution", AIIE
+/// Transactions 6(2), 1974): `guide[k]` is the first entry whose cumulative sum exceeds
+/// k/n of the total, so a draw starts there and steps forward, one or two steps on
+/// average, and returns the entry a binary search would (inversion, so stratified
+/// uniforms stay stratified). A photon draws twice from these; perf put the two binary
+/// searches they replace at a third of a luminaire's draw.
+#[derive(Debug, Clone, PartialEq)]
+struct Guided {
+    cdf: Vec<f64>,
+    guide: Vec<u32>,
+}
+
+impl Guided {
+    fn new(weights: impl IntoIterator<Item = f64>) -> Guided {
+        let mut acc = 0.0f64;
+        let cdf: Vec<f64> = weights
+            .into_iter()
+            .map(|w| {
+                acc += w;
+                acc
+            })
+            .collect();
+        let n = cdf.len();
+        let mut guide = Vec::with_capacity(n);
+        let mut i = 0;
+        for k in 0..n {
+            let target = k as f64 / n as f64 * acc;
+            while i < n - 1 && cdf[i] <= target {
+                i += 1;
+            }
+            guide.push(i as u32);
+        }
+        Guided { cdf, guide }
+    }
+
+    fn total(&self) -> f64 {
+        self.cdf[self.cdf.len() - 1]
+    }
+
+    fn weight(&self, i: usize) -> f64 {
+        self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] }
+    }
+
+    /// The first entry whose cumulative sum exceeds `u·total`, and where in its interval
+    /// that falls, rescaled to [0, 1).
+    #[inline]
+    fn sample_continuous(&self, u: f64) -> (usize, f64) {
+        let n = self.cdf.len();
+        let target = u * self.total();
+        let mut i = self.guide[((u * n as f64) as usize).min(n - 1)] as usize;
+        while i < n - 1 && self.cdf[i] <= target {
+            i += 1;
+        }
+        let below = if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let w = self.cdf[i] - below;
+        let r = if w > 0.0 { (target - below) / w } else { 0.0 };
+        (i, r.clamp(0.0, 1.0 - f64::EPSILON / 2.0))
+    }
+}
+
 fn check_axis(v: &[f64], axis: &'static str) -> Result<(), Distribution2DError> {
     if v.len() < 2 {
         return Err(Distribution2DError::BadAxis { axis, at: v.len() });
@@ -214,7 +274,18 @@ fn locate(v: &[f64], t: f64) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::SplitMix64;
+    use crate::{Distribution1D, SplitMix64};
+
+    /// The guide table finds the entry a binary search finds, zero weights included.
+    #[test]
+    fn guided_draws_are_the_binary_searchs() {
+        let w = [0.0, 1.0, 0.0, 0.0, 3.0, 0.5, 0.0, 2.0, 0.0];
+        let (g, d) = (Guided::new(w), Distribution1D::new(w));
+        for k in 0..10_000 {
+            let u = k as f64 / 10_000.0;
+            assert_eq!(g.sample_continuous(u), d.sample_continuous(u), "u = {u}");
+        }
+    }
 
     /// An uneven grid with a zero cell, a zero row and masses spanning two decades.
     fn uneven() -> PiecewiseConstant2D {

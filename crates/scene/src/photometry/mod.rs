@@ -203,9 +203,9 @@ pub struct Photometry {
 /// Per photon it costs one draw (`Photometry::sample`) and per connection one look-up
 /// (`Photometry::pdf_and_weight`): both fuse the cell search with the interpolation and
 /// do their trigonometry in f32 (γ to 10⁻⁷ rad). Measured on batwing.ies (16 × 18
-/// cells, 20 M calls, 2026-12-01, shared 2-core EPYC): a draw 80–100 ns, of which perf
-/// puts 35 % in the 2D inversion's two binary searches and the rest in sincos, acos and
-/// the blend; a look-up 65–75 ns (two brackets, atan2, acos).
+/// cells, 20 M calls, 2026-12-01, shared 2-core EPYC): a draw took 80–115 ns with binary
+/// searches in the 2D inversion (perf: 35 % of it), 47 ns with its guide tables; a
+/// look-up (two brackets, atan2, acos) 43 ns.
 #[derive(Debug, Clone, PartialEq)]
 struct Table {
     system: PhotometricSystem,
