@@ -1,5 +1,5 @@
 //! Photon tracing (thesis §2.6.1, §3.3; DESIGN.md §2): emission from every light kind in
-//! proportion to its flux, Russian roulette over diffuse, mirror, refraction and
+//! proportion to its flux (photometric luminaires from their candela tables), Russian roulette over diffuse, mirror, refraction and
 //! absorption, per-surface tallies, and estimates with confidence intervals.
 //!
 //! - [`trace`] measures surfaces: it returns one [`Tally`] per target, from which

@@ -1,12 +1,16 @@
 //! The scene model of invlight: named triangle meshes with world transforms, materials,
 //! lights and cameras, in photometric units, and the loaders that build it from glTF 2.0,
-//! COLLADA and Wavefront OBJ files.
+//! COLLADA and Wavefront OBJ files and read luminaires' photometric files.
 //!
 //! The core types:
 //! - [`Scene`]: everything that is traced: [`Mesh`]es in object space placed by
 //!   [`Instance`]s, [`Material`]s, punctual and directional [`Light`]s, [`Camera`]s, the
 //!   named [`Surface`]s a user addresses, and the [`Placement`] rectangles of problem files.
 //! - [`load`]: reads a scene file, choosing the format from its extension.
+//! - [`Photometry`]: a luminaire's candela table from an IES LM-63 or EULUMDAT file
+//!   ([`read_photometry`]), which a [`LightKind::Goniometric`] light emits; glTF files
+//!   place them by `EXT_lights_ies`, [`Scene::set_photometry`] puts one in place of a
+//!   point or spot light.
 //!
 //! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
 //! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
