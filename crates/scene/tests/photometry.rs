@@ -163,6 +163,7 @@ fn manufacturer_files_read_and_integrate_to_their_flux() {
         assert_eq!(ldt.watts, ies.watts);
     }
     let bw_ldt = read("batwing.ldt");
+    assert_eq!(bw_ldt.luminaire_size, Some([0.597, 0.597, 0.07]));
     assert_eq!(
         bw_ldt.keyword("Company"),
         Some("Lichtwerk Lüdenscheid GmbH")
@@ -197,6 +198,19 @@ fn ldt_error(text: &str) -> String {
 
 const GOOD_IES: &str =
     "IESNA:LM-63-2002\n[TEST] x\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 70 0\n";
+
+/// An uplight measured over γ 90–180° sends nothing downward, and its flux is the upper
+/// hemisphere's: 100 cd uniform there is 2π·100 lm.
+#[test]
+fn vertical_angles_from_90_to_180() {
+    let text = GOOD_IES
+        .replace("0 45 90\n", "90 135 180\n")
+        .replace("100 70 0", "100 100 100");
+    let p = parse_ies(text.as_bytes(), Path::new("up.ies")).unwrap();
+    assert_eq!(p.intensity(0.0, 45.0), 0.0);
+    assert_eq!(p.intensity(200.0, 120.0), 100.0);
+    assert!(rel(p.flux(), 2.0 * PI * 100.0) < 1e-12);
+}
 
 /// Bad files name the file, the line and what was expected.
 #[test]

@@ -223,6 +223,7 @@ pub fn parse_ies(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         ballast_factor: ballast,
         opening,
         opening_height: height.abs() as f32,
+        luminaire_size: None,
         tilt,
         warnings,
         table,

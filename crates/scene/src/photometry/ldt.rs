@@ -59,9 +59,12 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     ] {
         keywords.push((key.to_string(), r.text()?.to_string()));
     }
-    r.number("the luminaire length or diameter (mm)")?;
-    r.number("the luminaire width (mm)")?;
-    r.number("the luminaire height (mm)")?;
+    let size = [
+        r.number("the luminaire length or diameter (mm)")?,
+        r.number("the luminaire width (mm)")?,
+        r.number("the luminaire height (mm)")?,
+    ]
+    .map(|mm| (mm * 1e-3) as f32);
     let length = r.number("the luminous area length or diameter (mm)")? * 1e-3;
     let width = r.number("the luminous area width (mm)")? * 1e-3;
     let mut heights = [0.0f64; 4];
@@ -213,6 +216,7 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         ballast_factor: 1.0,
         opening,
         opening_height: heights.iter().copied().fold(0.0, f64::max) as f32,
+        luminaire_size: Some(size),
         tilt: None,
         warnings,
         table,
