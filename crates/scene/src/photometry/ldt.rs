@@ -17,8 +17,10 @@
 //! Mc/4 + 1 from C0 (4).
 //!
 //! The candela table is the intensities × conversion factor × the first lamp set's
-//! total flux / 1000 (the first set is the one measured); its stated flux is that lamp
-//! flux × the light output ratio.
+//! total flux / 1000 (the first set is the one measured; its flux is the total of its
+//! lamps, so the number of lamps is not multiplied in again); its stated flux is that
+//! lamp flux × the light output ratio. A blank line where a number stands reads as 0, as
+//! exporters leave fields they do not fill (the tilt, the direct ratios) empty.
 
 use super::ies::{file_name, opening};
 use super::symmetry::{Symmetry, expand_c};

@@ -56,6 +56,8 @@ pub enum PhotometryFormat {
     Lm63_2019,
     /// EULUMDAT (`.ldt`).
     Eulumdat,
+    /// A table built in code ([`Photometry::from_table`]).
+    Table,
 }
 
 impl PhotometryFormat {
@@ -68,6 +70,7 @@ impl PhotometryFormat {
             PhotometryFormat::Lm63_2002 => "IES LM-63-2002",
             PhotometryFormat::Lm63_2019 => "IES LM-63-2019",
             PhotometryFormat::Eulumdat => "EULUMDAT",
+            PhotometryFormat::Table => "table",
         }
     }
 }
@@ -261,7 +264,7 @@ impl Photometry {
     ) -> Result<Photometry, String> {
         Ok(Photometry {
             file: String::new(),
-            format: PhotometryFormat::Lm63_2002,
+            format: PhotometryFormat::Table,
             keywords: Vec::new(),
             lamps: 1,
             lumens_per_lamp: None,
