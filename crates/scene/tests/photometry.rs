@@ -421,6 +421,25 @@ fn gltf_profile_errors_name_the_place() {
     );
 }
 
+/// `TILT=<file>` reads the tilt data from a file beside the IES file.
+#[test]
+fn tilt_data_from_a_file_beside() {
+    let dir = tempdir();
+    std::fs::write(dir.join("lamp.tlt"), "3\n3\n0 45 90\n1 0.8 0.5\n").unwrap();
+    let ies = dir.join("lamp.ies");
+    std::fs::write(&ies, GOOD_IES.replace("TILT=NONE", "TILT=lamp.tlt")).unwrap();
+    let p = read_photometry(&ies).unwrap_or_else(|e| panic!("{e}"));
+    let tilt = p.tilt.unwrap();
+    assert_eq!((tilt.geometry, tilt.angles.len()), (3, 3));
+    assert!((tilt.factor(67.5) - 0.65).abs() < 1e-12);
+    std::fs::write(dir.join("lamp.tlt"), "4\n").unwrap();
+    let e = read_photometry(&ies).unwrap_err().to_string();
+    assert!(
+        e.contains("lamp.tlt: line 1: the lamp-to-luminaire geometry (1, 2 or 3) is 4"),
+        "{e}"
+    );
+}
+
 /// A unique empty folder under the target directory (no tempfile dependency here).
 fn tempdir() -> PathBuf {
     use std::sync::atomic::{AtomicU32, Ordering};
