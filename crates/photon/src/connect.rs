@@ -18,18 +18,30 @@
 //! unbiased, and each is bounded: a departure next to its target (a lamp touching it, a
 //! wall's corner with the floor) no longer gives the connection its 1/r² tail.
 //! Arrivals after a mirror or glass (a delta lobe no connection can sample) count fully.
+//!
+//! A goniometric light (a photometric file) draws its photons from a piecewise-constant
+//! density p(ω) (each cell of the table its share of the flux, uniform inside the cell)
+//! while its intensity I(ω) is bilinear in the cell: the two differ inside a cell. Its
+//! photons therefore carry Φ_s·r(ω) with r = I/(Φ·p) ([`Lobe::weight`], mean 1 under p),
+//! so that a photon's expected power per steradian is Φ_s·p·r = Φ_s·I/Φ: the intensity
+//! the file describes. The connection to y counts the power the photon would bring along
+//! ω_y, Φ_s·r(ω_y)·cos θ_y/(r_xy²·p_a) of the file's intensity, weighted by
+//! p_a/(p_a + p_b) with p_b = p(ω_y)·cos θ_y/r_xy² the density the photons are really
+//! drawn with: Φ_s·r(ω_y)·q/(1 + q) with q = A·p_b. The value uses the true intensity
+//! (through r), the weight the true sampling density, so the sum over both strategies
+//! stays unbiased for the file's intensity; for every other lobe r = 1.
 
 use crate::sampler::Sampler;
 use crate::sampling;
-use glam::Vec3;
-use invlight_scene::{InstanceId, Scene, SurfaceId};
+use glam::{Mat3, Vec3};
+use invlight_scene::{InstanceId, Photometry, Scene, SurfaceId};
 use invlight_stats::Distribution1D;
 use invlight_trace::{Accel, OFFSET_SCALE, Ray, offset_point};
 use std::f32::consts::PI;
 
 /// How a photon leaves a point: the directional distribution of its next ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Lobe {
+pub enum Lobe<'a> {
     /// Lambertian about the unit `normal`: density cos θ / π (area lights, diffuse
     /// reflection).
     Cosine {
@@ -59,14 +71,46 @@ pub enum Lobe {
     },
     /// A delta distribution (mirror reflection, refraction): no connection can sample it.
     Specular,
+    /// A photometric table's piecewise-constant density ([`Photometry::sample`]), turned
+    /// into the world by the light's frame.
+    Goniometric {
+        /// World → luminaire-local rotation (the transpose of the light's frame).
+        to_local: Mat3,
+        /// The table.
+        photometry: &'a Photometry,
+    },
 }
 
-impl Lobe {
+impl Lobe<'_> {
+    /// The factor r(w) = I(w)/(Φ·p(w)) on the power of a photon leaving along the unit
+    /// vector `w` (see the module doc): 1 for every lobe but the goniometric one, and 0
+    /// where that one's density is 0.
+    #[inline]
+    pub fn weight(&self, w: Vec3) -> f32 {
+        self.pdf_and_weight(w).1
+    }
+
+    /// [`Lobe::pdf`] and [`Lobe::weight`] along `w` from one look-up of the table.
+    #[inline]
+    pub fn pdf_and_weight(&self, w: Vec3) -> (f32, f32) {
+        match *self {
+            Lobe::Goniometric {
+                to_local,
+                photometry,
+            } => photometry.pdf_and_weight(to_local * w),
+            _ => (self.pdf(w), 1.0),
+        }
+    }
+
     /// Density per steradian of leaving along the unit vector `w` (zero for the parallel
     /// and specular lobes, whose densities are not per steradian).
     #[inline]
     pub fn pdf(&self, w: Vec3) -> f32 {
         match *self {
+            Lobe::Goniometric {
+                to_local,
+                photometry,
+            } => photometry.pdf_and_weight(to_local * w).0,
             Lobe::Cosine { normal } => normal.dot(w).max(0.0) / PI,
             Lobe::Sphere => 0.25 / PI,
             Lobe::Spot {
@@ -99,36 +143,47 @@ impl Lobe {
 
 /// A point a photon leaves from, as a connection needs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Departure {
+pub struct Departure<'a> {
     /// Where the photon leaves: the point on the light or on the surface.
     pub point: Vec3,
     /// Its directional distribution.
-    pub lobe: Lobe,
+    pub lobe: Lobe<'a>,
     /// The luminous power expected to leave along the lobe, lm: what the photon carries
-    /// when it leaves this way, times the probability `survival` that it does.
+    /// when it leaves this way (along a direction of [`Lobe::weight`] 1), times the
+    /// probability `survival` that it does.
     pub lumens: f32,
     /// Probability that the photon's next ray follows this lobe (the Russian roulette's
     /// share of diffuse reflection; 1 when it leaves a light).
     pub survival: f32,
 }
 
-impl Departure {
+impl Departure<'_> {
     /// Density per unit area at `y` (unit normal `n_y`, either side) with which the
     /// photon's next ray reaches y, visibility aside: p_b of the module's weights.
     /// Infinite for a specular lobe, whose arrivals no connection competes with.
     #[inline]
     pub fn arrival_density(&self, y: Vec3, n_y: Vec3) -> f32 {
+        self.density_and_weight(y, n_y).0
+    }
+
+    /// [`Departure::arrival_density`] at `y` and the lobe's [`Lobe::weight`] toward it,
+    /// from one look-up of a table.
+    #[inline]
+    fn density_and_weight(&self, y: Vec3, n_y: Vec3) -> (f32, f32) {
         match self.lobe {
-            Lobe::Specular => f32::INFINITY,
-            Lobe::Parallel { direction, area } => self.survival * n_y.dot(direction).abs() / area,
+            Lobe::Specular => (f32::INFINITY, 1.0),
+            Lobe::Parallel { direction, area } => {
+                (self.survival * n_y.dot(direction).abs() / area, 1.0)
+            }
             lobe => {
                 let d = y - self.point;
                 let r2 = d.length_squared();
                 if r2 <= 0.0 {
-                    return 0.0;
+                    return (0.0, 0.0);
                 }
                 let w = d / r2.sqrt();
-                self.survival * lobe.pdf(w) * n_y.dot(w).abs() / r2
+                let (pdf, weight) = lobe.pdf_and_weight(w);
+                (self.survival * pdf * n_y.dot(w).abs() / r2, weight)
             }
         }
     }
@@ -248,8 +303,9 @@ impl Targets {
         let (b1, b2) = sampling::triangle(u1, u2);
         let y = p0 + e1 * b1 + e2 * b2;
         // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
-        // is lumens/s · q/(1 + q).
-        let q = shape.area * from.arrival_density(y, n_y);
+        // is lumens·r/s · q/(1 + q) (r the lobe's weight toward y, 1 but for tables).
+        let (density, weight) = from.density_and_weight(y, n_y);
+        let q = shape.area * density;
         if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
             return None;
         }
@@ -280,7 +336,7 @@ impl Targets {
             (hit.t - dist).abs() <= slack && shape.instances.binary_search(&hit.instance).is_ok()
         });
         let lumens = if reached {
-            (from.lumens / from.survival * q / (1.0 + q)) as f64
+            (from.lumens * weight / from.survival * q / (1.0 + q)) as f64
         } else {
             0.0
         };

@@ -3,28 +3,39 @@
 //! drawn from the light's own emission profile, so that every photon carries the same
 //! luminous power: the scene's total flux. Equal powers keep the per-photon variance, and
 //! so the reported intervals, as small as this estimator allows.
+//!
+//! The one exception is the goniometric light (a photometric file): its directions come
+//! from a piecewise-constant density over the table's cells while its intensity is
+//! bilinear inside them, so its photons carry the total flux times r = I/(Φ·p), whose
+//! mean is 1 and which stays near 1 on the fine tables of real files (see
+//! `connect`'s module doc; the variance grows by the factor E[r²]).
 
 use crate::connect::Lobe;
 use crate::sampler::Sampler;
 use crate::sampling;
-use glam::Vec3;
-use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use glam::{Mat3, Vec3};
+use invlight_scene::{LightKind, Opening, Photometry, Rgb, Scene, luminance};
 use invlight_stats::Distribution1D;
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// Where a photon starts, where it goes and the (RGB) power it carries, lm.
 #[derive(Debug, Clone, Copy)]
-pub struct EmitSample {
+pub struct EmitSample<'a> {
     /// Starting point.
     pub origin: Vec3,
     /// Unit direction of travel.
     pub dir: Vec3,
     /// Front-face normal when the photon leaves a surface (area lights), for offsetting.
     pub surface_normal: Option<Vec3>,
-    /// RGB power, whose luminance is the scene's total flux.
+    /// RGB power, whose luminance is the scene's total flux (times the lobe's weight
+    /// along `dir` for a goniometric light).
     pub power: Rgb,
+    /// The luminance of the power a photon of this light carries along a direction of
+    /// weight 1: the scene's total flux, lm (the departure's `lumens`).
+    pub lumens: f32,
     /// The light's emission profile, which `dir` was drawn from (for connections).
-    pub lobe: Lobe,
+    pub lobe: Lobe<'a>,
 }
 
 /// An emissive triangle of a scene, in world space: an area light that emits from its
@@ -96,6 +107,14 @@ enum Source {
         radius: f32,
         power: Rgb,
     },
+    /// A photometric table at `position` turned by `frame` (local → world), emitting
+    /// from its luminous opening; `power` is what a photon of weight 1 carries.
+    Goniometric {
+        position: Vec3,
+        frame: Mat3,
+        photometry: Arc<Photometry>,
+        power: Rgb,
+    },
     /// An emissive triangle (Lambertian, front face).
     Triangle {
         p0: Vec3,
@@ -151,6 +170,17 @@ impl Emitters {
                         power: Vec3::ZERO,
                     })
                 }
+                LightKind::Goniometric {
+                    position,
+                    frame,
+                    ref photometry,
+                    ..
+                } => sources.push(Source::Goniometric {
+                    position,
+                    frame,
+                    photometry: photometry.clone(),
+                    power: Vec3::ZERO,
+                }),
                 LightKind::Directional { direction, .. } => {
                     sources.push(Source::Directional {
                         direction: direction.normalize(),
@@ -190,6 +220,7 @@ impl Emitters {
                 Source::Point { power: p, .. }
                 | Source::Spot { power: p, .. }
                 | Source::Directional { power: p, .. }
+                | Source::Goniometric { power: p, .. }
                 | Source::Triangle { power: p, .. } => *p = power,
             }
         }
@@ -211,7 +242,7 @@ impl Emitters {
     /// draws the same dimensions (which light, then two pairs), so the photons of a
     /// stratified group stay aligned dimension by dimension whichever light they leave.
     #[inline]
-    pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample {
+    pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample<'_> {
         let source = &self.sources[self.by_flux.sample(sampler.uniform())];
         let (u1, u2) = sampler.uniform2();
         let (u3, u4) = sampler.uniform2();
@@ -221,6 +252,7 @@ impl Emitters {
                 dir: sampling::sphere(u1, u2),
                 surface_normal: None,
                 power,
+                lumens: luminance(power),
                 lobe: Lobe::Sphere,
             },
             Source::Spot {
@@ -243,6 +275,7 @@ impl Emitters {
                     dir: sampling::cone(axis, cos_theta, u2),
                     surface_normal: None,
                     power,
+                    lumens: luminance(power),
                     lobe: Lobe::Spot {
                         axis,
                         cos_inner,
@@ -264,6 +297,7 @@ impl Emitters {
                     dir: direction,
                     surface_normal: None,
                     power,
+                    lumens: luminance(power),
                     lobe: Lobe::Parallel {
                         direction,
                         area: PI * radius * radius,
@@ -283,7 +317,32 @@ impl Emitters {
                     dir: sampling::cosine_hemisphere(normal, u3, u4),
                     surface_normal: Some(normal),
                     power,
+                    lumens: luminance(power),
                     lobe: Lobe::Cosine { normal },
+                }
+            }
+            Source::Goniometric {
+                position,
+                frame,
+                ref photometry,
+                power,
+            } => {
+                // Direction from (u1, u2), the point on the opening from (u3, u4).
+                let d = photometry.sample(u1, u2);
+                let origin = match photometry.opening {
+                    Opening::Point => position,
+                    opening => position + frame * opening.point(u3, u4),
+                };
+                EmitSample {
+                    origin,
+                    dir: (frame * d.dir).normalize(),
+                    surface_normal: None,
+                    power: power * d.weight,
+                    lumens: luminance(power),
+                    lobe: Lobe::Goniometric {
+                        to_local: frame.transpose(),
+                        photometry,
+                    },
                 }
             }
         }

@@ -1,6 +1,7 @@
 //! Photon tracing (thesis §2.6.1, §3.3; DESIGN.md §2): emission from every light kind in
-//! proportion to its flux, Russian roulette over diffuse, mirror, refraction and
-//! absorption, and the mean illuminance of named surfaces with its standard error.
+//! proportion to its flux (photometric luminaires from their candela tables), Russian
+//! roulette over diffuse, mirror, refraction and absorption, and the mean illuminance
+//! of named surfaces with its standard error.
 //!
 //! - [`measure`] measures surfaces: one trace of photons, a [`Tally`] per target, from
 //!   which [`Measurement::estimate`] gives the mean illuminance in lux with its standard

@@ -58,12 +58,13 @@ pub fn trace_photon(
         dir,
         surface_normal,
         mut power,
+        lumens,
         lobe,
     } = emitters.sample(sampler);
     let mut from = Departure {
         point: origin,
         lobe,
-        lumens: luminance(power),
+        lumens,
         survival: 1.0,
     };
     visitor.depart(&from, sampler);
@@ -202,7 +203,7 @@ impl Roulette {
 
 /// A departure along a delta lobe (mirror, glass), which no connection competes with.
 #[inline]
-fn specular(point: Vec3, power: Rgb) -> Departure {
+fn specular(point: Vec3, power: Rgb) -> Departure<'static> {
     Departure {
         point,
         lobe: Lobe::Specular,

@@ -13,7 +13,7 @@ use glam::Vec3;
 use invlight_photon::{
     cosine_hemisphere, emissive_triangles, fresnel_dielectric, reflect, refract,
 };
-use invlight_scene::{LightKind, Rgb, Scene, luminance};
+use invlight_scene::{LightKind, Opening, Rgb, Scene, luminance};
 use invlight_stats::{Distribution1D, Pcg32};
 use invlight_trace::{Accel, Interaction, Ray};
 use rayon::prelude::*;
@@ -211,7 +211,9 @@ impl<'a> Integrator<'a> {
     }
 
     /// Direct illuminance (RGB) at `at` on the side `n` faces: point and spot lights
-    /// E = I·f(θ_s)·cos θ/d², the sun E⊥·cos θ, each if its shadow ray is free; area
+    /// E = I·f(θ_s)·cos θ/d², goniometric ones the same with the table's intensity
+    /// toward the point (from a point of their opening drawn by area), the sun E⊥·cos θ,
+    /// each if its shadow ray is free; area
     /// lights by `light_samples` points drawn by area (pdf p_tri/A_tri), each adding
     /// L·cos θ·cos θ_l/(d²·pdf) (pbrt-v4 §12.2, area sampling).
     pub fn direct(&self, at: &Interaction, n: Vec3, rng: &mut Pcg32) -> Rgb {
@@ -243,6 +245,25 @@ impl<'a> Integrator<'a> {
                     let cos = n.dot(wi);
                     if cos > 0.0 && !self.accel.occluded(&at.spawn(wi)) {
                         e += illuminance * cos;
+                    }
+                }
+                LightKind::Goniometric {
+                    position,
+                    frame,
+                    ref photometry,
+                    ..
+                } => {
+                    // A point of the luminous opening (its centre for a point source),
+                    // uniform by area: the mean over the opening of I·cos θ/d² is the
+                    // illuminance of the area source.
+                    let from = match photometry.opening {
+                        Opening::Point => position,
+                        opening => position + frame * opening.point(rng.uniform(), rng.uniform()),
+                    };
+                    let wi = (from - at.point).normalize_or_zero();
+                    let i = light.kind.intensity_toward(-wi);
+                    if i.max_element() > 0.0 {
+                        e += self.punctual(at, n, from, i);
                     }
                 }
             }

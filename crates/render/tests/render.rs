@@ -1,5 +1,5 @@
-//! Renders and grids with closed-form answers: a diffuse plane under point, spot and
-//! sun light; a white furnace; illuminance cells under a point light; images and grids
+//! Renders and grids with closed-form answers: a diffuse plane under point, spot, sun and
+//! goniometric light; a white furnace; illuminance cells under a point light; images and grids
 //! that do not depend on the number of threads; the plot files.
 
 use glam::{Mat4, Vec3};
@@ -9,10 +9,13 @@ use invlight_render::{
     PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
     render, render_illuminance,
 };
-use invlight_scene::{Camera, Light, LightKind, Material, Mesh, Scene};
+use invlight_scene::{
+    Camera, Light, LightKind, Material, Mesh, PhotometricSystem, Photometry, Scene, aimed_frame,
+};
 use invlight_stats::Pcg32;
 use invlight_trace::Accel;
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 fn camera(position: Vec3, forward: Vec3, up: Vec3, yfov_deg: f32) -> Camera {
     Camera {
@@ -37,7 +40,8 @@ fn settings(width: u32, height: u32) -> RenderSettings {
 }
 
 /// A 4 m square plane at z = 0 of reflectance `kd`, lit from above by a point light, a
-/// spot and a sun.
+/// spot, a sun and a goniometric light whose table depends on C and γ, aimed 20° off
+/// the vertical.
 fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
     let mut scene = Scene {
         up: Vec3::Z,
@@ -69,6 +73,26 @@ fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
         LightKind::Directional {
             direction: Vec3::new(0.5, 0.0, -1.0).normalize(),
             illuminance: Vec3::splat(40.0),
+        },
+        LightKind::Goniometric {
+            position: Vec3::new(0.6, -0.7, 1.8),
+            frame: aimed_frame(
+                Vec3::new(0.0, 20f32.to_radians().sin(), -20f32.to_radians().cos()),
+                Vec3::X,
+            ),
+            photometry: Arc::new(
+                Photometry::from_table(
+                    PhotometricSystem::C,
+                    vec![0.0, 90.0, 180.0, 270.0, 360.0],
+                    vec![0.0, 45.0, 90.0],
+                    vec![
+                        200.0, 150.0, 10.0, 200.0, 60.0, 0.0, 200.0, 20.0, 0.0, 200.0, 90.0, 30.0,
+                        200.0, 150.0, 10.0,
+                    ],
+                )
+                .unwrap(),
+            ),
+            multiplier: Vec3::splat(0.5),
         },
     ];
     for (i, kind) in lights.iter().enumerate() {
@@ -107,6 +131,25 @@ fn plane_illuminance(p: Vec3, lights: &[LightKind]) -> f32 {
                 direction,
                 illuminance,
             } => illuminance.x * (-direction.z),
+            LightKind::Goniometric {
+                position,
+                frame,
+                ref photometry,
+                multiplier,
+            } => {
+                // The angles of the direction toward p in the luminaire's frame.
+                let d = position - p;
+                let w = -d.normalize();
+                let (x, y, z) = (
+                    w.dot(frame.x_axis),
+                    w.dot(frame.y_axis),
+                    w.dot(frame.z_axis),
+                );
+                let gamma = (-z).acos().to_degrees();
+                let c = y.atan2(x).to_degrees().rem_euclid(360.0);
+                let i = photometry.intensity(c as f64, gamma as f64) as f32;
+                multiplier.x * i * d.z / d.length().powi(3)
+            }
         })
         .sum()
 }

@@ -78,3 +78,52 @@ impl fmt::Display for Diagnostic {
 }
 
 impl std::error::Error for Diagnostic {}
+
+/// A light could not be given a photometric file ([`crate::Scene::set_photometry`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum PhotometryError {
+    /// No light has that name.
+    NoSuchLight {
+        /// The name asked for.
+        name: String,
+        /// The lights the scene has.
+        lights: Vec<String>,
+    },
+    /// The light is directional: a photometric file describes a luminaire at a point.
+    NotAtAPoint {
+        /// The light's name.
+        name: String,
+    },
+    /// The multiplier is negative or not finite.
+    BadMultiplier {
+        /// What was given.
+        multiplier: f32,
+    },
+}
+
+impl fmt::Display for PhotometryError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PhotometryError::NoSuchLight { name, lights } if lights.is_empty() => {
+                write!(
+                    f,
+                    "no light named '{name}': the scene has no point, spot or directional light"
+                )
+            }
+            PhotometryError::NoSuchLight { name, lights } => write!(
+                f,
+                "no light named '{name}'; the scene's lights are {}",
+                lights.join(", ")
+            ),
+            PhotometryError::NotAtAPoint { name } => write!(
+                f,
+                "'{name}' is a directional light; a photometric file replaces a point or spot light"
+            ),
+            PhotometryError::BadMultiplier { multiplier } => {
+                write!(f, "the multiplier {multiplier} must be a finite number ≥ 0")
+            }
+        }
+    }
+}
+
+impl std::error::Error for PhotometryError {}

@@ -4,7 +4,8 @@
 //! What is read (DESIGN.md §1): triangle meshes named by node (else mesh) name, a name
 //! covering its node's descendants; world transforms from TRS or matrix hierarchies;
 //! metallic-roughness materials as diffuse, mirror, glass, emitter or hole
-//! (module `material`); KHR_lights_punctual lights in cd and lx; perspective cameras; and
+//! (module `material`); KHR_lights_punctual lights in cd and lx; EXT_lights_ies luminaires
+//! from IES profiles (module `ies`); perspective cameras; and
 //! `*__Geometry` placement rectangles. Positions are kept as written, +Y up.
 //!
 //! The JSON schema is `gltf-json`, the document model of the `gltf` crate, but not that
@@ -17,6 +18,7 @@
 mod accessor;
 mod buffers;
 mod glb;
+mod ies;
 mod material;
 mod mesh;
 mod nodes;
@@ -34,6 +36,7 @@ const VALIDATOR_HINT: &str = "the file breaks the glTF 2.0 rules: check it with 
 /// The extensions invlight reads. A file that *requires* any other (mesh compression,
 /// texture transforms, other image formats) is refused rather than misread.
 const SUPPORTED_REQUIRED: &[&str] = &[
+    "EXT_lights_ies",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
@@ -68,6 +71,7 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
         materials: HashMap::new(),
         default_material: None,
         images: HashMap::new(),
+        profiles: HashMap::new(),
     };
     builder.place_nodes()?;
     Ok(builder.scene)
@@ -140,6 +144,8 @@ struct Builder<'a> {
     default_material: Option<MaterialId>,
     /// glTF image → scene texture.
     images: HashMap<usize, u32>,
+    /// `EXT_lights_ies` profile → its table, shared by the nodes that place it.
+    profiles: HashMap<usize, std::sync::Arc<crate::photometry::Photometry>>,
 }
 
 impl Builder<'_> {

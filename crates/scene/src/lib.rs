@@ -1,6 +1,6 @@
 //! The scene model of invlight: named triangle meshes with world transforms, materials,
 //! lights and cameras, in photometric units, and the loaders that build it from glTF 2.0,
-//! COLLADA and Wavefront OBJ files.
+//! COLLADA and Wavefront OBJ files and read luminaires' photometric files.
 //!
 //! The core types:
 //! - [`Scene`]: everything that is traced: [`Mesh`]es in object space placed by
@@ -10,6 +10,10 @@
 //! - [`daylight`]: sites and their compass, dates and times, the sun's position (NREL
 //!   SPA) and clear-sky illuminance, and CIE skies with their sampling distributions
 //!   (docs/daylight.md).
+//! - [`Photometry`]: a luminaire's candela table from an IES LM-63 or EULUMDAT file
+//!   ([`read_photometry`]), which a [`LightKind::Goniometric`] light emits; glTF files
+//!   place them by `EXT_lights_ies`, [`Scene::set_photometry`] puts one in place of a
+//!   point or spot light.
 //!
 //! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
 //! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
@@ -42,13 +46,14 @@ mod material;
 mod mesh;
 mod model;
 mod obj;
+mod photometry;
 mod summary;
 mod world;
 
 pub use atomic::write_atomically;
-pub use error::{Diagnostic, LoadError};
+pub use error::{Diagnostic, LoadError, PhotometryError};
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
-pub use light::{Camera, Light, LightKind, luminance};
+pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
 pub use load::{LoadOptions, UpAxis, load};
 pub use lookup::known_names;
 pub use material::{Material, Rgb, Texture};
@@ -56,6 +61,10 @@ pub use mesh::Mesh;
 pub use model::{
     Instance, InstanceId, MaterialId, MeshId, PLACEMENT_SUFFIX, Placement, Scene, Surface,
     SurfaceId, is_placement_name, placement_name,
+};
+pub use photometry::{
+    DirectionSample, Opening, PhotometricSystem, Photometry, PhotometryFormat, Tilt, parse_ies,
+    parse_ldt, read_photometry,
 };
 pub use summary::{CameraSummary, LightSummary, SceneSummary, SurfaceSummary};
 pub use world::WorldTriangle;

@@ -1,9 +1,12 @@
-//! Punctual and directional lights in photometric units (glTF KHR_lights_punctual), and
-//! cameras. Area lights are not here: they are the emissive triangles of the meshes.
+//! Punctual and directional lights in photometric units (glTF KHR_lights_punctual),
+//! goniometric luminaires from photometric files, and cameras. Area lights are not here:
+//! they are the emissive triangles of the meshes.
 
 use crate::material::Rgb;
-use glam::Vec3;
+use crate::photometry::Photometry;
+use glam::{Mat3, Vec3};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// Rec.709 luminance of a linear RGB value: the photometric scalar of a colour
 /// (DESIGN.md §1).
@@ -52,33 +55,113 @@ pub enum LightKind {
         /// Illuminance on a perpendicular plane, lx.
         illuminance: Rgb,
     },
+    /// A luminaire described by a photometric file: intensity `multiplier ×` the table
+    /// toward each direction, emitted from a point or from the table's luminous opening
+    /// centred on `position` (glTF `EXT_lights_ies`).
+    Goniometric {
+        /// World position of the photometric centre, m.
+        position: Vec3,
+        /// Local → world rotation (orthonormal, right-handed): column 0 is the C0 axis
+        /// (local +X), column 1 C90 (local +Y), column 2 the axis the luminaire is aimed
+        /// away from, so that γ = 0 (local −Z) points along −column 2 (`EXT_lights_ies`
+        /// "Coordinate System Mapping"; the photometry module doc).
+        frame: Mat3,
+        /// The candela table and its metadata.
+        photometry: Arc<Photometry>,
+        /// RGB factor on the table's candela (glTF `color × multiplier`, a problem
+        /// file's `multiplier`, IES tilt): its luminance scales the flux.
+        multiplier: Rgb,
+    },
+}
+
+/// The IES tilt factor ([`crate::Tilt`]) of a luminaire aimed along the unit `aim` in
+/// a scene whose zenith is `up`: the factor at the angle between the aim and straight
+/// down, in degrees (1 without tilt data). That angle is the lamp's tilt for geometry 1
+/// (a vertical lamp), and the tilt in the plane the lamp is turned in for geometries 2
+/// and 3, as the luminaire is turned about its lamp's perpendicular.
+pub fn tilt_factor(photometry: &Photometry, aim: Vec3, up: Vec3) -> f32 {
+    photometry.tilt.as_ref().map_or(1.0, |t| {
+        let c = aim.normalize().dot(-up.normalize()).clamp(-1.0, 1.0);
+        t.factor((c as f64).acos().to_degrees()) as f32
+    })
+}
+
+/// A right-handed frame whose −Z is the unit `aim` and whose +X is `reference` made
+/// perpendicular to it (or, when `reference` is nearly along `aim`, another axis): the
+/// orientation a photometric table takes when only its aiming direction is known.
+pub fn aimed_frame(aim: Vec3, reference: Vec3) -> Mat3 {
+    let z = -aim.normalize();
+    let mut x = reference - z * reference.dot(z);
+    if x.length_squared() < 1e-6 * reference.length_squared().max(1e-30) {
+        let other = if z.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+        x = other - z * other.dot(z);
+    }
+    let x = x.normalize();
+    Mat3::from_cols(x, z.cross(x), z)
 }
 
 impl LightKind {
     /// Position of a point or spot light.
     pub fn position(&self) -> Option<Vec3> {
         match self {
-            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => Some(*position),
+            LightKind::Point { position, .. }
+            | LightKind::Spot { position, .. }
+            | LightKind::Goniometric { position, .. } => Some(*position),
             LightKind::Directional { .. } => None,
         }
     }
 
-    /// Direction of a spot or directional light.
+    /// The position of a point, spot or goniometric light, to move it.
+    pub fn position_mut(&mut self) -> Option<&mut Vec3> {
+        match self {
+            LightKind::Point { position, .. }
+            | LightKind::Spot { position, .. }
+            | LightKind::Goniometric { position, .. } => Some(position),
+            LightKind::Directional { .. } => None,
+        }
+    }
+
+    /// Direction of a spot or directional light, or the aim (γ = 0) of a goniometric one.
     pub fn direction(&self) -> Option<Vec3> {
         match self {
             LightKind::Spot { direction, .. } | LightKind::Directional { direction, .. } => {
                 Some(*direction)
             }
+            LightKind::Goniometric { frame, .. } => Some(-frame.z_axis),
             LightKind::Point { .. } => None,
         }
     }
 
-    /// `point`, `spot` or `directional`.
+    /// `point`, `spot`, `directional` or `goniometric`.
     pub fn name(&self) -> &'static str {
         match self {
             LightKind::Point { .. } => "point",
             LightKind::Spot { .. } => "spot",
             LightKind::Directional { .. } => "directional",
+            LightKind::Goniometric { .. } => "goniometric",
+        }
+    }
+
+    /// The RGB intensity, cd, that a point, spot or goniometric light sends along the
+    /// unit world direction `w` (zero for a directional light, which has none).
+    #[inline]
+    pub fn intensity_toward(&self, w: Vec3) -> Rgb {
+        match self {
+            LightKind::Point { intensity, .. } => *intensity,
+            LightKind::Spot {
+                direction,
+                intensity,
+                inner,
+                outer,
+                ..
+            } => *intensity * LightKind::spot_falloff(w.dot(direction.normalize()), *inner, *outer),
+            LightKind::Goniometric {
+                frame,
+                photometry,
+                multiplier,
+                ..
+            } => *multiplier * photometry.intensity_toward(frame.transpose() * w) as f32,
+            LightKind::Directional { .. } => Vec3::ZERO,
         }
     }
 
@@ -96,7 +179,8 @@ impl LightKind {
         }
     }
 
-    /// Emitted luminous flux in lm for point and spot lights (RGB). A directional light
+    /// Emitted luminous flux in lm for point, spot and goniometric lights (RGB; for the
+    /// last, the multiplier times the integral of its table, [`Photometry::flux`]). A directional light
     /// has no flux of its own; it is `illuminance × area` of whatever it falls on, so this
     /// returns its illuminance.
     ///
@@ -116,6 +200,11 @@ impl LightKind {
                 *intensity * (2.0 * PI * ((1.0 - ci) + (ci - co) / 3.0))
             }
             LightKind::Directional { illuminance, .. } => *illuminance,
+            LightKind::Goniometric {
+                photometry,
+                multiplier,
+                ..
+            } => *multiplier * photometry.flux() as f32,
         }
     }
 }

@@ -89,6 +89,7 @@ fn validate(scene: &Scene, path: &Path) -> Result<(), LoadError> {
         let strength = match light.kind {
             LightKind::Point { intensity, .. } | LightKind::Spot { intensity, .. } => intensity,
             LightKind::Directional { illuminance, .. } => illuminance,
+            LightKind::Goniometric { multiplier, .. } => multiplier,
         };
         if bad(strength) {
             return Err(LoadError::at(
@@ -111,17 +112,17 @@ fn validate(scene: &Scene, path: &Path) -> Result<(), LoadError> {
     Ok(())
 }
 
-/// Scales the whole scene about the origin: positions and lengths by `s`; point and
-/// spot intensities are kept (a lamp stays the same lamp in another unit system).
+/// Scales the whole scene about the origin: positions and lengths by `s`; point, spot
+/// and goniometric intensities are kept, and so is a luminous opening's size, in
+/// metres already (a lamp stays the same lamp in another unit system).
 pub(crate) fn scale_scene(scene: &mut Scene, s: f32) {
     let m = Mat4::from_scale(Vec3::splat(s));
     for inst in &mut scene.instances {
         inst.transform = m * inst.transform;
     }
     for light in &mut scene.lights {
-        match &mut light.kind {
-            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => *position *= s,
-            LightKind::Directional { .. } => {}
+        if let Some(position) = light.kind.position_mut() {
+            *position *= s;
         }
     }
     for cam in &mut scene.cameras {

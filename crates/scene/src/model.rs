@@ -1,10 +1,13 @@
 //! The scene: meshes placed by instances, named surfaces over instances, lights, cameras
 //! and the placement rectangles of problem files.
 
-use crate::light::{Camera, Light};
+use crate::error::PhotometryError;
+use crate::light::{Camera, Light, LightKind, aimed_frame, tilt_factor};
 use crate::material::{Material, Texture};
 use crate::mesh::Mesh;
+use crate::photometry::Photometry;
 use glam::{Mat4, Vec3};
+use std::sync::Arc;
 
 /// Index into [`Scene::meshes`].
 pub type MeshId = u32;
@@ -155,6 +158,54 @@ impl Scene {
     /// The light called `name`.
     pub fn light(&self, name: &str) -> Option<usize> {
         self.lights.iter().position(|l| l.name == name)
+    }
+
+    /// Makes the point or spot light `name` the luminaire `photometry` describes, with
+    /// its candela × `multiplier`, at the light's position: a spot keeps its aim, a point
+    /// light is aimed down (−[`Scene::up`]); C0 lies along world +X as far as the aim
+    /// allows (see [`aimed_frame`]). An IES tilt factor is applied for the angle between
+    /// the aim and straight down. A goniometric light keeps its position and frame and
+    /// takes the new table.
+    pub fn set_photometry(
+        &mut self,
+        name: &str,
+        photometry: Arc<Photometry>,
+        multiplier: f32,
+    ) -> Result<(), PhotometryError> {
+        if !(multiplier.is_finite() && multiplier >= 0.0) {
+            return Err(PhotometryError::BadMultiplier { multiplier });
+        }
+        let up = self.up;
+        let Some(light) = self.lights.iter_mut().find(|l| l.name == name) else {
+            return Err(PhotometryError::NoSuchLight {
+                name: name.to_string(),
+                lights: self.lights.iter().map(|l| l.name.clone()).collect(),
+            });
+        };
+        let (position, frame) = match &light.kind {
+            LightKind::Point { position, .. } => (*position, aimed_frame(-up, Vec3::X)),
+            LightKind::Spot {
+                position,
+                direction,
+                ..
+            } => (*position, aimed_frame(*direction, Vec3::X)),
+            LightKind::Goniometric {
+                position, frame, ..
+            } => (*position, *frame),
+            LightKind::Directional { .. } => {
+                return Err(PhotometryError::NotAtAPoint {
+                    name: name.to_string(),
+                });
+            }
+        };
+        let tilt = tilt_factor(&photometry, -frame.z_axis, up);
+        light.kind = LightKind::Goniometric {
+            position,
+            frame,
+            photometry,
+            multiplier: Vec3::splat(multiplier * tilt),
+        };
+        Ok(())
     }
 
     /// The placement rectangle called `name`.

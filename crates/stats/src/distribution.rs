@@ -57,10 +57,25 @@ impl Distribution1D {
     /// entries of zero weight are never drawn. Must not be called when the total is 0.
     #[inline]
     pub fn sample(&self, u: f32) -> usize {
-        let target = u as f64 * self.total();
-        self.cdf
+        self.sample_continuous(u as f64).0
+    }
+
+    /// The entry [`Distribution1D::sample`] draws for `u`, with where `u·total` falls
+    /// inside that entry's interval, rescaled to [0, 1): a uniform number independent
+    /// of the entry, so one uniform chooses an entry and a position in it (pbrt-v4
+    /// `PiecewiseConstant1D::Sample`'s offset `du`). Must not be called when the total
+    /// is 0.
+    #[inline]
+    pub fn sample_continuous(&self, u: f64) -> (usize, f64) {
+        let target = u * self.total();
+        let i = self
+            .cdf
             .partition_point(|&c| c <= target)
-            .min(self.cdf.len() - 1)
+            .min(self.cdf.len() - 1);
+        let below = if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let w = self.cdf[i] - below;
+        let r = if w > 0.0 { (target - below) / w } else { 0.0 };
+        (i, r.clamp(0.0, 1.0 - f64::EPSILON / 2.0))
     }
 }
 
@@ -79,6 +94,13 @@ mod tests {
             (d.total(), d.pmf(0), d.pmf(1), d.pmf(2)),
             (4.0, 0.25, 0.0, 0.75)
         );
+    }
+
+    #[test]
+    fn continuous_draws_remap_the_uniform() {
+        let d = Distribution1D::new([1.0, 0.0, 3.0]);
+        assert_eq!(d.sample_continuous(0.125), (0, 0.5));
+        assert_eq!(d.sample_continuous(0.625), (2, 0.5));
     }
 
     /// Σ over draws of 1/(p·N) estimates the number of entries with weight (pbrt-v4's

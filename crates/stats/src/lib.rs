@@ -10,7 +10,8 @@
 //!   and an index, so results never depend on thread count or scheduling.
 //! - [`significant`]: numbers as tables and messages show them.
 //! - [`Distribution1D`]: a discrete distribution from weights, sampled by inversion
-//!   with the probability of what it returns.
+//!   with the probability of what it returns; [`PiecewiseConstant2D`]: a density
+//!   constant on the cells of a grid, sampled with its exact density.
 //!
 //! ```
 //! use invlight_stats::{Confidence, Estimate, compare, Comparison};
@@ -25,12 +26,14 @@
 #![deny(missing_docs)]
 
 mod distribution;
+mod distribution2d;
 mod estimate;
 mod format;
 mod interval;
 mod rng;
 
 pub use distribution::Distribution1D;
+pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
 pub use format::significant;
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};

@@ -116,7 +116,7 @@ impl Binding {
                     Some(l) => {
                         if matches!(scene.lights[l].kind, LightKind::Directional { .. }) {
                             return Err(err(format!(
-                                "'{}' is a directional light, expected a point or spot light or an emissive object (use <directionalLight> for a sun)",
+                                "'{}' is a directional light, expected a point, spot or goniometric light or an emissive object (use <directionalLight> for a sun)",
                                 spec.id
                             )));
                         }
@@ -125,7 +125,7 @@ impl Binding {
                     None => {
                         let s = scene.surface(&spec.id).ok_or_else(|| {
                             err(format!(
-                                "no light or surface named '{}' in the scene, expected a point or spot light or an emissive object",
+                                "no light or surface named '{}' in the scene, expected a point, spot or goniometric light or an emissive object",
                                 spec.id
                             ))
                             .with_hint(known_names(scene.lights.iter().map(|l| l.name.as_str()), "lights"))
@@ -392,10 +392,8 @@ impl Binding {
                         }
                     }
                     for &(light, original) in &m.lights {
-                        match &mut scene.lights[light].kind {
-                            LightKind::Point { position, .. }
-                            | LightKind::Spot { position, .. } => *position = original + delta,
-                            LightKind::Directional { .. } => {}
+                        if let Some(position) = scene.lights[light].kind.position_mut() {
+                            *position = original + delta;
                         }
                     }
                 }

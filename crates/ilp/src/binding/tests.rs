@@ -104,6 +104,38 @@ fn object_moves_by_p_minus_a() {
     );
 }
 
+/// A goniometric light (a photometric file in place of the point lamp) moves as the
+/// point lamp would, keeping its aim.
+#[test]
+fn goniometric_light_moves_like_a_point_lamp() {
+    let mut s = scene();
+    s.up = Vec3::Z;
+    let table = invlight_scene::Photometry::from_table(
+        invlight_scene::PhotometricSystem::C,
+        vec![0.0, 360.0],
+        vec![0.0, 90.0],
+        vec![100.0; 4],
+    )
+    .unwrap();
+    s.set_photometry("Lamp", std::sync::Arc::new(table), 1.0)
+        .unwrap();
+    let b = Binding::new(
+        &problem("<lightInSurface id=\"Lamp\" surface=\"Floor__Geometry\"/>"),
+        &mut s,
+    )
+    .unwrap();
+    let config = Configuration {
+        coords: vec![0.75, 0.5],
+    };
+    // No instance moves, so nothing needs refitting.
+    assert!(!b.apply(&mut s, &config));
+    // Authored at (1, 1, 2.5), the rectangle's A at (1, 1, 0): moved by P − A.
+    let kind = &s.lights[0].kind;
+    assert_eq!(kind.name(), "goniometric");
+    assert!((kind.position().unwrap() - Vec3::new(2.5, 1.5, 2.5)).length() < 1e-6);
+    assert_eq!(kind.direction(), Some(Vec3::NEG_Z));
+}
+
 #[test]
 fn light_hole_sun_and_colour() {
     let mut s = scene();

@@ -251,6 +251,51 @@ impl Builder<'_> {
     }
 }
 
+/// The bytes of a file a glTF refers to by `uri` (resolved as buffers and images are)
+/// or by buffer view, with the path of the file when it is one: the path errors inside
+/// the file name and its own references (an IES `TILT=<file>`) are resolved from.
+pub(super) struct Referenced<'b> {
+    /// The bytes.
+    pub bytes: Cow<'b, [u8]>,
+    /// The file they were read from; `None` for a data: URI or a buffer view.
+    pub file: Option<PathBuf>,
+}
+
+impl Builder<'_> {
+    /// The bytes of a `uri` or `bufferView` reference at `loc` (an `EXT_lights_ies`
+    /// profile).
+    pub(super) fn referenced(
+        &self,
+        uri: Option<&str>,
+        view: Option<json::Index<json::buffer::View>>,
+        loc: &str,
+    ) -> Result<Referenced<'_>, LoadError> {
+        match (uri, view) {
+            (Some(uri), _) => match parse_uri(self.path, uri, loc)? {
+                Uri::Data(bytes) => Ok(Referenced {
+                    bytes: Cow::Owned(bytes),
+                    file: None,
+                }),
+                Uri::File {
+                    path: file,
+                    written,
+                } => match std::fs::read(&file) {
+                    Ok(bytes) => Ok(Referenced {
+                        bytes: Cow::Owned(bytes),
+                        file: Some(file),
+                    }),
+                    Err(e) => Err(file_error(self.path, loc, written, &file, e)),
+                },
+            },
+            (None, Some(view)) => Ok(Referenced {
+                bytes: Cow::Borrowed(self.view(view, loc)?.0),
+                file: None,
+            }),
+            (None, None) => Err(self.err(loc, "neither uri nor bufferView is given")),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,5 +1,6 @@
 //! The node hierarchy (spec §3.5): world transforms, named surfaces covering
-//! descendants, KHR_lights_punctual lights, cameras and `*__Geometry` placements.
+//! descendants, KHR_lights_punctual and EXT_lights_ies lights, cameras and `*__Geometry`
+//! placements.
 
 use super::Builder;
 use crate::error::LoadError;
@@ -125,6 +126,10 @@ impl Builder<'_> {
                 .and_then(|e| e.khr_lights_punctual.as_ref())
             {
                 self.light(i, light.light.value(), world)?;
+            }
+            if let Some(ext) = self.ies_extension(i) {
+                let ext = ext.clone();
+                self.ies_light(i, &ext, world)?;
             }
             if let Some(camera) = node.camera {
                 self.camera(i, camera.value(), world)?;

@@ -1,0 +1,277 @@
+//! IES LM-63 files, every version: 1986 (no header), 1991 (`IESNA91`), 1995
+//! (`IESNA:LM-63-1995`), 2002 (`IESNA:LM-63-2002`) and 2019 (`IES:LM-63-2019`).
+//!
+//! Layout (LM-63-2002 §5): the header line, keyword lines `[KEY] text` (free text in
+//! 1986), `TILT=NONE|INCLUDE|<file>` with the tilt data when included, then numbers
+//! separated by blanks, commas or line ends: lamps, lumens per lamp (−1: absolute
+//! photometry), candela multiplier, the counts of vertical and horizontal angles,
+//! photometric type (1 C, 2 B, 3 A), units (1 feet, 2 metres), the luminous opening's
+//! width, length and height; ballast factor, a field that was the ballast-lamp
+//! photometric factor until 1995 (since "future use", and in 2019 the file generation
+//! type), input watts; the vertical angles, the horizontal angles, and the candela
+//! values plane by plane (one horizontal angle, all its vertical angles).
+
+use super::symmetry::{Symmetry, expand_b, expand_c};
+use super::text::{Numbers, increasing, latin1};
+use super::{Opening, PhotometricSystem, Photometry, PhotometryFormat, Table, Tilt};
+use crate::error::LoadError;
+use std::path::Path;
+
+/// Metres per foot.
+const FOOT: f64 = 0.3048;
+
+const FORMAT_HINT: &str = "the file does not follow IES LM-63: export it again from the manufacturer's tool, or check the counts of angles against the values";
+
+/// Reads an IES LM-63 file's bytes; `path` names it in errors and locates a
+/// `TILT=<file>`.
+pub fn parse_ies(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
+    let text = latin1(bytes).replace("\r\n", "\n").replace('\r', "\n");
+    let lines: Vec<&str> = text.lines().collect();
+    let at = |line: usize, message: String| LoadError::at(path, format!("line {line}"), message);
+
+    // 1. The header line names the version; LM-63-1986 has none.
+    let first = lines.first().map_or("", |l| l.trim());
+    let (format, start) = match first {
+        "IESNA91" => (PhotometryFormat::Lm63_1991, 1),
+        "IESNA:LM-63-1995" => (PhotometryFormat::Lm63_1995, 1),
+        "IESNA:LM-63-2002" => (PhotometryFormat::Lm63_2002, 1),
+        "IES:LM-63-2019" => (PhotometryFormat::Lm63_2019, 1),
+        s if s.starts_with("IESNA:") || s.starts_with("IES:") => {
+            return Err(at(1, format!("unknown IES version '{s}'")).with_hint(
+                "invlight reads IESNA91, IESNA:LM-63-1995, IESNA:LM-63-2002 and IES:LM-63-2019 files and headerless LM-63-1986 ones",
+            ));
+        }
+        _ => (PhotometryFormat::Lm63_1986, 0),
+    };
+
+    // 2. Keywords up to the TILT line.
+    let Some(tilt_line) = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with("TILT"))
+    else {
+        return Err(LoadError::new(path, "no TILT= line: this is not an IES LM-63 file")
+            .with_hint("every LM-63 file has a line TILT=NONE, TILT=INCLUDE or TILT=<file> before its numbers"));
+    };
+    let mut keywords: Vec<(String, String)> = Vec::new();
+    for (k, raw) in lines[start..tilt_line].iter().enumerate() {
+        let line = raw.trim();
+        if line.is_empty() {
+            continue;
+        }
+        match line.strip_prefix('[').and_then(|l| l.split_once(']')) {
+            Some((key, value)) if format != PhotometryFormat::Lm63_1986 => {
+                let value = value.trim().to_string();
+                match (key, keywords.last_mut()) {
+                    ("MORE", Some((_, last))) => {
+                        last.push('\n');
+                        last.push_str(&value);
+                    }
+                    ("MORE", None) => {
+                        return Err(at(start + k + 1, "[MORE] with no keyword before it".into()));
+                    }
+                    _ => keywords.push((key.to_string(), value)),
+                }
+            }
+            _ => keywords.push(("TEXT".into(), line.to_string())),
+        }
+    }
+
+    // 3. Tilt data, in this file or another.
+    let spec = lines[tilt_line].trim_start()["TILT".len()..].trim_start();
+    let Some(spec) = spec.strip_prefix('=').map(str::trim) else {
+        return Err(at(tilt_line + 1, "'TILT' without '='".into())
+            .with_hint("write TILT=NONE, TILT=INCLUDE or TILT=<file>"));
+    };
+    let mut numbers = Numbers::new(path, &lines[tilt_line + 1..], tilt_line + 2);
+    let tilt = match spec {
+        "NONE" => None,
+        "INCLUDE" => Some(read_tilt(&mut numbers)?),
+        file => {
+            let tilt_path = path.parent().unwrap_or(Path::new("")).join(file);
+            let bytes = std::fs::read(&tilt_path).map_err(|e| {
+                at(
+                    tilt_line + 1,
+                    format!(
+                        "cannot read the tilt file {file} ({}): {e}",
+                        tilt_path.display()
+                    ),
+                )
+                .with_hint("a TILT=<file> is looked up beside the IES file")
+            })?;
+            let tilt_text = latin1(&bytes);
+            let tilt_lines: Vec<&str> = tilt_text.lines().collect();
+            Some(read_tilt(&mut Numbers::new(&tilt_path, &tilt_lines, 1))?)
+        }
+    };
+
+    // 4. The lamp and luminaire numbers.
+    let lamps = numbers.int("the number of lamps", 0, 1_000_000)?;
+    let lumens = numbers.f64("the lumens per lamp")?;
+    let multiplier_line = numbers.line();
+    let multiplier = numbers.f64("the candela multiplier")?;
+    if multiplier <= 0.0 {
+        return Err(at(
+            multiplier_line,
+            format!("the candela multiplier is {multiplier}; a positive number was expected"),
+        ));
+    }
+    let nv = numbers.int("the number of vertical angles", 2, 100_000)? as usize;
+    let nh = numbers.int("the number of horizontal angles", 1, 100_000)? as usize;
+    let type_line = numbers.line();
+    let system = match numbers.int("the photometric type", 1, 3)? {
+        1 => PhotometricSystem::C,
+        2 => PhotometricSystem::B,
+        _ => {
+            return Err(at(type_line, "type A photometry (photometric type 3) is not supported".into())
+                .with_hint("ask the manufacturer for the type C file (interior luminaires) or type B (floodlights); glTF EXT_lights_ies makes type A optional"));
+        }
+    };
+    let metres = match numbers.int("the units type (1 feet, 2 metres)", 1, 2)? {
+        1 => FOOT,
+        _ => 1.0,
+    };
+    let width = numbers.f64("the width of the luminous opening")? * metres;
+    let length = numbers.f64("the length of the luminous opening")? * metres;
+    let height = numbers.f64("the height of the luminous opening")? * metres;
+    let ballast_line = numbers.line();
+    let ballast = numbers.f64("the ballast factor")?;
+    let lamp_factor = numbers.f64("the ballast-lamp photometric factor (future use since 2002)")?;
+    let watts = numbers.f64("the input watts")?;
+    if ballast <= 0.0 {
+        return Err(at(
+            ballast_line,
+            format!("the ballast factor is {ballast}; a positive number was expected"),
+        ));
+    }
+
+    // 5. Angles and candela values.
+    let v_line = numbers.line();
+    let vertical = numbers.list(nv, "a vertical angle")?;
+    increasing(path, v_line, &vertical, "vertical angle")?;
+    let h_line = numbers.line();
+    let horizontal = numbers.list(nh, "a horizontal angle")?;
+    increasing(path, h_line, &horizontal, "horizontal angle")?;
+    let c_line = numbers.line();
+    let raw = numbers.list(nh * nv, "a candela value")?;
+    if let Some(k) = raw.iter().position(|&c| c < 0.0) {
+        return Err(at(
+            c_line,
+            format!("candela value {} is {}; intensities are ≥ 0", k + 1, raw[k]),
+        ));
+    }
+    let mut warnings = Vec::new();
+    if numbers.rest() > 0 {
+        warnings.push(format!(
+            "{} numbers follow the {} candela values and were ignored: check the counts of angles",
+            numbers.rest(),
+            nh * nv
+        ));
+    }
+
+    // 6. Symmetry expanded, multipliers applied.
+    let (h_full, v_full) = match system {
+        PhotometricSystem::C => {
+            let symmetry = Symmetry::of_ies(horizontal[0], horizontal[nh - 1], nh)
+                .map_err(|m| at(h_line, m).with_hint(FORMAT_HINT))?;
+            if vertical[0] < 0.0 || vertical[nv - 1] > 180.0 {
+                return Err(at(
+                    v_line,
+                    format!(
+                        "vertical angles from {}° to {}°: type C angles lie within 0° and 180°",
+                        vertical[0],
+                        vertical[nv - 1]
+                    ),
+                ));
+            }
+            let h = expand_c(&horizontal, symmetry).map_err(|m| at(h_line, m))?;
+            (h, (0..nv).map(|k| (vertical[k], k)).collect::<Vec<_>>())
+        }
+        PhotometricSystem::B => (
+            expand_b(&horizontal).map_err(|m| at(h_line, m))?,
+            expand_b(&vertical).map_err(|m| at(v_line, m))?,
+        ),
+    };
+    let pre_2002 = matches!(
+        format,
+        PhotometryFormat::Lm63_1986 | PhotometryFormat::Lm63_1991 | PhotometryFormat::Lm63_1995
+    );
+    let scale = multiplier * ballast * if pre_2002 { lamp_factor } else { 1.0 };
+    let raw = &raw;
+    let candela: Vec<f64> = h_full
+        .iter()
+        .flat_map(|&(_, i)| v_full.iter().map(move |&(_, j)| raw[i * nv + j] * scale))
+        .collect();
+    let table = Table::new(
+        system,
+        h_full.iter().map(|p| p.0).collect(),
+        v_full.iter().map(|p| p.0).collect(),
+        candela,
+    )
+    .map_err(|m| LoadError::at(path, format!("lines {c_line}–"), m))?;
+
+    let (opening, shape_warning) = opening(width as f32, length as f32);
+    warnings.extend(shape_warning);
+    let mut p = Photometry {
+        file: file_name(path),
+        format,
+        keywords,
+        lamps: lamps as u32,
+        lumens_per_lamp: (lumens > 0.0).then_some(lumens),
+        stated_flux: None,
+        light_output_ratio: None,
+        watts: (watts > 0.0).then_some(watts),
+        ballast_factor: ballast,
+        opening,
+        opening_height: height.abs() as f32,
+        luminaire_size: None,
+        tilt,
+        warnings,
+        table,
+    };
+    p.check_flux();
+    Ok(p)
+}
+
+/// The tilt data: lamp-to-luminaire geometry, the number of pairs, the angles and the
+/// factors (LM-63-2002 §5.4–5.7).
+fn read_tilt(numbers: &mut Numbers<'_>) -> Result<Tilt, LoadError> {
+    let geometry = numbers.int("the lamp-to-luminaire geometry (1, 2 or 3)", 1, 3)? as u8;
+    let n = numbers.int("the number of tilt angles", 0, 100_000)? as usize;
+    let line = numbers.line();
+    let angles = numbers.list(n, "a tilt angle")?;
+    increasing(numbers.path(), line, &angles, "tilt angle")?;
+    let factors = numbers.list(n, "a tilt multiplying factor")?;
+    Ok(Tilt {
+        geometry,
+        angles,
+        factors,
+    })
+}
+
+/// The luminous opening of LM-63-2002 §5.11: zero width and length a point, both
+/// positive a rectangle, both negative and equal a disk. Other shapes of LM-63-2019
+/// (ellipses, cylinders, spheres) emit from their centre, with a warning.
+pub(super) fn opening(width: f32, length: f32) -> (Opening, Option<String>) {
+    if width == 0.0 && length == 0.0 {
+        (Opening::Point, None)
+    } else if width >= 0.0 && length >= 0.0 {
+        (Opening::Rectangle { length, width }, None)
+    } else if width < 0.0 && (width - length).abs() <= 1e-3 * width.abs() {
+        (Opening::Disk { diameter: -width }, None)
+    } else {
+        (
+            Opening::Point,
+            Some(format!(
+                "the luminous opening (width {width} m, length {length} m) is not a rectangle or a disk: it emits from its centre"
+            )),
+        )
+    }
+}
+
+/// The file name of `path`, for reports.
+pub(super) fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
