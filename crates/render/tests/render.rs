@@ -38,10 +38,8 @@ fn settings(width: u32, height: u32) -> RenderSettings {
 /// A 4 m square plane at z = 0 of reflectance `kd`, lit from above by a point light, a
 /// spot and a sun.
 fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
-    let mut scene = Scene {
-        up: Vec3::Z,
-        ..Scene::default()
-    };
+    let mut scene = Scene::default();
+    scene.up = Vec3::Z;
     let m = scene.add_material(Material::diffuse("grey", Vec3::splat(kd)));
     let quad = scene.add_mesh(Mesh::quad(
         [

@@ -36,6 +36,7 @@ mod material;
 mod mesh;
 mod model;
 mod obj;
+mod validate;
 
 pub use error::LoadError;
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
@@ -44,3 +45,4 @@ pub use load::{LoadOptions, UpAxis, load};
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
 pub use model::{Instance, InstanceId, MaterialId, MeshId, Placement, Scene, Surface, SurfaceId};
+pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};

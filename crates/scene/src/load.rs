@@ -70,45 +70,17 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
             .with_hint("invlight reads glTF 2.0 (.gltf, .glb), COLLADA (.dae) and Wavefront OBJ (.obj)"));
         }
     };
-    validate(&scene, path)?;
     if let Some(up) = options.up {
         scene.up = up.vector();
     }
     if options.scale != 1.0 {
         scale_scene(&mut scene, options.scale);
     }
+    // After the scale: `--scale 1e30` must not carry a valid file out of range.
+    scene
+        .validate()
+        .map_err(|e| LoadError::at(path, e.place(), e.to_string()).with_hint(e.hint()))?;
     Ok(scene)
-}
-
-/// Refuses light that no physical source gives: negative or non-finite intensities,
-/// illuminances and luminances (they would make the emission distribution of photon
-/// tracing meaningless), whatever format they came from.
-fn validate(scene: &Scene, path: &Path) -> Result<(), LoadError> {
-    let bad = |c: Vec3| !c.is_finite() || c.min_element() < 0.0;
-    for light in &scene.lights {
-        let strength = match light.kind {
-            LightKind::Point { intensity, .. } | LightKind::Spot { intensity, .. } => intensity,
-            LightKind::Directional { illuminance, .. } => illuminance,
-        };
-        if bad(strength) {
-            return Err(LoadError::at(
-                path,
-                format!("light '{}'", light.name),
-                format!("its strength {strength} is negative or not finite"),
-            )
-            .with_hint("light intensities (cd) and sun illuminances (lx) are ≥ 0"));
-        }
-    }
-    for m in &scene.materials {
-        if bad(m.emission) || bad(m.diffuse) || bad(m.specular) {
-            return Err(LoadError::at(
-                path,
-                format!("material '{}'", m.name),
-                "a colour or emission is negative or not finite",
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Scales the whole scene about the origin: positions and lengths by `s`; point and
