@@ -28,6 +28,7 @@
 
 mod collada;
 mod error;
+mod files;
 mod gltf;
 mod image_file;
 mod light;

@@ -1,6 +1,7 @@
 //! Loading a scene file: the format is chosen by extension, then the units are applied.
 
 use crate::error::LoadError;
+use crate::files::Files;
 use crate::light::LightKind;
 use crate::model::Scene;
 use glam::{Mat4, Vec3};
@@ -25,13 +26,24 @@ impl UpAxis {
     }
 }
 
-/// How to read a file authored in other units or axes.
+/// How to read a file authored in other units or axes, and how far to trust it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LoadOptions {
     /// Metres per file unit, applied after the file's own unit (COLLADA `<unit meter>`).
     pub scale: f32,
     /// Up axis, overriding what the file says (glTF: Y; COLLADA: `<up_axis>`; OBJ: Y).
     pub up: Option<UpAxis>,
+    /// Bytes the load may allocate from the sizes the file declares (the file itself,
+    /// buffers, accessors, decoded textures); a file that asks for more is refused with
+    /// the figure before anything is allocated. Default: half of the machine's memory
+    /// (on Linux the smaller of `MemTotal` and the control group's `memory.max`; 4 GiB
+    /// where neither can be read).
+    pub max_memory: u64,
+    /// Lets the file reference files anywhere (absolute paths, `..` out of its folder,
+    /// links that lead out). Off by default: a scene file may come from anyone, and only
+    /// files in its own folder tree are read. Device files and pipes are refused either
+    /// way.
+    pub allow_outside_paths: bool,
 }
 
 impl Default for LoadOptions {
@@ -39,6 +51,8 @@ impl Default for LoadOptions {
         LoadOptions {
             scale: 1.0,
             up: None,
+            max_memory: crate::files::default_max_memory(),
+            allow_outside_paths: false,
         }
     }
 }
@@ -58,10 +72,11 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
         return Err(LoadError::new(path, "no such file")
             .with_hint("check the path; relative paths are taken from the current directory"));
     }
+    let files = Files::new(path, options);
     let mut scene = match ext.as_str() {
-        "gltf" | "glb" => crate::gltf::load(path)?,
-        "dae" => crate::collada::load(path)?,
-        "obj" => crate::obj::load(path)?,
+        "gltf" | "glb" => crate::gltf::load(path, &files)?,
+        "dae" => crate::collada::load(path, &files)?,
+        "obj" => crate::obj::load(path, &files)?,
         _ => {
             return Err(LoadError::new(
                 path,

@@ -176,3 +176,141 @@ fn dangling_indices_are_refused() {
     scene.add_instance("Nothing", 3, Mat4::IDENTITY);
     assert!(matches!(scene.validate(), Err(SceneError::Index { .. })));
 }
+
+fn with_memory(bytes: u64) -> LoadOptions {
+    LoadOptions {
+        max_memory: bytes,
+        ..LoadOptions::default()
+    }
+}
+
+fn trusting() -> LoadOptions {
+    LoadOptions {
+        allow_outside_paths: true,
+        ..LoadOptions::default()
+    }
+}
+
+/// Item 4: a 4 KB glTF whose bufferless accessor claims 178 956 970 VEC3 (it aborted
+/// allocating 2 GB), and a PNG whose header declares 13 000² pixels (2.5 GB decoded),
+/// are refused with the figure before anything is allocated, past the budget.
+#[test]
+fn r19_memory_bombs_are_refused_with_the_figure() {
+    let e = error_with("bufferless_accessor.gltf", &with_memory(1 << 30));
+    assert_eq!(
+        e.location,
+        "accessors[0] (from meshes[0].primitives[0].attributes.POSITION)"
+    );
+    assert!(
+        e.message.contains("178956970 VEC3") && e.message.contains("2.1 GB"),
+        "{e}"
+    );
+    assert!(e.hint.as_deref().unwrap().contains("--max-memory"), "{e}");
+
+    let e = load(&data("huge_texture.obj"), &with_memory(1 << 30)).unwrap_err();
+    assert_eq!(
+        (e.path.clone(), e.location.as_str()),
+        (data("huge_texture.mtl"), "line 3")
+    );
+    assert!(
+        e.message.contains("13000 × 13000") && e.message.contains("3.9 GB"),
+        "{e}"
+    );
+    // The scene file itself counts.
+    let e = error_with("instanced_200.gltf", &with_memory(1000));
+    assert!(e.message.contains("the file's bytes"), "{e}");
+    // Within the budget the instanced file loads instanced: one mesh, 200 instances.
+    let s = load(&data("instanced_200.gltf"), &LoadOptions::default()).unwrap();
+    assert_eq!((s.meshes.len(), s.instances.len()), (1, 200));
+    assert_eq!(s.meshes[0].triangles.len(), 2108);
+}
+
+/// Item 5: references outside the scene's folder tree (absolute paths, `file:` URIs,
+/// `..` out of the folder) are refused by default, naming the reference; device files
+/// are refused even when outside paths are allowed.
+#[test]
+fn r19_references_stay_in_the_scene_folder() {
+    for (file, place, words) in [
+        (
+            "buffer_absolute.gltf",
+            "buffers[0]",
+            "/etc/hostname is an absolute path",
+        ),
+        (
+            "buffer_dev_zero.gltf",
+            "buffers[0]",
+            "/dev/zero is an absolute path",
+        ),
+        (
+            "buffer_file_uri.gltf",
+            "buffers[0]",
+            "file:///etc/hostname is an absolute path",
+        ),
+        (
+            "buffer_parent.gltf",
+            "buffers[0]",
+            "leads outside the scene's folder",
+        ),
+        (
+            "image_dev_zero.gltf",
+            "images[0]",
+            "/dev/zero is an absolute path",
+        ),
+        (
+            "mtllib_absolute.obj",
+            "line 1",
+            "/etc/hostname is an absolute path",
+        ),
+    ] {
+        let e = error(file);
+        assert_eq!(e.location, place, "{e}");
+        assert!(e.message.contains(words), "{e}");
+        assert!(
+            e.hint.as_deref().unwrap().contains("--allow-outside-paths"),
+            "{e}"
+        );
+    }
+    let e = load(&data("map_dev_zero.obj"), &LoadOptions::default()).unwrap_err();
+    assert_eq!(
+        (e.path.clone(), e.location.as_str()),
+        (data("map_dev_zero.mtl"), "line 3")
+    );
+    let e = error("init_from_absolute.dae");
+    assert!(e.location.contains("<init_from>"), "{e}");
+    assert!(
+        e.message.contains("file:///dev/zero is an absolute path"),
+        "{e}"
+    );
+
+    // Trusted, the paths resolve, but a device is never read: a buffer fails, a
+    // texture is left out with a warning.
+    for file in ["buffer_dev_zero.gltf", "image_dev_zero.gltf"] {
+        let e = error_with(file, &trusting());
+        assert!(e.message.contains("not a regular file"), "{e}");
+    }
+    for file in ["map_dev_zero.obj", "init_from_absolute.dae"] {
+        let s = load(&data(file), &trusting()).unwrap_or_else(|e| panic!("{e}"));
+        assert!(s.textures.is_empty());
+    }
+}
+
+/// Item 5: a link inside the scene's folder that leads out of it is refused too.
+#[cfg(unix)]
+#[test]
+fn r19_links_out_of_the_folder_are_refused() {
+    let dir = std::env::temp_dir().join(format!("invlight-r19-link-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("linked.gltf");
+    let bin = dir.join("outside.bin");
+    let _ = std::fs::remove_file(&bin);
+    std::os::unix::fs::symlink(data("make.py"), &bin).unwrap();
+    std::fs::write(
+        &scene,
+        r#"{"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "outside.bin"}]}"#,
+    )
+    .unwrap();
+    let e = load(&scene, &LoadOptions::default()).unwrap_err();
+    assert!(e.message.contains("through a link"), "{e}");
+    assert!(load(&scene, &trusting()).is_ok());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

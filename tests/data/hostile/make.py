@@ -163,11 +163,9 @@ for name, uri in [("buffer_absolute.gltf", "/etc/hostname"),
         "asset": {"version": "2.0", "generator": "invlight tests/data/hostile/make.py"},
         "buffers": [{"byteLength": 4, "uri": uri}],
         "nodes": [{"name": "Empty"}], "scenes": [{"nodes": [0]}]}, indent=1) + "\n")
-write("image_dev_zero.gltf", json.dumps({
-    "asset": {"version": "2.0", "generator": "invlight tests/data/hostile/make.py"},
+write("image_dev_zero.gltf", gltf(FLOOR, [{"name": "Floor", "mesh": 0}], extra={
     "images": [{"uri": "/dev/zero"}], "textures": [{"source": 0}],
-    "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
-    "nodes": [{"name": "Empty"}], "scenes": [{"nodes": [0]}]}, indent=1) + "\n")
+    "materials": [{"name": "Tex", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]}))
 write("mtllib_absolute.obj", "mtllib /etc/hostname\no Floor\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n")
 write("map_dev_zero.obj", "mtllib map_dev_zero.mtl\no Floor\nv 0 0 0\nv 1 0 0\nv 0 0 1\n"
       "usemtl Tex\nf 1 3 2\n")
