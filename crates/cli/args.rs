@@ -4,6 +4,7 @@ use crate::InputError;
 use clap::{Args, ValueEnum};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, Emitters, TraceSettings};
 use invlight_scene::{LoadOptions, Scene, SurfaceId, UpAxis};
+use invlight_trace::Accel;
 use std::path::Path;
 
 /// How to read a scene file.
@@ -17,6 +18,64 @@ pub struct LoadArgs {
     /// swapped; this orients sun directions in problem files.
     #[arg(long, value_enum, value_name = "AXIS")]
     pub up: Option<Up>,
+    /// Memory the scene may take, loading and tracing: 8G, 512M, 64K or bytes (powers of
+    /// 1024). A file whose declared sizes (buffers, vertex counts, texture pixels), or
+    /// whose ray-tracing structure, would need more is refused with the figure before
+    /// anything is allocated. Default: half of this machine's memory.
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_memory: Option<u64>,
+    /// Let the scene file read files anywhere: absolute paths, `..` out of its folder,
+    /// links that lead out. Without it only files in the scene's folder tree are read,
+    /// as a scene file may come from anyone; use it for files you trust. Devices and
+    /// pipes are never read.
+    #[arg(long)]
+    pub allow_outside_paths: bool,
+}
+
+/// A byte count: digits with an optional K, M, G or T (×1024ⁿ), e.g. `8G`, `1.5G`.
+fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let (number, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
+        Some((i, _)) => (
+            &t[..i],
+            t[i..].trim_end_matches(['B', 'b']).trim_end_matches('i'),
+        ),
+        None => (t, ""),
+    };
+    let shift = match unit.to_ascii_uppercase().as_str() {
+        "" => 0,
+        "K" => 10,
+        "M" => 20,
+        "G" => 30,
+        "T" => 40,
+        _ => return Err(format!("'{s}': the unit must be K, M, G or T")),
+    };
+    let value: f64 = number
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a size such as 8G, 512M or 1000000"))?;
+    let bytes = value * (1u64 << shift) as f64;
+    if !(bytes.is_finite() && bytes >= 1.0 && bytes < u64::MAX as f64) {
+        return Err(format!("'{s}' is not a size between 1 byte and 16 EiB"));
+    }
+    Ok(bytes as u64)
+}
+
+#[cfg(test)]
+mod parse_size_tests {
+    use super::parse_size;
+
+    #[test]
+    fn test_max_memory() {
+        assert_eq!(parse_size("8G"), Ok(8 << 30));
+        assert_eq!(parse_size("512M"), Ok(512 << 20));
+        assert_eq!(parse_size("1.5g"), Ok(3 << 29));
+        assert_eq!(parse_size("64KiB"), Ok(64 << 10));
+        assert_eq!(parse_size("1000000"), Ok(1_000_000));
+        for bad in ["", "G", "8X", "-1G", "0", "1e30T", "nan"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+    }
 }
 
 /// An up axis on the command line.
@@ -38,14 +97,31 @@ impl LoadArgs {
             ))
             .into());
         }
+        let defaults = LoadOptions::default();
         let options = LoadOptions {
             scale: self.scale,
             up: self.up.map(|u| match u {
                 Up::Y => UpAxis::Y,
                 Up::Z => UpAxis::Z,
             }),
+            max_memory: self.max_memory.unwrap_or(defaults.max_memory),
+            allow_outside_paths: self.allow_outside_paths,
         };
-        Ok(invlight_scene::load(path, &options)?)
+        let scene = invlight_scene::load(path, &options)?;
+        let need = Accel::estimated_bytes(&scene);
+        if need > options.max_memory {
+            return Err(InputError(format!(
+                "{}: tracing the scene would need {:.1} GB for its ray-tracing structure, past \
+                 the {:.1} GB limit\n  hint: raise --max-memory (e.g. --max-memory {}G) if the \
+                 machine has the memory",
+                path.display(),
+                need as f64 / 1e9,
+                options.max_memory as f64 / 1e9,
+                need.div_ceil(1 << 30) + 1
+            ))
+            .into());
+        }
+        Ok(scene)
     }
 }
 

@@ -153,11 +153,20 @@ impl fmt::Display for SceneError {
         match self {
             SceneError::Coordinate {
                 space, position, ..
-            } => write!(
-                f,
-                "a position {space}, ({:e}, {:e}, {:e}), lies beyond ±{MAX_COORDINATE:e}",
-                position.x, position.y, position.z
-            ),
+            } => {
+                let unit = if *space == "in the world" {
+                    " m"
+                } else {
+                    " file units"
+                };
+                write!(
+                    f,
+                    "a position {space}, ({}, {}, {}), lies beyond ±{MAX_COORDINATE:e}{unit}",
+                    number(position.x),
+                    number(position.y),
+                    number(position.z)
+                )
+            }
             SceneError::Transform { .. } => write!(f, "its transform has a non-finite number"),
             SceneError::Colour { what, value, .. } => write!(
                 f,
@@ -187,6 +196,15 @@ impl fmt::Display for SceneError {
 }
 
 impl std::error::Error for SceneError {}
+
+/// A coordinate for messages: plain when short, in exponent form when huge or tiny.
+fn number(x: f32) -> String {
+    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
 
 /// Whether every coordinate of `p` is finite and within [`MAX_COORDINATE`].
 fn in_range(p: Vec3) -> bool {
