@@ -1217,11 +1217,9 @@ mod r19 {
         let luminance = 0.99e20 / std::f64::consts::PI;
         std::fs::write(
             &file,
-            format!(
-                "mtllib edge.mtl\no Floor\nv -1e9 0 -1e9\nv 1e9 0 -1e9\nv 1e9 0 1e9\nv -1e9 0 1e9\n\
-                 usemtl Grey\nf 1 3 2\nf 1 4 3\no Lamp\nv 0 1 0\nv 1 1 0\nv 0 1 2\n\
-                 usemtl Glow\nf 5 6 7\n"
-            ),
+            "mtllib edge.mtl\no Floor\nv -1e9 0 -1e9\nv 1e9 0 -1e9\nv 1e9 0 1e9\nv -1e9 0 1e9\n\
+             usemtl Grey\nf 1 3 2\nf 1 4 3\no Lamp\nv 0 1 0\nv 1 1 0\nv 0 1 2\n\
+             usemtl Glow\nf 5 6 7\n",
         )
         .unwrap();
         std::fs::write(
