@@ -28,7 +28,7 @@ use crate::error::LoadError;
 use crate::files::Files;
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::model::{MaterialId, MeshId, Placement, Scene};
+use crate::model::{MaterialId, MeshId, Placement, Scene, push_distinct};
 use geometry::Geometry;
 use glam::{Mat4, Quat, Vec3};
 use roxmltree::Node;
@@ -317,12 +317,10 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         let g = &self.geometries[id];
         if let Some(p) = placement {
             let vertices = &mut self.scene.placements[p].vertices;
-            for v in &g.outline {
-                let w = world.transform_point3(*v);
-                if !vertices.contains(&w) {
-                    vertices.push(w);
-                }
-            }
+            push_distinct(
+                vertices,
+                g.outline.iter().map(|v| world.transform_point3(*v)),
+            );
             return Ok(());
         }
         if g.triangles.is_empty() {
