@@ -22,7 +22,9 @@ use std::fmt;
 /// space (whose BVH is built there). 1e9 m is beyond any building or city (the Earth's
 /// diameter is 1.3e7 m) and keeps every derived quantity far inside `f32`: a box's
 /// surface area is below 6·(2e9)² ≈ 2.4e19 m², a triangle's area below 6e18 m², and the
-/// SAH costs obvhs forms from them (area × primitive count) below 1e27.
+/// SAH costs obvhs forms from them (area × primitive count) below 1e27. It bounds
+/// overflow, not rounding: `f32` keeps 7 digits, so a triangle 1e9 m wide places hits
+/// to within metres near its edges (rays near the diagonal of a 2e9 m floor missed it).
 pub const MAX_COORDINATE: f32 = 1.0e9;
 
 /// Largest luminous flux, lm, of one light, of one emissive surface and of all of them
