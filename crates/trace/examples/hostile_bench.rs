@@ -6,6 +6,8 @@
 //!   one named root node), loaded by `invlight_scene::load` and built by `Accel::new`
 //!   and `Accel::with_movable(&scene, &[])`;
 //! - `coincident N`: N copies of one triangle, built by `Accel::new`;
+//! - `big`: 1 M distinct triangles in one mesh, built by `Accel::new` (what the search
+//!   for coincident boxes costs a build without any);
 //! - `memory T I`: the peak memory of `Accel::new` over a mesh of T triangles placed
 //!   I times, against `Accel::estimated_bytes`.
 //!
@@ -222,10 +224,27 @@ fn main() {
                 coincident(n.parse().expect("a triangle count"));
             }
         }
+        Some("big") => {
+            let mut scene = Scene::default();
+            let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+            let mut mesh = Mesh::default();
+            for t in 0..1_000_000u32 {
+                let c = Vec3::new((t % 1000) as f32, (t / 1000 % 1000) as f32, 0.0);
+                mesh.positions
+                    .extend([c, c + Vec3::X * 0.5, c + Vec3::new(0.0, 0.5, 0.5)]);
+                mesh.triangles.push([3 * t, 3 * t + 1, 3 * t + 2]);
+                mesh.materials.push(grey);
+            }
+            let id = scene.add_mesh(mesh);
+            scene.add_instance("a", id, Mat4::IDENTITY);
+            println!("{:.3}", best_of_3(|| drop(Accel::new(&scene))));
+        }
         Some("memory") => {
             println!("triangles,instances,peak_bytes,bytes_per_item,estimated_bytes");
             memory(args[1].parse().unwrap(), args[2].parse().unwrap());
         }
-        _ => eprintln!("usage: hostile_bench parts | coincident N... | memory TRIANGLES INSTANCES"),
+        _ => eprintln!(
+            "usage: hostile_bench parts | coincident N... | big | memory TRIANGLES INSTANCES"
+        ),
     }
 }
