@@ -1596,3 +1596,150 @@ mod help {
         assert!(text(&out.stderr).contains("Usage: invlight"));
     }
 }
+
+/// Issue 19, "Hostile and huge inputs" (the scene part): what printed NaN or inf with
+/// exit code 0, panicked or aborted is an input error (exit code 2) naming the file,
+/// and a scene at the edge of the accepted range measures to finite numbers. The
+/// reproducers are tests/data/hostile, written by make.py there.
+mod r19 {
+    use super::*;
+
+    fn hostile(name: &str) -> PathBuf {
+        data("hostile").join(name)
+    }
+
+    fn run<'a>(command: &'a str, file: &'a Path, extra: &[&'a str]) -> Vec<&'a OsStr> {
+        let mut args: Vec<&OsStr> = vec![command.as_ref(), file.as_os_str()];
+        args.extend(extra.iter().map(|a| OsStr::new(*a)));
+        args
+    }
+
+    /// Item 2: a 3e38 cd lamp (`measure` printed NaN, "inf lm emitted"), an OBJ `Ke 1e38`,
+    /// and `--scale` 1e15…1e30 (area inf, then a BVH panic) in measure, map and render.
+    #[test]
+    fn r19_overflows_are_input_errors() {
+        let lamp = hostile("lamp_floor.gltf");
+        let p = ["--photons", "2000"];
+        for (file, extra, mentions) in [
+            (
+                hostile("light_3e38cd.gltf"),
+                vec![],
+                vec!["light 'Lamp'", "luminous flux"],
+            ),
+            (
+                hostile("ke_1e38.obj"),
+                vec![],
+                vec!["material 'Glow'", "luminous flux"],
+            ),
+            (
+                lamp.clone(),
+                vec!["--scale", "1e15"],
+                vec!["surface 'Floor'", "--scale"],
+            ),
+            (
+                lamp.clone(),
+                vec!["--scale", "3e18"],
+                vec!["surface 'Floor'", "--scale"],
+            ),
+            (
+                lamp.clone(),
+                vec!["--scale", "1e30"],
+                vec!["surface 'Floor'", "--scale"],
+            ),
+            (hostile("huge_triangle.obj"), vec![], vec!["1e20"]),
+        ] {
+            let shown = file.to_str().unwrap();
+            let mut args = vec!["--surface", "Floor"];
+            args.extend(&extra);
+            args.extend(p);
+            let mut m = mentions.clone();
+            m.push(shown);
+            input_error(run("measure", &file, &args), &m);
+            input_error(run("map", &file, &args), &m);
+        }
+    }
+
+    /// The largest accepted emitter (just under 1e20 lm) over the largest accepted floor
+    /// gives finite numbers everywhere in `measure --json` and in `map`'s CSV.
+    #[test]
+    fn r19_edge_of_range_is_finite() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("edge.obj");
+        // A 1 m² emissive triangle facing down 1 m above a floor 2e9 m wide: π·L·A
+        // = 0.99e20 lm.
+        let luminance = 0.99e20 / std::f64::consts::PI;
+        std::fs::write(
+            &file,
+            "mtllib edge.mtl\no Floor\nv -1e9 0 -1e9\nv 1e9 0 -1e9\nv 1e9 0 1e9\nv -1e9 0 1e9\n\
+             usemtl Grey\nf 1 3 2\nf 1 4 3\no Lamp\nv 0 1 0\nv 1 1 0\nv 0 1 2\n\
+             usemtl Glow\nf 5 6 7\n",
+        )
+        .unwrap();
+        std::fs::write(
+            dir.path().join("edge.mtl"),
+            format!("newmtl Grey\nKd 0.5 0.5 0.5\nnewmtl Glow\nKd 0 0 0\nKe {luminance:e} {luminance:e} {luminance:e}\n"),
+        )
+        .unwrap();
+        let out = invlight(run(
+            "measure",
+            &file,
+            &["--surface", "Floor", "--photons", "20000", "--json"],
+        ));
+        let stdout = text(&out.stdout);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        for bad in ["NaN", "nan", "inf", "null"] {
+            assert!(!stdout.contains(bad), "{bad} in {stdout}");
+        }
+        let prefix = dir.path().join("map");
+        let out = invlight(run(
+            "map",
+            &file,
+            &[
+                "--surface",
+                "Floor",
+                "--photons",
+                "20000",
+                "--grid",
+                "1e8",
+                "--output",
+                prefix.to_str().unwrap(),
+            ],
+        ));
+        let csv = prefix.with_extension("csv");
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let table = std::fs::read_to_string(&csv).unwrap();
+        for bad in ["NaN", "nan", "inf"] {
+            assert!(!table.contains(bad), "{bad} in the CSV");
+        }
+    }
+
+    /// Items 4 and 5: the memory limit and the folder rule, from the command line.
+    #[test]
+    fn r19_memory_and_paths() {
+        let tiles = hostile("instanced_200.gltf");
+        input_error(
+            run("scene", &tiles, &["--max-memory", "100K"]),
+            &[tiles.to_str().unwrap(), "--max-memory"],
+        );
+        input_error(
+            run("scene", &tiles, &["--max-memory", "100M"]),
+            &["ray-tracing structure", "--max-memory"],
+        );
+        assert!(
+            invlight(run("scene", &tiles, &["--max-memory", "1G"]))
+                .status
+                .success()
+        );
+        let zero = hostile("buffer_dev_zero.gltf");
+        input_error(
+            run("scene", &zero, &[]),
+            &["/dev/zero", "--allow-outside-paths"],
+        );
+        input_error(
+            run("scene", &zero, &["--allow-outside-paths"]),
+            &["/dev/zero", "not a regular file"],
+        );
+        let bad = invlight(run("scene", &tiles, &["--max-memory", "lots"]));
+        assert_eq!(bad.status.code(), Some(2));
+    }
+}

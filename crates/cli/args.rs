@@ -10,7 +10,8 @@ use invlight_ilp::{MemberRef, Problem};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photons_traced};
 use invlight_scene::{LoadOptions, Scene, UpAxis};
 use invlight_stats::Confidence;
-use std::path::PathBuf;
+use invlight_trace::Accel;
+use std::path::{Path, PathBuf};
 
 /// How to read a scene file.
 #[derive(Args, Debug, Clone, Default)]
@@ -25,6 +26,18 @@ pub struct LoadArgs {
     /// orients sun directions and default views.
     #[arg(long, value_enum, value_name = "AXIS")]
     pub up: Option<Up>,
+    /// Memory the scene may take, loading and tracing: 8G, 512M, 64K or bytes (powers of
+    /// 1024). A file whose declared sizes (buffers, vertex counts, texture pixels), or
+    /// whose ray-tracing structure, would need more is refused with the figure before
+    /// anything is allocated. Default: half of this machine's memory.
+    #[arg(long, value_name = "SIZE", value_parser = invlight_scene::parse_memory_size)]
+    pub max_memory: Option<u64>,
+    /// Let the scene file read files anywhere: absolute paths, `..` out of its folder,
+    /// links that lead out. Without it only files in the scene's folder tree are read,
+    /// as a scene file may come from anyone; use it for files you trust. Devices and
+    /// pipes are never read.
+    #[arg(long)]
+    pub allow_outside_paths: bool,
 }
 
 /// An up axis on the command line.
@@ -70,15 +83,25 @@ impl LoadArgs {
 
     /// The loader's options.
     pub fn options(&self) -> LoadOptions {
+        let defaults = LoadOptions::default();
         LoadOptions {
             scale: self.scale.unwrap_or(1.0),
             up: self.up(),
+            max_memory: self.max_memory.unwrap_or(defaults.max_memory),
+            allow_outside_paths: self.allow_outside_paths,
         }
+    }
+
+    /// Refuses a scene whose ray-tracing structure would not fit the memory limit.
+    fn fits(&self, scene: Scene, path: &Path) -> anyhow::Result<Scene> {
+        Accel::check_memory(&scene, path, self.options().max_memory)?;
+        Ok(scene)
     }
 
     /// Loads a problem file's scene, these options overriding its `<scene>`'s.
     pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
-        Ok(problem.load_scene(&self.options(), self.scale, self.up())?)
+        let scene = problem.load_scene(&self.options(), self.scale, self.up())?;
+        self.fits(scene, &problem.scene.path)
     }
 }
 
@@ -110,7 +133,8 @@ impl SceneArgs {
                 ))
                 .into());
             }
-            return Ok(invlight_scene::load(&self.scene, &self.load.options())?);
+            let scene = invlight_scene::load(&self.scene, &self.load.options())?;
+            return self.load.fits(scene, &self.scene);
         }
         let problem = Problem::read(&self.scene)?;
         let mut scene = self.load.load_problem(&problem)?;

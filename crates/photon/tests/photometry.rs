@@ -55,10 +55,8 @@ fn luminaire(photometry: Photometry, position: Vec3, frame: Mat3) -> Light {
 
 /// A scene of black rectangles at z = 0, named, and `light`.
 fn black_patches(patches: &[(&str, [f32; 4])], light: Light) -> Scene {
-    let mut scene = Scene {
-        up: Vec3::Z,
-        ..Scene::default()
-    };
+    let mut scene = Scene::default();
+    scene.up = Vec3::Z;
     let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
     for &(name, [x0, x1, y0, y1]) in patches {
         let m = scene.add_mesh(rect(x0, x1, y0, y1, 0.0, black));

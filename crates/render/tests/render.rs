@@ -43,10 +43,8 @@ fn settings(width: u32, height: u32) -> RenderSettings {
 /// spot, a sun and a goniometric light whose table depends on C and γ, aimed 20° off
 /// the vertical.
 fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
-    let mut scene = Scene {
-        up: Vec3::Z,
-        ..Scene::default()
-    };
+    let mut scene = Scene::default();
+    scene.up = Vec3::Z;
     let m = scene.add_material(Material::diffuse("grey", Vec3::splat(kd)));
     let quad = scene.add_mesh(Mesh::quad(
         [

@@ -25,9 +25,10 @@ mod light;
 mod xml;
 
 use crate::error::LoadError;
+use crate::files::Files;
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::model::{MaterialId, MeshId, Placement, Scene};
+use crate::model::{MaterialId, MeshId, Placement, Scene, push_distinct};
 use geometry::Geometry;
 use glam::{Mat4, Quat, Vec3};
 use roxmltree::Node;
@@ -39,17 +40,18 @@ use xml::{Ctx, child, children};
 const MAX_DEPTH: usize = 256;
 
 /// Reads a COLLADA file.
-pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
+pub(crate) fn load(path: &Path, files: &Files) -> Result<Scene, LoadError> {
+    let bytes = files.read_scene(path)?;
+    // The document tree takes a few times the text: charged once more.
+    files.charge(path, "", 2 * bytes.len() as u64, "the XML document tree")?;
     // Some exporters write Latin-1 names; read them with replacement characters rather
     // than refuse the file.
-    parse(path, &String::from_utf8_lossy(&bytes))
+    parse(path, &String::from_utf8_lossy(&bytes), files)
 }
 
 /// Reads the text of a COLLADA file; `path` names it in errors and anchors the image
 /// files it references.
-fn parse(path: &Path, text: &str) -> Result<Scene, LoadError> {
+fn parse(path: &Path, text: &str, files: &Files) -> Result<Scene, LoadError> {
     let options = roxmltree::ParsingOptions {
         allow_dtd: true,
         ..Default::default()
@@ -77,7 +79,7 @@ fn parse(path: &Path, text: &str) -> Result<Scene, LoadError> {
             ),
         ));
     }
-    let ctx = Ctx::new(path, &doc);
+    let ctx = Ctx::new(path, &doc, files);
     let mut builder = Builder {
         ctx: &ctx,
         scene: Scene::default(),
@@ -315,12 +317,10 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         let g = &self.geometries[id];
         if let Some(p) = placement {
             let vertices = &mut self.scene.placements[p].vertices;
-            for v in &g.outline {
-                let w = world.transform_point3(*v);
-                if !vertices.contains(&w) {
-                    vertices.push(w);
-                }
-            }
+            push_distinct(
+                vertices,
+                g.outline.iter().map(|v| world.transform_point3(*v)),
+            );
             return Ok(());
         }
         if g.triangles.is_empty() {
@@ -429,7 +429,8 @@ mod tests {
             let original = bytes[i];
             bytes[i] = edits[k % edits.len()];
             let edited = String::from_utf8_lossy(&bytes);
-            errors += usize::from(parse(&path, &edited).is_err());
+            let files = Files::new(&path, &crate::load::LoadOptions::default());
+            errors += usize::from(parse(&path, &edited, &files).is_err());
             bytes[i] = original;
         }
         assert!(errors > 0);

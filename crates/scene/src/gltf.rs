@@ -24,6 +24,7 @@ mod mesh;
 mod nodes;
 
 use crate::error::LoadError;
+use crate::files::Files;
 use crate::model::{MaterialId, MeshId, Scene};
 use gltf_json as json;
 use std::borrow::Cow;
@@ -45,15 +46,14 @@ const SUPPORTED_REQUIRED: &[&str] = &[
 ];
 
 /// Reads a glTF 2.0 scene (`.gltf` or `.glb`; the container is told by its magic bytes).
-pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
-    from_bytes(path, &bytes)
+pub(crate) fn load(path: &Path, files: &Files) -> Result<Scene, LoadError> {
+    let bytes = files.read_scene(path)?;
+    from_bytes(path, &bytes, files)
 }
 
 /// Builds the scene from the file's bytes; `path` names it in errors and locates its
 /// external files.
-fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
+fn from_bytes(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
     let (json_bytes, bin) = if bytes.starts_with(glb::MAGIC) {
         let g = glb::split(path, bytes)?;
         (g.json, g.bin)
@@ -61,9 +61,10 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
         (bytes, None)
     };
     let root = parse(path, json_bytes)?;
-    let buffers = buffers::load_buffers(path, &root, bin)?;
+    let buffers = buffers::load_buffers(path, &root, bin, files)?;
     let mut builder = Builder {
         path,
+        files,
         root: &root,
         buffers,
         scene: Scene::default(),
@@ -130,6 +131,8 @@ fn parse(path: &Path, bytes: &[u8]) -> Result<json::Root, LoadError> {
 struct Builder<'a> {
     /// The file, for errors.
     path: &'a Path,
+    /// Its folder tree and the memory budget.
+    files: &'a Files,
     /// The parsed document.
     root: &'a json::Root,
     /// `buffers[i]`'s bytes.
@@ -158,7 +161,12 @@ impl Builder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::load::LoadOptions;
     use serde_json::Value;
+
+    fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
+        super::from_bytes(path, bytes, &Files::new(path, &LoadOptions::default()))
+    }
 
     const GLB: &[u8] = include_bytes!("../../../tests/data/gltf/hierarchy.glb");
     const GLTF: &str = include_str!("../../../tests/data/gltf/hierarchy.gltf");

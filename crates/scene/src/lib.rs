@@ -37,6 +37,7 @@ mod atomic;
 mod collada;
 pub mod daylight;
 mod error;
+mod files;
 mod gltf;
 mod image_file;
 mod light;
@@ -48,10 +49,12 @@ mod model;
 mod obj;
 mod photometry;
 mod summary;
+mod validate;
 mod world;
 
 pub use atomic::write_atomically;
 pub use error::{Diagnostic, LoadError, PhotometryError};
+pub use files::parse_memory_size;
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
 pub use load::{LoadOptions, UpAxis, load};
@@ -67,4 +70,5 @@ pub use photometry::{
     parse_ldt, read_photometry,
 };
 pub use summary::{CameraSummary, LightSummary, SceneSummary, SurfaceSummary};
+pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};
 pub use world::WorldTriangle;

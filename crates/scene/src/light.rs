@@ -184,7 +184,7 @@ impl LightKind {
     /// has no flux of its own; it is `illuminance × area` of whatever it falls on, so this
     /// returns its illuminance.
     ///
-    /// Spot: ∫ I·f(θ) dω = 2π·I·(1 − cos outer) for the flat part and the falloff ring
+    /// Spot: ∫ I·f(θ) dω = 2π·I·(1 − cos inner) for the flat part and the falloff ring
     /// integrated in closed form: with c = cos θ, t = (c − c_o)/(c_i − c_o),
     /// ∫_{c_o}^{c_i} t² dc = (c_i − c_o)/3.
     pub fn flux(&self) -> Rgb {
@@ -196,8 +196,13 @@ impl LightKind {
                 outer,
                 ..
             } => {
-                let (ci, co) = (inner.cos(), outer.cos().min(inner.cos()));
-                *intensity * (2.0 * PI * ((1.0 - ci) + (ci - co) / 3.0))
+                // 1 − cos θ as 2 sin²(θ/2): in f32, 1 − cos θ is 0 below θ ≈ 3e-4 rad,
+                // which gave a narrow spot no flux at all. The ring has the same trouble
+                // (c_i − c_o = 2 sin((θ_o+θ_i)/2) sin((θ_o−θ_i)/2)).
+                let flat = 2.0 * (inner * 0.5).sin().powi(2);
+                let outer = outer.max(*inner);
+                let ring = 2.0 * ((outer + inner) * 0.5).sin() * ((outer - inner) * 0.5).sin();
+                *intensity * (2.0 * PI * (flat + ring / 3.0))
             }
             LightKind::Directional { illuminance, .. } => *illuminance,
             LightKind::Goniometric {
@@ -229,6 +234,25 @@ pub struct Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A spot of a 1e-4 rad cone keeps its flux I·π·θ² (in f32, 1 − cos θ is 0 there).
+    #[test]
+    fn narrow_spot_keeps_its_flux() {
+        let theta = 1e-4f32;
+        let kind = LightKind::Spot {
+            position: Vec3::ZERO,
+            direction: Vec3::Z,
+            intensity: Vec3::ONE,
+            inner: theta,
+            outer: theta,
+        };
+        let expected = PI * theta * theta;
+        assert!(
+            (kind.flux().x - expected).abs() < 1e-4 * expected,
+            "{}",
+            kind.flux().x
+        );
+    }
 
     #[test]
     fn spot_flux_matches_numeric_integral() {

@@ -1,7 +1,7 @@
 //! Loading a scene file: the format is chosen by extension, then the units are applied.
 
 use crate::error::LoadError;
-use crate::light::LightKind;
+use crate::files::Files;
 use crate::model::Scene;
 use glam::{Mat4, Vec3};
 use std::path::Path;
@@ -25,13 +25,24 @@ impl UpAxis {
     }
 }
 
-/// How to read a file authored in other units or axes.
+/// How to read a file authored in other units or axes, and how far to trust it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LoadOptions {
     /// Metres per file unit, applied after the file's own unit (COLLADA `<unit meter>`).
     pub scale: f32,
     /// Up axis, overriding what the file says (glTF: Y; COLLADA: `<up_axis>`; OBJ: Y).
     pub up: Option<UpAxis>,
+    /// Bytes the load may allocate from the sizes the file declares (the file itself,
+    /// buffers, accessors, decoded textures); a file that asks for more is refused with
+    /// the figure before anything is allocated. Default: half of the machine's memory
+    /// (on Linux the smaller of `MemTotal` and the control group's `memory.max`; 4 GiB
+    /// where neither can be read).
+    pub max_memory: u64,
+    /// Lets the file reference files anywhere (absolute paths, `..` out of its folder,
+    /// links that lead out). Off by default: a scene file may come from anyone, and only
+    /// files in its own folder tree are read. Device files and pipes are refused either
+    /// way.
+    pub allow_outside_paths: bool,
 }
 
 impl Default for LoadOptions {
@@ -39,6 +50,8 @@ impl Default for LoadOptions {
         LoadOptions {
             scale: 1.0,
             up: None,
+            max_memory: crate::files::default_max_memory(),
+            allow_outside_paths: false,
         }
     }
 }
@@ -58,10 +71,11 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
         return Err(LoadError::new(path, "no such file")
             .with_hint("check the path; relative paths are taken from the current directory"));
     }
+    let files = Files::new(path, options);
     let mut scene = match ext.as_str() {
-        "gltf" | "glb" => crate::gltf::load(path)?,
-        "dae" => crate::collada::load(path)?,
-        "obj" => crate::obj::load(path)?,
+        "gltf" | "glb" => crate::gltf::load(path, &files)?,
+        "dae" => crate::collada::load(path, &files)?,
+        "obj" => crate::obj::load(path, &files)?,
         _ => {
             return Err(LoadError::new(
                 path,
@@ -70,46 +84,17 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
             .with_hint("invlight reads glTF 2.0 (.gltf, .glb), COLLADA (.dae) and Wavefront OBJ (.obj)"));
         }
     };
-    validate(&scene, path)?;
     if let Some(up) = options.up {
         scene.up = up.vector();
     }
     if options.scale != 1.0 {
         scale_scene(&mut scene, options.scale);
     }
+    // After the scale: `--scale 1e30` must not carry a valid file out of range.
+    scene
+        .validate()
+        .map_err(|e| LoadError::at(path, e.place(), e.to_string()).with_hint(e.hint()))?;
     Ok(scene)
-}
-
-/// Refuses light that no physical source gives: negative or non-finite intensities,
-/// illuminances and luminances (they would make the emission distribution of photon
-/// tracing meaningless), whatever format they came from.
-fn validate(scene: &Scene, path: &Path) -> Result<(), LoadError> {
-    let bad = |c: Vec3| !c.is_finite() || c.min_element() < 0.0;
-    for light in &scene.lights {
-        let strength = match light.kind {
-            LightKind::Point { intensity, .. } | LightKind::Spot { intensity, .. } => intensity,
-            LightKind::Directional { illuminance, .. } => illuminance,
-            LightKind::Goniometric { multiplier, .. } => multiplier,
-        };
-        if bad(strength) {
-            return Err(LoadError::at(
-                path,
-                format!("light '{}'", light.name),
-                format!("its strength {strength} is negative or not finite"),
-            )
-            .with_hint("light intensities (cd) and sun illuminances (lx) are ≥ 0"));
-        }
-    }
-    for m in &scene.materials {
-        if bad(m.emission) || bad(m.diffuse) || bad(m.specular) {
-            return Err(LoadError::at(
-                path,
-                format!("material '{}'", m.name),
-                "a colour or emission is negative or not finite",
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Scales the whole scene about the origin: positions and lengths by `s`; point, spot

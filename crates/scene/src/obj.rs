@@ -23,6 +23,7 @@ mod mtl;
 pub(crate) use mtl::energy_conserving;
 
 use crate::error::LoadError;
+use crate::files::{Files, ReadError};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::model::{MaterialId, Scene};
@@ -35,17 +36,19 @@ use std::path::Path;
 /// MTL file defines): the usual 80 % grey of modelling tools.
 const DEFAULT_REFLECTANCE: f32 = 0.8;
 
-/// Reads an OBJ file and the MTL libraries it names.
-pub(crate) fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, format!("cannot read the file: {e}")))?;
-    parse(path, &bytes)
+/// Reads an OBJ file and the MTL libraries it names. Its memory is bounded by the file's
+/// size (charged to the budget as it is read): every vertex, face and name it builds
+/// comes from a line of it.
+pub(crate) fn load(path: &Path, files: &Files) -> Result<Scene, LoadError> {
+    let bytes = files.read_scene(path)?;
+    parse(path, &bytes, files)
 }
 
 /// Reads the bytes of an OBJ file; `path` names it in errors and anchors its MTL files.
-fn parse(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
-    let mut parser = Parser::new(path);
+fn parse(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
+    let mut parser = Parser::new(path, files);
     for (number, line) in lines(bytes) {
+        parser.line = number;
         parser.statement(line).map_err(|fault| match fault {
             Fault::Here(message) => LoadError::at(path, format!("line {number}"), message),
             Fault::Library(e) => e,
@@ -152,6 +155,9 @@ struct Group {
 /// Parser state: the file's vertex pools, the current names and material, the groups.
 struct Parser<'p> {
     path: &'p Path,
+    files: &'p Files,
+    /// The number of the line being read.
+    line: usize,
     positions: Vec<Vec3>,
     uvs: Vec<Vec2>,
     object: Option<String>,
@@ -169,9 +175,11 @@ struct Parser<'p> {
 }
 
 impl<'p> Parser<'p> {
-    fn new(path: &'p Path) -> Self {
+    fn new(path: &'p Path, files: &'p Files) -> Self {
         Parser {
             path,
+            files,
+            line: 0,
             positions: Vec::new(),
             uvs: Vec::new(),
             object: None,
@@ -324,23 +332,29 @@ impl<'p> Parser<'p> {
         id
     }
 
-    /// Reads an MTL library beside the OBJ file; a missing one is only a warning, since
-    /// the geometry is still usable (its faces become grey).
+    /// Reads an MTL library beside the OBJ file; a missing or unreadable one is only a
+    /// warning, since the geometry is still usable (its faces become grey), but one
+    /// outside the scene's folder or past the memory budget is an error.
     fn read_library(&mut self, name: &str) -> Result<(), LoadError> {
-        let dir = self.path.parent().unwrap_or(Path::new(""));
-        let mtl_path = dir.join(name);
-        let bytes = match std::fs::read(&mtl_path) {
+        let loc = format!("line {}", self.line);
+        let mtl_path = self.files.resolve(self.path, &loc, name, Path::new(name))?;
+        let bytes = match self.files.read(self.path, &loc, &mtl_path, None) {
             Ok(bytes) => bytes,
+            Err(ReadError::Budget(e)) => return Err(e),
             Err(e) => {
+                let why = match e {
+                    ReadError::Io(m) => m,
+                    _ => "no such file".to_string(),
+                };
                 eprintln!(
-                    "warning: {}: cannot read the material library {}: {e}; its materials will be grey",
+                    "warning: {}: cannot read the material library {}: {why}; its materials will be grey",
                     self.path.display(),
                     mtl_path.display()
                 );
                 return Ok(());
             }
         };
-        let materials = mtl::parse(&bytes, &mtl_path, &mut self.scene.textures)?;
+        let materials = mtl::parse(&bytes, &mtl_path, &mut self.scene.textures, self.files)?;
         for material in materials {
             let name = material.name.clone();
             let id = self.scene.add_material(material);
@@ -422,6 +436,11 @@ fn resolve_index(token: &[u8], len: usize, what: &str) -> Result<u32, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::load::LoadOptions;
+
+    fn parse(path: &Path, bytes: &[u8]) -> Result<Scene, LoadError> {
+        super::parse(path, bytes, &Files::new(path, &LoadOptions::default()))
+    }
 
     #[test]
     fn indices_resolve_absolute_and_relative() {

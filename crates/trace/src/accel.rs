@@ -7,14 +7,18 @@ use crate::ray::{Hit, Interaction, Ray};
 use crate::triangle::{Tri, TriRay};
 use crate::wide::{self, NodeRay, NodeTest};
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec3A};
-use invlight_scene::{InstanceId, MaterialId, Mesh, Scene};
+use invlight_scene::{InstanceId, MAX_COORDINATE, MaterialId, Mesh, Scene};
 use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::node::Bvh2Node;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, bvh2_to_cwbvh::bvh2_to_cwbvh};
 use obvhs::ploc::PlocBuilder;
 use obvhs::triangle::Triangle;
 use obvhs::{Boundable, BvhBuildParams};
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 use std::time::Instant;
 
 /// Counts and timings of a build, for logs and benchmarks.
@@ -124,17 +128,185 @@ fn build_params() -> BvhBuildParams {
 /// obvhs's `build_cwbvh` (PLOC, reinsertion, conversion to 8-wide) without the validation
 /// it runs in debug builds, which asserts a depth below 32 levels: the conference room's
 /// tree reaches that (our traversal stack holds 64), and validating is slow.
+///
+/// Primitives sharing one bounding box, when [`COINCIDENT_GROUP`] or more do, are built
+/// apart ([`coincident_groups`]): PLOC pairs a node with its cheapest neighbour, and
+/// among equal boxes every candidate costs the same, so each node picks the farthest
+/// one in its search window and almost no two agree: a pass merged about one pair per
+/// run of equal boxes, and 30 000 copies of one triangle took 38 s to build (2 000 took
+/// 0.28 s; BENCHMARKS.md, "Hostile inputs"). PLOC now sees one box per such group, and
+/// each group's leaf is replaced by a balanced tree over its members
+/// ([`expand_groups`]). A scene without such groups is built exactly as before.
 fn build_cwbvh<T: Boundable>(prims: &[T]) -> CwBvh {
     let p = build_params();
-    let mut bvh2 = PlocBuilder::with_capacity(prims.len()).build(
-        p.ploc_search_distance,
-        prims,
-        (0..prims.len() as u32).collect(),
-        p.sort_precision,
-        p.search_depth_threshold,
-    );
+    let ploc = |boxes: &[Aabb]| {
+        PlocBuilder::with_capacity(boxes.len()).build(
+            p.ploc_search_distance,
+            boxes,
+            (0..boxes.len() as u32).collect(),
+            p.sort_precision,
+            p.search_depth_threshold,
+        )
+    };
+    let boxes: Vec<Aabb> = prims.iter().map(|t| t.aabb()).collect();
+    let mut bvh2 = match coincident_groups(&boxes) {
+        None => ploc(&boxes),
+        Some(groups) => {
+            let firsts: Vec<Aabb> = groups.iter().map(|g| boxes[g[0] as usize]).collect();
+            expand_groups(&ploc(&firsts), &groups)
+        }
+    };
     ReinsertionOptimizer::default().run(&mut bvh2, p.reinsertion_batch_ratio, None);
     bvh2_to_cwbvh(&bvh2, p.max_prims_per_leaf.clamp(1, 3), true, false)
+}
+
+/// How many primitives must share a bounding box before they are built as a group:
+/// PLOC's cost grows with the length of the longest run of equal boxes (about one
+/// merge per run and pass), so runs this short cost a few passes at most, and the two
+/// triangles of an axis-aligned quad, which always share their box, are left alone.
+const COINCIDENT_GROUP: usize = 32;
+
+/// FxHash (rustc-hash's multiply-rotate) over a box's bit patterns: the keys need no
+/// defence against collisions chosen by an attacker, and are hashed once per box of
+/// every build.
+#[derive(Default)]
+struct BoxHasher(u64);
+
+impl Hasher for BoxHasher {
+    fn finish(&self) -> u64 {
+        self.0.rotate_left(26)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for word in bytes.chunks(8) {
+            let mut w = [0u8; 8];
+            w[..word.len()].copy_from_slice(word);
+            self.write_u64(u64::from_le_bytes(w));
+        }
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// A map keyed by a box's six coordinates as bits.
+type BoxMap<V> = HashMap<[u32; 6], V, BuildHasherDefault<BoxHasher>>;
+
+/// The primitives grouped by bounding box (bit for bit), each group in input order and
+/// the groups in the order of their first member; `None` when no box is shared by
+/// [`COINCIDENT_GROUP`] primitives. Groups shorter than that are split back into single
+/// primitives, so that only the large groups change the build.
+fn coincident_groups(boxes: &[Aabb]) -> Option<Vec<Vec<u32>>> {
+    let key = |b: &Aabb| {
+        let (lo, hi) = (b.min.to_array(), b.max.to_array());
+        [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]].map(f32::to_bits)
+    };
+    // 1. A filter, one cheap pass in the usual case: saturating counters indexed by the
+    //    boxes' hash, as many as there are boxes, in a byte each. Equal boxes share a
+    //    counter, so if none reaches COINCIDENT_GROUP no box does. Counting exactly in
+    //    a map from the start cost a quarter of a second per million triangles.
+    let bits = boxes.len().next_power_of_two().trailing_zeros().max(4);
+    let mut counters = vec![0u8; 1 << bits];
+    let mut suspect = false;
+    for b in boxes {
+        let mut h = BoxHasher::default();
+        key(b).hash(&mut h);
+        let slot = (h.finish().wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize;
+        counters[slot] = counters[slot].saturating_add(1);
+        suspect |= counters[slot] as usize >= COINCIDENT_GROUP;
+    }
+    if !suspect {
+        return None;
+    }
+    // 2. Exact counts, then the groups.
+    let mut count: BoxMap<u32> = BoxMap::with_capacity_and_hasher(boxes.len(), Default::default());
+    for b in boxes {
+        *count.entry(key(b)).or_insert(0) += 1;
+    }
+    if count.values().all(|&c| (c as usize) < COINCIDENT_GROUP) {
+        return None;
+    }
+    let mut slot: BoxMap<usize> = BoxMap::default();
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (i, b) in boxes.iter().enumerate() {
+        let k = key(b);
+        if (count[&k] as usize) < COINCIDENT_GROUP {
+            groups.push(vec![i as u32]);
+            continue;
+        }
+        let g = *slot.entry(k).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(i as u32);
+    }
+    Some(groups)
+}
+
+/// The BVH2 of `tree` (built over one box per group) with each group's leaf replaced
+/// by a balanced binary tree over the group's primitives, all of the group's box.
+/// Nodes are laid out breadth first, children in adjacent slots after their parent, as
+/// obvhs's own builders leave them.
+fn expand_groups(tree: &Bvh2, groups: &[Vec<u32>]) -> Bvh2 {
+    let total: usize = groups.iter().map(Vec::len).sum();
+    let mut nodes = Vec::with_capacity(2 * total);
+    let mut indices = Vec::with_capacity(total);
+    /// What a new node stands for: a node of `tree`, or a slice of a group's members.
+    enum Part<'g> {
+        Tree(usize),
+        Members(&'g [u32], Aabb),
+    }
+    let mut queue = std::collections::VecDeque::new();
+    nodes.push(Bvh2Node::default());
+    queue.push_back((0usize, Part::Tree(0), 1usize));
+    let mut depth = 0usize;
+    while let Some((at, part, level)) = queue.pop_front() {
+        depth = depth.max(level);
+        let (aabb, children) = match part {
+            Part::Tree(i) => {
+                let node = tree.nodes[i];
+                if node.is_leaf() {
+                    let group = &groups[tree.primitive_indices[node.first_index as usize] as usize];
+                    (*node.aabb(), ChildPair::Members(group))
+                } else {
+                    let c = node.first_index as usize;
+                    (*node.aabb(), ChildPair::Tree(c, c + 1))
+                }
+            }
+            Part::Members(m, aabb) => (aabb, ChildPair::Members(m)),
+        };
+        let split = match children {
+            ChildPair::Members(&[one]) => {
+                nodes[at] = Bvh2Node::new(aabb, 1, indices.len() as u32);
+                indices.push(one);
+                continue;
+            }
+            ChildPair::Members(m) => {
+                let (a, b) = m.split_at(m.len() / 2);
+                (Part::Members(a, aabb), Part::Members(b, aabb))
+            }
+            ChildPair::Tree(a, b) => (Part::Tree(a), Part::Tree(b)),
+        };
+        let first = nodes.len();
+        nodes[at] = Bvh2Node::new(aabb, 0, first as u32);
+        nodes.push(Bvh2Node::default());
+        nodes.push(Bvh2Node::default());
+        queue.push_back((first, split.0, level + 1));
+        queue.push_back((first + 1, split.1, level + 1));
+    }
+    Bvh2 {
+        nodes,
+        primitive_indices: indices,
+        children_are_ordered_after_parents: true,
+        max_depth: tree.max_depth.max(depth),
+        ..Bvh2::default()
+    }
+}
+
+/// The children an expanded node gets: two nodes of the PLOC tree, or the members of a
+/// group still to be split (a single member makes a leaf).
+enum ChildPair<'g> {
+    Tree(usize, usize),
+    Members(&'g [u32]),
 }
 
 impl Accel {
@@ -153,8 +325,71 @@ impl Accel {
     /// BENCHMARKS.md, "Ray casting"). [`Accel::update_instances`] still rebuilds only the top
     /// level while just the movable instances move; if a baked instance's transform
     /// changed, it rebuilds everything, correct but slow.
+    ///
+    /// Baking copies each static instance's triangles: when that would multiply them
+    /// past [`MAX_BAKED_TRIANGLES`] (many nodes placing the same meshes), every instance
+    /// stays instanced instead, as with [`Accel::new`], so that the scene fits in memory.
     pub fn with_movable(scene: &Scene, movable: &[InstanceId]) -> Accel {
         Accel::build(scene, Some(movable.to_vec()))
+    }
+
+    /// Refuses, with the figure, a scene whose build would take more than `limit` bytes
+    /// ([`Accel::estimated_bytes`]): `path` names the scene file in the message.
+    pub fn check_memory(
+        scene: &Scene,
+        path: &std::path::Path,
+        limit: u64,
+    ) -> Result<(), invlight_scene::Diagnostic> {
+        let need = Accel::estimated_bytes(scene);
+        if need <= limit {
+            return Ok(());
+        }
+        Err(invlight_scene::Diagnostic::new(
+            path,
+            format!(
+                "tracing the scene would need {:.1} GB for its ray-tracing structure, past the {:.1} GB limit",
+                need as f64 / 1e9,
+                limit as f64 / 1e9
+            ),
+        )
+        .with_hint(format!(
+            "raise --max-memory (e.g. --max-memory {}G) if the machine has the memory",
+            need.div_ceil(1 << 30) + 1
+        )))
+    }
+
+    /// An upper bound of the bytes building an [`Accel`] of `scene` takes at its peak,
+    /// by [`Accel::new`] or [`Accel::with_movable`] with any instances movable: the larger
+    /// of the mesh triangles and the triangles baking would flatten (when it bakes) at
+    /// [`BUILD_BYTES_PER_TRIANGLE`], the instances at [`BYTES_PER_INSTANCE`], and the
+    /// copies of the meshes' vertices and triangles interactions read. A program can
+    /// compare it with the memory it may use before building ([`Accel::check_memory`]).
+    pub fn estimated_bytes(scene: &Scene) -> u64 {
+        let unique: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
+        let all_static = vec![false; scene.instances.len()];
+        let baked: u64 = if bakes(scene, &all_static) {
+            scene
+                .instances
+                .iter()
+                .filter_map(|i| scene.meshes.get(i.mesh as usize))
+                .map(|m| m.triangles.len() as u64)
+                .sum()
+        } else {
+            0
+        };
+        let attrs: u64 = scene
+            .meshes
+            .iter()
+            .map(|m| {
+                (m.positions.len() * size_of::<Vec3>()
+                    + m.uvs.len() * size_of::<Vec2>()
+                    + m.triangles.len() * (size_of::<[u32; 3]>() + size_of::<MaterialId>()))
+                    as u64
+            })
+            .sum();
+        unique.max(baked) * BUILD_BYTES_PER_TRIANGLE
+            + scene.instances.len() as u64 * BYTES_PER_INSTANCE
+            + attrs
     }
 
     /// Builds the bottom level (a BVH per mesh used by a separate instance, plus the
@@ -172,7 +407,7 @@ impl Accel {
                         *s = true;
                     }
                 }
-                v
+                if bakes(scene, &v) { v } else { vec![true; n] }
             }
         };
         let mut needed = vec![false; scene.meshes.len()];
@@ -210,8 +445,11 @@ impl Accel {
                 }
                 baked[id] = Some(inst.transform);
                 for (v, t) in local {
-                    tris.push((v.map(|p| inst.transform.transform_point3(p)), t));
-                    owners.push(id as InstanceId);
+                    let w = v.map(|p| inst.transform.transform_point3(p));
+                    if w.iter().all(|&p| traceable(p)) {
+                        tris.push((w, t));
+                        owners.push(id as InstanceId);
+                    }
                 }
             }
             blas.push(build_blas(tris, owners));
@@ -313,8 +551,11 @@ impl Accel {
             };
             if let Some((lo, hi)) = blas.bounds
                 && invertible(p)
+                && let b = world_box(lo, hi, &p.world_from_object)
+                && traceable(b.min.into())
+                && traceable(b.max.into())
             {
-                boxes.push(world_box(lo, hi, &p.world_from_object));
+                boxes.push(b);
                 candidates.push(TlasItem {
                     object_from_world: p.object_from_world,
                     identity: p.world_from_object == Affine3A::IDENTITY,
@@ -617,6 +858,56 @@ fn avx2_available() -> bool {
     false
 }
 
+/// Whether a position lies where the BVH builder can take it: finite and within the
+/// range [`Scene::validate`] accepts. obvhs indexes out of bounds on boxes whose areas
+/// overflow (issue 19: a triangle 1e20 m wide, a node translated by 3e38 m), so what a
+/// scene that skipped validation holds beyond it is not traced rather than built.
+fn traceable(p: Vec3) -> bool {
+    p.is_finite() && p.abs().max_element() <= MAX_COORDINATE
+}
+
+/// Peak bytes per bottom-level triangle while [`Accel`] builds: PLOC's nodes, Morton
+/// codes and the input boxes, the reinsertion pass and the 8-wide tree, our triangle
+/// copies in leaf order. Measured: 1 M triangles in one mesh peaked at 355 bytes each
+/// (`hostile_bench memory 1000000 1`, VmHWM); rounded up.
+pub const BUILD_BYTES_PER_TRIANGLE: u64 = 400;
+
+/// Bytes per instance: its transforms, its top-level entry and box, and the top level's
+/// share of PLOC. Measured: 200 000 instances of a 10-triangle mesh built by
+/// [`Accel::new`] peaked at 622 bytes each (`hostile_bench memory 10 200000`); rounded
+/// up.
+pub const BYTES_PER_INSTANCE: u64 = 700;
+
+/// Most triangles [`Accel::with_movable`] bakes into its world-space tree when baking
+/// multiplies them (static instances sharing meshes): 2²² triangles, about
+/// [`BUILD_BYTES_PER_TRIANGLE`] × 4.2 M ≈ 1 GB while it is built. Past that, and past
+/// twice the triangles of the meshes themselves, the instances stay instanced: 50 000
+/// nodes placing one 2 108-triangle mesh are 105 M triangles baked (which aborted on
+/// an allocation, issue 19) but 2 108 triangles and 50 000 top-level entries instanced.
+const MAX_BAKED_TRIANGLES: usize = 1 << 22;
+
+/// Whether [`Accel::with_movable`] bakes the instances not marked `separate`: when the
+/// flattened triangles stay within [`MAX_BAKED_TRIANGLES`] or within twice those of the
+/// meshes they place (a scene whose meshes are placed once costs nothing to bake).
+fn bakes(scene: &Scene, separate: &[bool]) -> bool {
+    let mut flattened = 0usize;
+    let mut used = vec![false; scene.meshes.len()];
+    for (inst, _) in scene.instances.iter().zip(separate).filter(|(_, s)| !**s) {
+        if let Some(mesh) = scene.meshes.get(inst.mesh as usize) {
+            flattened += mesh.triangles.len();
+            used[inst.mesh as usize] = true;
+        }
+    }
+    let unique: usize = scene
+        .meshes
+        .iter()
+        .zip(&used)
+        .filter(|(_, u)| **u)
+        .map(|(m, _)| m.triangles.len())
+        .sum();
+    flattened <= MAX_BAKED_TRIANGLES.max(2 * unique)
+}
+
 /// World bounds of the object box `lo..hi` under `m`, from its eight corners.
 fn world_box(lo: Vec3, hi: Vec3, m: &Affine3A) -> Aabb {
     let mut b = Aabb::empty();
@@ -635,7 +926,8 @@ fn world_box(lo: Vec3, hi: Vec3, m: &Affine3A) -> Aabb {
 type Corners = ([Vec3; 3], u32);
 
 /// A mesh's traced (non-hole) triangles, and the bounds of its hole triangles; triangles
-/// with out-of-range vertex indices are left out.
+/// with out-of-range vertex indices or positions beyond [`MAX_COORDINATE`] are left
+/// out.
 fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<(Vec3, Vec3)>) {
     let is_hole = |t: usize| {
         let m = mesh.materials.get(t).copied().unwrap_or(u32::MAX) as usize;
@@ -652,7 +944,9 @@ fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<
     let mut tris = Vec::new();
     let mut hole_bounds: Option<(Vec3, Vec3)> = None;
     for t in 0..mesh.triangles.len() {
-        let Some(v) = corners(t) else { continue };
+        let Some(v) = corners(t).filter(|v| v.iter().all(|&p| traceable(p))) else {
+            continue;
+        };
         if is_hole(t) {
             let (lo, hi) = hole_bounds.unwrap_or((v[0], v[0]));
             hole_bounds = Some((

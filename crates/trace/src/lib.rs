@@ -44,6 +44,6 @@ mod ray;
 mod triangle;
 mod wide;
 
-pub use accel::{Accel, AccelStats};
+pub use accel::{Accel, AccelStats, BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
 pub use holes::HOLE_THICKNESS;
 pub use ray::{Hit, Interaction, OFFSET_SCALE, Ray, SHADOW_EPSILON, offset_point};

@@ -8,10 +8,8 @@ use std::path::Path;
 /// A 4 m × 3 m floor (z = 0, up = +Z), a box "Chair" with its corner at the origin,
 /// a lamp, a sun, a window object, a placement rectangle on the floor.
 fn scene() -> Scene {
-    let mut s = Scene {
-        up: Vec3::Z,
-        ..Scene::default()
-    };
+    let mut s = Scene::default();
+    s.up = Vec3::Z;
     let grey = s.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
     let paint = s.add_material(Material::diffuse("Paint", Vec3::new(0.2, 0.4, 0.6)));
     let floor = s.add_mesh(Mesh::quad(

@@ -28,7 +28,7 @@
 
 use super::xml::{Ctx, child, children, path};
 use crate::error::LoadError;
-use crate::image_file::read_texture;
+use crate::image_file::{TextureError, read_texture};
 use crate::light::luminance;
 use crate::material::{Material, Texture};
 use crate::obj::energy_conserving;
@@ -43,10 +43,11 @@ pub(super) const DEFAULT_REFLECTANCE: f32 = 0.8;
 /// Decoded texture images by file, `None` for those that failed (warned once).
 pub(super) type TextureCache = HashMap<PathBuf, Option<u32>>;
 
-/// A `<color>`, or a `<texture>` resolved to an image file.
+/// A `<color>`, or a `<texture>` resolved to an image file (with the location of the
+/// `<init_from>` naming it).
 enum Value {
     Color(Vec4),
-    Image(PathBuf),
+    Image(PathBuf, String),
 }
 
 /// Reads a `<material>`.
@@ -109,8 +110,8 @@ pub(super) fn read(
     let mut m = Material::diffuse(name, Vec3::ZERO);
     match value("diffuse")? {
         Some(Value::Color(c)) => m.diffuse = c.truncate(),
-        Some(Value::Image(file)) => {
-            m.texture = texture(&file, name, textures, cache);
+        Some(Value::Image(file, loc)) => {
+            m.texture = texture(ctx, &file, &loc, name, textures, cache)?;
             m.diffuse = Vec3::splat(if m.texture.is_some() {
                 1.0
             } else {
@@ -121,7 +122,7 @@ pub(super) fn read(
     }
     match value("emission")? {
         Some(Value::Color(c)) => m.emission = c.truncate().max(Vec3::ZERO),
-        Some(Value::Image(file)) => {
+        Some(Value::Image(file, _)) => {
             return Err(ctx
                 .error(
                     shading,
@@ -195,7 +196,7 @@ fn color_or_texture(
     }
     if let Some(t) = child(node, "texture") {
         let sampler = t.attribute("texture").unwrap_or("");
-        return Ok(image_of_sampler(ctx, sampler, params).map(Value::Image));
+        return Ok(image_of_sampler(ctx, sampler, params)?.map(|(f, l)| Value::Image(f, l)));
     }
     if let Some(p) = child(node, "param")
         && let Some(np) = p.attribute("ref").and_then(|r| params.get(r))
@@ -218,8 +219,13 @@ fn color_or_texture(
 
 /// The image file a `<texture texture="…">` reaches: sampler2D → surface → image
 /// (COLLADA 1.4), sampler2D → instance_image (1.5), or an image id directly (some
-/// exporters). `None` (with a warning) when the chain is broken.
-fn image_of_sampler(ctx: &Ctx, sampler: &str, params: &HashMap<&str, Node>) -> Option<PathBuf> {
+/// exporters), with the location of its `<init_from>`. `None` (with a warning) when the
+/// chain is broken; an error when the file lies outside the scene's folder tree.
+fn image_of_sampler(
+    ctx: &Ctx,
+    sampler: &str,
+    params: &HashMap<&str, Node>,
+) -> Result<Option<(PathBuf, String)>, LoadError> {
     let mut image_id = sampler.to_string();
     if let Some(s2d) = params.get(sampler).and_then(|p| child(*p, "sampler2D")) {
         if let Some(url) = child(s2d, "instance_image").and_then(|i| i.attribute("url")) {
@@ -236,7 +242,7 @@ fn image_of_sampler(ctx: &Ctx, sampler: &str, params: &HashMap<&str, Node>) -> O
                         s2d,
                         &format!("surface '{surface_sid}' has no init_from; no texture"),
                     );
-                    return None;
+                    return Ok(None);
                 }
             }
         }
@@ -249,15 +255,18 @@ fn image_of_sampler(ctx: &Ctx, sampler: &str, params: &HashMap<&str, Node>) -> O
             "warning: {}: texture '{sampler}' reaches no <image> ('{image_id}'); no texture",
             ctx.path.display()
         );
-        return None;
+        return Ok(None);
     };
-    let init = child(image, "init_from")?;
-    let uri = child(init, "ref")
-        .and_then(|r| r.text())
-        .or(init.text())?
-        .trim();
-    let dir = ctx.path.parent().unwrap_or(Path::new(""));
-    Some(dir.join(uri_to_path(uri)))
+    let Some(init) = child(image, "init_from") else {
+        return Ok(None);
+    };
+    let Some(uri) = child(init, "ref").and_then(|r| r.text()).or(init.text()) else {
+        return Ok(None);
+    };
+    let uri = uri.trim();
+    let loc = ctx.location(init);
+    let file = ctx.files.resolve(ctx.path, &loc, uri, &uri_to_path(uri))?;
+    Ok(Some((file, loc)))
 }
 
 /// A file URI or relative reference as a path: `file://` dropped, `%XX` decoded.
@@ -295,25 +304,32 @@ fn uri_to_path(uri: &str) -> PathBuf {
     PathBuf::from(String::from_utf8_lossy(&out).replace('\\', "/"))
 }
 
-/// The texture index of an image file, decoding it on first use.
+/// The texture index of an image file, decoding it on first use; `None` (with a
+/// warning) when it cannot be read, an error when it does not fit in the memory budget.
 fn texture(
+    ctx: &Ctx,
     file: &Path,
+    loc: &str,
     material: &str,
     textures: &mut Vec<Texture>,
     cache: &mut TextureCache,
-) -> Option<u32> {
-    *cache
-        .entry(file.to_path_buf())
-        .or_insert_with(|| match read_texture(file) {
-            Ok(t) => {
-                textures.push(t);
-                Some((textures.len() - 1) as u32)
-            }
-            Err(e) => {
-                eprintln!("warning: {e}; material '{material}' is grey instead");
-                None
-            }
-        })
+) -> Result<Option<u32>, LoadError> {
+    if let Some(&t) = cache.get(file) {
+        return Ok(t);
+    }
+    let t = match read_texture(file, ctx.path, loc, ctx.files) {
+        Ok(t) => {
+            textures.push(t);
+            Some((textures.len() - 1) as u32)
+        }
+        Err(TextureError::Refused(e)) => return Err(e),
+        Err(TextureError::Unreadable(e)) => {
+            eprintln!("warning: {e}; material '{material}' is grey instead");
+            None
+        }
+    };
+    cache.insert(file.to_path_buf(), t);
+    Ok(t)
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! in <geometry id="Cone-mesh">`).
 
 use crate::error::LoadError;
+use crate::files::Files;
 use roxmltree::{Document, Node};
 use std::collections::HashMap;
 use std::path::Path;
@@ -10,18 +11,25 @@ use std::path::Path;
 /// The parsed document with its id index, and the file it came from.
 pub(super) struct Ctx<'a, 'input> {
     pub path: &'a Path,
+    /// The scene's folder tree and memory budget.
+    pub files: &'a Files,
     pub doc: &'a Document<'input>,
     ids: HashMap<&'a str, Node<'a, 'input>>,
 }
 
 impl<'a, 'input> Ctx<'a, 'input> {
-    pub fn new(path: &'a Path, doc: &'a Document<'input>) -> Self {
+    pub fn new(path: &'a Path, doc: &'a Document<'input>, files: &'a Files) -> Self {
         let ids = doc
             .descendants()
             .filter(|n| n.is_element())
             .filter_map(|n| n.attribute("id").map(|id| (id, n)))
             .collect();
-        Ctx { path, doc, ids }
+        Ctx {
+            path,
+            files,
+            doc,
+            ids,
+        }
     }
 
     /// The element a URL (`#id`) points to, expected to be a `<tag>`; `from` is the

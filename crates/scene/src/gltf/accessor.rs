@@ -12,10 +12,6 @@ use gltf_json as json;
 use json::accessor::{ComponentType, GenericComponentType, IndexComponentType, Type};
 use json::validation::Checked;
 
-/// The largest dense copy of an accessor, bytes: a sparse accessor without a buffer view
-/// is zero-filled to `count` elements, and a hostile `count` must not exhaust memory.
-const MAX_DENSE_BYTES: u64 = 1 << 31;
-
 /// An accessor's elements packed without stride, and how to read their components.
 struct Dense {
     bytes: Vec<u8>,
@@ -81,6 +77,13 @@ impl Builder<'_> {
     ) -> Result<Vec<f32>, LoadError> {
         let dense = self.dense(index, want, loc)?;
         let size = component_size(dense.component);
+        let floats = (dense.bytes.len() / size * size_of::<f32>()) as u64;
+        self.files.charge(
+            self.path,
+            &format!("accessors[{}] (from {loc})", index.value()),
+            floats,
+            "its components as floats",
+        )?;
         Ok(dense
             .bytes
             .chunks_exact(size)
@@ -148,10 +151,17 @@ impl Builder<'_> {
         }
         let element = (ty.multiplicity() * component_size(component)) as u64;
         let count = acc.count.0;
+        // Charged before anything is allocated: an accessor without a buffer view is
+        // zeros, so a 4 KB file can claim 178 956 970 VEC3 (2.1 GB, which aborted).
         let total = count
             .checked_mul(element)
-            .filter(|&t| t <= MAX_DENSE_BYTES)
             .ok_or_else(|| self.err(&here, format!("count {count} is too large")))?;
+        self.files.charge(
+            self.path,
+            &here,
+            total,
+            &format!("its {count} {} elements", type_name(ty)),
+        )?;
         // The strided source, checked whole before anything is allocated.
         let source = match acc.buffer_view {
             Some(view) => {
@@ -263,8 +273,9 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::from_bytes;
     use crate::error::LoadError;
+    use crate::files::Files;
+    use crate::load::LoadOptions;
     use crate::model::Scene;
     use base64::Engine;
     use glam::{Vec2, Vec3};
@@ -316,7 +327,12 @@ mod tests {
             "nodes": [{{"name": "A", "mesh": 0}}],
             "scenes": [{{"nodes": [0]}}]}}"#
         );
-        from_bytes(Path::new("t.gltf"), edit(&json).as_bytes())
+        let path = Path::new("t.gltf");
+        super::super::from_bytes(
+            path,
+            edit(&json).as_bytes(),
+            &Files::new(path, &LoadOptions::default()),
+        )
     }
 
     #[test]

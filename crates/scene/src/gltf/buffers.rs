@@ -4,7 +4,8 @@
 
 use super::Builder;
 use crate::error::LoadError;
-use crate::image_file::{decode_texture, read_texture};
+use crate::files::{Files, ReadError};
+use crate::image_file::{TextureError, decode_texture};
 use crate::material::Texture;
 use base64::Engine;
 use base64::engine::{DecodePaddingMode, GeneralPurpose, GeneralPurposeConfig};
@@ -25,7 +26,8 @@ const EXTERNAL_HINT: &str = "external files are looked up relative to the folder
 enum Uri<'u> {
     /// The decoded payload of a `data:` URI.
     Data(Vec<u8>),
-    /// A file, resolved against the `.gltf`'s folder.
+    /// A file, relative to the `.gltf`'s folder (or absolute, from a `file:` URI),
+    /// %-escapes decoded; [`Files::resolve`] decides whether it may be read.
     File { path: PathBuf, written: &'u str },
 }
 
@@ -35,6 +37,7 @@ pub(super) fn load_buffers<'a>(
     path: &Path,
     root: &json::Root,
     bin: Option<&'a [u8]>,
+    files: &Files,
 ) -> Result<Vec<Cow<'a, [u8]>>, LoadError> {
     let mut out = Vec::with_capacity(root.buffers.len());
     for (i, buffer) in root.buffers.iter().enumerate() {
@@ -52,12 +55,16 @@ pub(super) fn load_buffers<'a>(
             (Some(uri), _) => match parse_uri(path, uri, &loc)? {
                 Uri::Data(bytes) => Cow::Owned(bytes),
                 Uri::File {
-                    path: file,
+                    path: relative,
                     written,
-                } => match std::fs::read(&file) {
-                    Ok(bytes) => Cow::Owned(bytes),
-                    Err(e) => return Err(file_error(path, &loc, written, &file, e)),
-                },
+                } => {
+                    let file = files.resolve(path, &loc, written, &relative)?;
+                    // At most byteLength bytes: the file may be far longer.
+                    match files.read(path, &loc, &file, Some(buffer.byte_length.0)) {
+                        Ok(bytes) => Cow::Owned(bytes),
+                        Err(e) => return Err(file_error(path, &loc, written, &file, e)),
+                    }
+                }
             },
         };
         let declared = buffer.byte_length.0;
@@ -85,18 +92,19 @@ pub(super) fn load_buffers<'a>(
 
 /// The error of an external file that cannot be read: `missing file NAME` when it does
 /// not exist.
-fn file_error(path: &Path, loc: &str, written: &str, file: &Path, e: std::io::Error) -> LoadError {
-    let message = if e.kind() == std::io::ErrorKind::NotFound {
-        format!("missing file {written} (looked for {})", file.display())
-    } else {
-        format!("cannot read {written} ({}): {e}", file.display())
+fn file_error(path: &Path, loc: &str, written: &str, file: &Path, e: ReadError) -> LoadError {
+    let message = match e {
+        ReadError::Missing => format!("missing file {written} (looked for {})", file.display()),
+        ReadError::Io(m) => format!("cannot read {written} ({}): {m}", file.display()),
+        ReadError::Budget(e) => return e,
     };
     LoadError::at(path, loc, message).with_hint(EXTERNAL_HINT)
 }
 
-/// Parses a buffer or image URI: a base64 `data:` URI, or a relative reference to a
-/// file beside the `.gltf`. Other schemes (http, file) are refused: a scene must be
-/// self-contained.
+/// Parses a buffer or image URI: a base64 `data:` URI, a relative reference to a file
+/// beside the `.gltf`, or a `file:` URI (an absolute path, which [`Files::resolve`]
+/// refuses unless told otherwise). Other schemes (http, ftp) are refused: a scene must
+/// be self-contained.
 fn parse_uri<'u>(path: &Path, uri: &'u str, loc: &str) -> Result<Uri<'u>, LoadError> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let Some((header, payload)) = rest.split_once(',') else {
@@ -116,6 +124,14 @@ fn parse_uri<'u>(path: &Path, uri: &'u str, loc: &str) -> Result<Uri<'u>, LoadEr
             LoadError::at(path, loc, format!("the data: URI is not valid base64: {e}"))
         });
     }
+    if let Some(rest) = uri.strip_prefix("file://") {
+        let decoded = percent_decode(rest)
+            .ok_or_else(|| LoadError::at(path, loc, format!("URI {uri} has a bad %-escape")))?;
+        return Ok(Uri::File {
+            path: PathBuf::from(decoded),
+            written: uri,
+        });
+    }
     let scheme = uri.split_once(':').map(|(s, _)| s);
     if scheme.is_some_and(|s| {
         s.len() > 1
@@ -129,9 +145,8 @@ fn parse_uri<'u>(path: &Path, uri: &'u str, loc: &str) -> Result<Uri<'u>, LoadEr
     }
     let decoded = percent_decode(uri)
         .ok_or_else(|| LoadError::at(path, loc, format!("URI {uri} has a bad %-escape")))?;
-    let dir = path.parent().unwrap_or(Path::new(""));
     Ok(Uri::File {
-        path: dir.join(decoded),
+        path: PathBuf::from(decoded),
         written: uri,
     })
 }
@@ -222,29 +237,34 @@ impl Builder<'_> {
                 ),
             )
         })?;
-        let relocate = |e: LoadError, what: &str| {
-            LoadError::at(self.path, &here, format!("{what}: {}", e.message))
-                .with_hint("invlight decodes PNG, JPEG, BMP and TGA textures")
+        // Decoding errors are placed at the image; a refusal for memory is already placed.
+        let relocate = |e: TextureError, what: &str| match e {
+            TextureError::Refused(e) => e,
+            TextureError::Unreadable(e) => {
+                LoadError::at(self.path, &here, format!("{what}: {}", e.message))
+                    .with_hint("invlight decodes PNG, JPEG, BMP and TGA textures")
+            }
         };
+        let decode =
+            |bytes: &[u8], file: &Path| decode_texture(bytes, file, self.path, &here, self.files);
         match (&image.uri, image.buffer_view) {
             (Some(uri), _) => match parse_uri(self.path, uri, &here)? {
-                Uri::Data(bytes) => {
-                    decode_texture(&bytes, self.path).map_err(|e| relocate(e, "data: URI"))
-                }
+                Uri::Data(bytes) => decode(&bytes, self.path).map_err(|e| relocate(e, "data: URI")),
                 Uri::File {
-                    path: file,
+                    path: relative,
                     written,
                 } => {
-                    if !file.is_file() {
-                        let e = std::io::Error::from(std::io::ErrorKind::NotFound);
-                        return Err(file_error(self.path, &here, written, &file, e));
-                    }
-                    read_texture(&file).map_err(|e| relocate(e, written))
+                    let file = self.files.resolve(self.path, &here, written, &relative)?;
+                    let bytes = self
+                        .files
+                        .read(self.path, &here, &file, None)
+                        .map_err(|e| file_error(self.path, &here, written, &file, e))?;
+                    decode(&bytes, &file).map_err(|e| relocate(e, written))
                 }
             },
             (None, Some(view)) => {
                 let (bytes, _) = self.view(view, &here)?;
-                decode_texture(bytes, self.path).map_err(|e| relocate(e, "buffer view"))
+                decode(bytes, self.path).map_err(|e| relocate(e, "buffer view"))
             }
             (None, None) => Err(self.err(&here, "the image has neither uri nor bufferView")),
         }
@@ -277,15 +297,18 @@ impl Builder<'_> {
                     file: None,
                 }),
                 Uri::File {
-                    path: file,
+                    path: relative,
                     written,
-                } => match std::fs::read(&file) {
-                    Ok(bytes) => Ok(Referenced {
-                        bytes: Cow::Owned(bytes),
-                        file: Some(file),
-                    }),
-                    Err(e) => Err(file_error(self.path, loc, written, &file, e)),
-                },
+                } => {
+                    let file = self.files.resolve(self.path, loc, written, &relative)?;
+                    match self.files.read(self.path, loc, &file, None) {
+                        Ok(bytes) => Ok(Referenced {
+                            bytes: Cow::Owned(bytes),
+                            file: Some(file),
+                        }),
+                        Err(e) => Err(file_error(self.path, loc, written, &file, e)),
+                    }
+                }
             },
             (None, Some(view)) => Ok(Referenced {
                 bytes: Cow::Borrowed(self.view(view, loc)?.0),
@@ -327,5 +350,9 @@ mod tests {
         }
         assert!(parse_uri(p, "data:text/plain,hello", "buffers[0]").is_err());
         assert!(parse_uri(p, "https://example.org/a.bin", "buffers[0]").is_err());
+        match parse_uri(p, "file:///etc/host%20name", "buffers[0]").unwrap() {
+            Uri::File { path, .. } => assert_eq!(path, PathBuf::from("/etc/host name")),
+            Uri::Data(_) => panic!("a file: URI taken for data"),
+        }
     }
 }

@@ -5,7 +5,7 @@
 use super::Builder;
 use crate::error::LoadError;
 use crate::light::{Camera, Light, LightKind};
-use crate::model::Placement;
+use crate::model::{Placement, push_distinct};
 use glam::{Mat4, Quat, Vec3};
 use gltf_json as json;
 use json::extensions::scene::khr_lights_punctual::Type as LightType;
@@ -208,12 +208,11 @@ impl Builder<'_> {
         })?;
         let mut vertices: Vec<Vec3> = Vec::new();
         for (p, prim) in mesh.primitives.iter().enumerate() {
-            for v in self.positions(prim, &format!("meshes[{m}].primitives[{p}]"))? {
-                let w = world.transform_point3(v);
-                if !vertices.contains(&w) {
-                    vertices.push(w);
-                }
-            }
+            let local = self.positions(prim, &format!("meshes[{m}].primitives[{p}]"))?;
+            push_distinct(
+                &mut vertices,
+                local.into_iter().map(|v| world.transform_point3(v)),
+            );
         }
         self.scene.placements.push(Placement {
             name: node.name.clone().unwrap_or_default(),

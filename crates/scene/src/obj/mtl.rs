@@ -18,7 +18,8 @@
 
 use super::{lines, parse_f32, parse_floats, show, tokens};
 use crate::error::LoadError;
-use crate::image_file::read_texture;
+use crate::files::Files;
+use crate::image_file::{TextureError, read_texture};
 use crate::material::{Material, Rgb, Texture};
 use glam::Vec3;
 use std::collections::HashMap;
@@ -34,7 +35,8 @@ struct Record {
     d: Option<f32>,
     ni: Option<f32>,
     illum: u32,
-    map_kd: Option<String>,
+    /// The `map_Kd` file and the number of its line.
+    map_kd: Option<(String, usize)>,
     /// Line of a `map_Ke` statement.
     map_ke: Option<usize>,
 }
@@ -57,11 +59,14 @@ impl Record {
 }
 
 /// Parses an MTL file (`path` names it in errors and anchors texture paths); decoded
-/// textures are appended to `textures`.
+/// textures are appended to `textures`. A texture that cannot be read is a warning (the
+/// material keeps its colour); one outside the scene's folder or past the memory budget
+/// is an error.
 pub(super) fn parse(
     bytes: &[u8],
     path: &Path,
     textures: &mut Vec<Texture>,
+    files: &Files,
 ) -> Result<Vec<Material>, LoadError> {
     let mut records: Vec<Record> = Vec::new();
     for (number, line) in lines(bytes) {
@@ -88,7 +93,7 @@ pub(super) fn parse(
                 let value = scalar(&mut it, "illum").map_err(at)?;
                 record.illum = value as u32;
             }
-            b"map_Kd" => record.map_kd = texture_file(line),
+            b"map_Kd" => record.map_kd = texture_file(line).map(|f| (f, number)),
             b"map_Ke" => record.map_ke = Some(number),
             _ => {}
         }
@@ -105,28 +110,36 @@ pub(super) fn parse(
         )
         .with_hint("bake the texture's mean into Ke, or remove Ke if the surface should not emit"));
     }
-    let dir = path.parent().unwrap_or(Path::new(""));
     let mut decoded: HashMap<String, Option<u32>> = HashMap::new();
-    Ok(records
-        .into_iter()
-        .map(|r| {
-            let texture = r.map_kd.as_ref().and_then(|file| {
-                *decoded.entry(file.clone()).or_insert_with(|| {
-                    match read_texture(&dir.join(file.replace('\\', "/"))) {
+    let mut materials = Vec::with_capacity(records.len());
+    for r in records {
+        let mut texture = None;
+        if let Some((file, line)) = &r.map_kd {
+            texture = match decoded.get(file) {
+                Some(&t) => t,
+                None => {
+                    let loc = format!("line {line}");
+                    let written = file.replace('\\', "/");
+                    let resolved = files.resolve(path, &loc, file, Path::new(&written))?;
+                    let t = match read_texture(&resolved, path, &loc, files) {
                         Ok(t) => {
                             textures.push(t);
                             Some((textures.len() - 1) as u32)
                         }
-                        Err(e) => {
+                        Err(TextureError::Refused(e)) => return Err(e),
+                        Err(TextureError::Unreadable(e)) => {
                             eprintln!("warning: {e}; material '{}' keeps its Kd colour", r.name);
                             None
                         }
-                    }
-                })
-            });
-            material(r, texture)
-        })
-        .collect())
+                    };
+                    decoded.insert(file.clone(), t);
+                    t
+                }
+            };
+        }
+        materials.push(material(r, texture));
+    }
+    Ok(materials)
 }
 
 /// The tracer's material for one record.
@@ -240,6 +253,20 @@ fn scalar<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<f32
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::load::LoadOptions;
+
+    fn parse(
+        bytes: &[u8],
+        path: &Path,
+        textures: &mut Vec<Texture>,
+    ) -> Result<Vec<Material>, LoadError> {
+        super::parse(
+            bytes,
+            path,
+            textures,
+            &Files::new(path, &LoadOptions::default()),
+        )
+    }
 
     fn one(text: &str) -> Material {
         let mut textures = Vec::new();
