@@ -34,6 +34,7 @@
 
 use super::DaylightError;
 use glam::{DVec3, Vec3};
+use invlight_stats::PiecewiseConstant2D;
 use std::f64::consts::PI;
 use std::fmt;
 use std::str::FromStr;
@@ -138,7 +139,7 @@ pub struct Sky {
 #[derive(Debug, Clone, PartialEq)]
 enum Model {
     Overcast,
-    Clear(ClearSky, Table2D),
+    Clear(ClearSky, PiecewiseConstant2D),
 }
 
 /// The clear sky's sun: unit vector toward it and the denominator f(Z_s)·φ(0).
@@ -293,7 +294,7 @@ impl Sky {
         }
         Ok(Sky {
             frame,
-            model: Model::Clear(clear, Table2D::new(ROWS, COLUMNS, weights)),
+            model: Model::Clear(clear, square_table(&weights)),
             zenith_luminance: horizontal_lux / (ratio * dz * dphi),
             horizontal_illuminance: horizontal_lux,
         })
@@ -358,7 +359,7 @@ impl Sky {
             Model::Overcast => overcast_pdf(mu),
             Model::Clear(_, table) => {
                 let (s, t) = self.frame.direction_to_square(d);
-                table.density(s, t) * mu / PI
+                table.pdf(s, t) * mu / PI
             }
         }) as f32
     }
@@ -385,8 +386,8 @@ impl Sky {
         match &self.model {
             Model::Overcast => self.frame.local(overcast_cos_zenith(u1), 2.0 * PI * u2),
             Model::Clear(_, table) => {
-                let (s, t, _) = table.sample(u1, u2);
-                self.frame.square_to_direction(s, t)
+                let d = table.sample([u1, u2]);
+                self.frame.square_to_direction(d.x, d.y)
             }
         }
     }
@@ -420,77 +421,13 @@ fn overcast_cos_zenith(u: f64) -> f64 {
     mu.clamp(0.0, 1.0)
 }
 
-/// A piecewise-constant density on [0, 1)² from positive cell weights (pbrt-v4
-/// `PiecewiseConstant2D`): a row is drawn by the rows' totals, then a column within it,
-/// each by inverting its cumulative sums, so a draw is continuous and monotone in each
-/// uniform number (stratified numbers stay stratified).
-#[derive(Debug, Clone, PartialEq)]
-struct Table2D {
-    rows: usize,
-    columns: usize,
-    /// Cumulative row totals, `rows + 1` entries from 0.
-    row_cdf: Vec<f64>,
-    /// Per row, the cumulative weights within it, `columns + 1` entries from 0.
-    column_cdf: Vec<f64>,
-}
-
-impl Table2D {
-    fn new(rows: usize, columns: usize, weights: Vec<f64>) -> Table2D {
-        assert_eq!(weights.len(), rows * columns);
-        assert!(weights.iter().all(|&w| w > 0.0 && w.is_finite()));
-        let mut column_cdf = Vec::with_capacity(rows * (columns + 1));
-        let mut row_cdf = Vec::with_capacity(rows + 1);
-        row_cdf.push(0.0);
-        for row in weights.chunks(columns) {
-            let mut acc = 0.0;
-            column_cdf.push(0.0);
-            for &w in row {
-                acc += w;
-                column_cdf.push(acc);
-            }
-            row_cdf.push(row_cdf[row_cdf.len() - 1] + acc);
-        }
-        Table2D {
-            rows,
-            columns,
-            row_cdf,
-            column_cdf,
-        }
-    }
-
-    /// Index and offset in [0, 1) of where `u`·total falls in `cdf`.
-    fn invert(cdf: &[f64], u: f64) -> (usize, f64) {
-        let target = u * cdf[cdf.len() - 1];
-        let i = (cdf.partition_point(|&c| c <= target) - 1).min(cdf.len() - 2);
-        let offset = (target - cdf[i]) / (cdf[i + 1] - cdf[i]);
-        (i, offset.clamp(0.0, 1.0 - f64::EPSILON))
-    }
-
-    fn row(&self, i: usize) -> &[f64] {
-        &self.column_cdf[i * (self.columns + 1)..(i + 1) * (self.columns + 1)]
-    }
-
-    /// (s, t) and the density there.
-    fn sample(&self, u1: f64, u2: f64) -> (f64, f64, f64) {
-        let (i, ds) = Table2D::invert(&self.row_cdf, u1);
-        let (j, dt) = Table2D::invert(self.row(i), u2);
-        let s = (i as f64 + ds) / self.rows as f64;
-        let t = (j as f64 + dt) / self.columns as f64;
-        (s, t, self.cell_density(i, j))
-    }
-
-    /// The density at (s, t).
-    fn density(&self, s: f64, t: f64) -> f64 {
-        let i = ((s * self.rows as f64) as usize).min(self.rows - 1);
-        let j = ((t * self.columns as f64) as usize).min(self.columns - 1);
-        self.cell_density(i, j)
-    }
-
-    fn cell_density(&self, i: usize, j: usize) -> f64 {
-        let row = self.row(i);
-        let weight = row[j + 1] - row[j];
-        weight * (self.rows * self.columns) as f64 / self.row_cdf[self.rows]
-    }
+/// The clear sky's table over Malley's square: `weights` row by row (row i of
+/// [`ROWS`] in s, column j of [`COLUMNS`] in t), every cell of the same area, so a
+/// cell's mass is its weight.
+fn square_table(weights: &[f64]) -> PiecewiseConstant2D {
+    let axis = |n: usize| (0..=n).map(|k| k as f64 / n as f64).collect::<Vec<_>>();
+    PiecewiseConstant2D::new(axis(ROWS), axis(COLUMNS), weights)
+        .expect("the clear sky's weights are positive and finite")
 }
 
 #[cfg(test)]
@@ -521,7 +458,8 @@ mod tests {
         for i in 0..97 {
             for j in 0..101 {
                 let (u1, u2) = ((i as f64 + 0.31) / 97.0, (j as f64 + 0.77) / 101.0);
-                let (s, t, p) = table.sample(u1, u2);
+                let d = table.sample([u1, u2]);
+                let (s, t, p) = (d.x, d.y, d.pdf);
                 let (s2, t2) = sky
                     .frame
                     .direction_to_square(sky.frame.square_to_direction(s, t));
@@ -529,32 +467,12 @@ mod tests {
                     (s2 - s).abs() < 1e-12 && (t2 - t).abs() < 1e-12,
                     "{s} {t}: {s2} {t2}"
                 );
-                assert_eq!(p, table.density(s, t));
+                assert_eq!(p, table.pdf(s, t));
                 let d = sky.sample_direction(u1, u2);
                 assert!(
                     (sky.pdf(d.as_vec3()) as f64 - p * d.dot(sky.frame.up) / PI).abs() < 1e-5 * p
                 );
             }
         }
-    }
-
-    #[test]
-    fn table_inverts_its_own_cumulative_sums() {
-        // Rows hold 4 and 8.5 of a total 12.5.
-        let t = Table2D::new(2, 3, vec![1.0, 2.0, 1.0, 4.0, 4.0, 0.5]);
-        let (s, _, _) = t.sample(0.16, 0.5);
-        assert!((s - 0.25).abs() < 1e-12, "{s}");
-        // u1 = 0.66: 8.25 of 12.5, half way into row 1; u2 = 0.25: 2.125 of row 1's
-        // 8.5, 0.53125 of the way into its first cell (weight 4).
-        let (s, tt, p) = t.sample(0.66, 0.25);
-        assert!((s - 0.75).abs() < 1e-12 && (tt - 0.53125 / 3.0).abs() < 1e-12);
-        assert_eq!(p, t.density(s, tt));
-        assert!((p - 4.0 * 6.0 / 12.5).abs() < 1e-12);
-        // Densities integrate to one over the square.
-        let total: f64 = (0..2)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .map(|(i, j)| t.cell_density(i, j) / 6.0)
-            .sum();
-        assert!((total - 1.0).abs() < 1e-12);
     }
 }
