@@ -149,6 +149,40 @@ fn main() {
     }
 }
 
+/// `--json`'s output.
+#[derive(serde::Serialize)]
+struct SweepReport {
+    problem: String,
+    light: String,
+    light_centre_minus_p: [f64; 3],
+    light_size: [f64; 2],
+    target_centre: [f64; 3],
+    photons_per_cell: u64,
+    max_bounces: u32,
+    seconds: f64,
+    cells: Vec<SweepCell>,
+    quadratic_maximum: Option<SweepFit>,
+}
+
+/// One cell of the sweep.
+#[derive(serde::Serialize)]
+struct SweepCell {
+    centre: [f64; 2],
+    #[serde(rename = "P")]
+    p: [f64; 3],
+    mean: f64,
+    std_error: f64,
+    clipped: bool,
+}
+
+/// The fitted maximum.
+#[derive(serde::Serialize)]
+struct SweepFit {
+    centre: [f64; 2],
+    std_error: [f64; 2],
+    chi2_per_dof: f64,
+}
+
 fn run(args: &Args) -> Result<(), Box<dyn Error>> {
     let problem = Problem::read(&args.problem)?;
     let mut scene = problem.load_scene(&LoadOptions::default(), None, None)?;
@@ -259,33 +293,31 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
     let whole: Vec<&Cell> = cells.iter().filter(|c| !c.clipped).collect();
     let fit = quadratic_maximum(&whole, seed);
     if args.json {
-        let rows: Vec<_> = cells
-            .iter()
-            .map(|c| {
-                serde_json::json!({
-                    "centre": [c.centre.x, c.centre.y],
-                    "P": [c.p.x, c.p.y, c.p.z],
-                    "mean": c.mean,
-                    "std_error": c.std_error,
-                    "clipped": c.clipped,
+        let out = SweepReport {
+            problem: args.problem.display().to_string(),
+            light: id.clone(),
+            light_centre_minus_p: offset.to_array(),
+            light_size: [2.0 * panel_half.x, 2.0 * panel_half.y],
+            target_centre: target.to_array(),
+            photons_per_cell: args.photons,
+            max_bounces: args.bounces,
+            seconds,
+            cells: cells
+                .iter()
+                .map(|c| SweepCell {
+                    centre: c.centre.to_array(),
+                    p: c.p.to_array(),
+                    mean: c.mean,
+                    std_error: c.std_error,
+                    clipped: c.clipped,
                 })
-            })
-            .collect();
-        let out = serde_json::json!({
-            "problem": args.problem.display().to_string(),
-            "light": id,
-            "light_centre_minus_p": [offset.x, offset.y, offset.z],
-            "light_size": [2.0 * panel_half.x, 2.0 * panel_half.y],
-            "target_centre": [target.x, target.y, target.z],
-            "photons_per_cell": args.photons,
-            "max_bounces": args.bounces,
-            "seconds": seconds,
-            "cells": rows,
-            "quadratic_maximum": fit.map(|f| serde_json::json!({
-                "centre": [f.at.x, f.at.y], "std_error": [f.spread.x, f.spread.y],
-                "chi2_per_dof": f.chi2_per_dof,
-            })),
-        });
+                .collect(),
+            quadratic_maximum: fit.map(|f| SweepFit {
+                centre: f.at.to_array(),
+                std_error: f.spread.to_array(),
+                chi2_per_dof: f.chi2_per_dof,
+            }),
+        };
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
     }
