@@ -9,6 +9,8 @@
 //! - [`SplitMix64`], [`Pcg32`], [`mix`]: reproducible random streams keyed by a seed
 //!   and an index, so results never depend on thread count or scheduling.
 //! - [`significant`]: numbers as tables and messages show them.
+//! - [`ChannelSums`]: group sums of a vector of channels with their cross products, so
+//!   that any weighted sum of them (a dimming, a side) has its own standard error.
 //! - [`Distribution1D`]: a discrete distribution from weights, sampled by inversion
 //!   with the probability of what it returns; [`PiecewiseConstant2D`]: a density
 //!   constant on the cells of a grid, sampled with its exact density.
@@ -25,6 +27,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod channels;
 mod distribution;
 mod distribution2d;
 mod estimate;
@@ -32,6 +35,7 @@ mod format;
 mod interval;
 mod rng;
 
+pub use channels::ChannelSums;
 pub use distribution::Distribution1D;
 pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
