@@ -52,6 +52,9 @@ pub const CHUNK: u64 = 4096;
 const _: () = assert!(CHUNK.is_multiple_of(GROUP));
 /// Chunks reduced at a time: bounds memory, keeps all threads busy.
 pub const BLOCK: u64 = 256;
+/// The most memory pending visitors of a block may hold: a block of large visitors
+/// (fine illuminance grids) has fewer chunks, though never fewer than the threads.
+pub const BLOCK_MEMORY: usize = 256 << 20;
 
 /// Traces `settings.photons` photons from `emitters`: each chunk gets a visitor from
 /// `new_visitor`, which sees its photons' arrivals and, after each stratified group of
@@ -71,11 +74,14 @@ pub fn trace_chunks<V: PathVisitor + Send>(
         return 0;
     }
     let chunks = settings.photons.div_ceil(CHUNK);
+    let bytes = new_visitor().bytes().max(1);
+    let block =
+        ((BLOCK_MEMORY / bytes) as u64).clamp(rayon::current_num_threads() as u64, BLOCK.max(1));
     let done = AtomicU64::new(0);
     let mut rays = 0;
     let mut block_start = 0;
     while block_start < chunks {
-        let block_end = (block_start + BLOCK).min(chunks);
+        let block_end = (block_start + block).min(chunks);
         let parts: Vec<(V, u64)> = (block_start..block_end)
             .into_par_iter()
             .map(|chunk| {

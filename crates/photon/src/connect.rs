@@ -155,6 +155,9 @@ pub struct Departure<'a> {
     /// Probability that the photon's next ray follows this lobe (the Russian roulette's
     /// share of diffuse reflection; 1 when it leaves a light).
     pub survival: f32,
+    /// The source the photon left ([`crate::EmitSample::source`]): its light reaches
+    /// every surface it arrives on or connects to as that source's light.
+    pub source: u32,
 }
 
 impl Departure<'_> {
@@ -196,6 +199,8 @@ pub struct Connection {
     pub point: Vec3,
     /// The luminous power it counts toward the target, lm (0 when hidden).
     pub lumens: f64,
+    /// Whether it reaches the target's front: the side its counter-clockwise normal faces.
+    pub front: bool,
 }
 
 /// A target's triangles in world space, to draw points on uniformly by area.
@@ -232,20 +237,16 @@ impl Targets {
                 shape.instances.sort_unstable();
                 shape.instances.dedup();
                 for &i in &scene.surfaces[s as usize].instances {
-                    let inst = &scene.instances[i as usize];
-                    let mesh = &scene.meshes[inst.mesh as usize];
-                    for (t, &m) in mesh.materials.iter().enumerate() {
-                        if scene.materials[m as usize].hole {
+                    for t in scene.world_triangles(i) {
+                        let area = t.area();
+                        if scene.materials[t.material as usize].hole
+                            || !(area > 0.0 && area.is_finite())
+                        {
                             continue;
                         }
-                        let [a, b, c] =
-                            mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
-                        let cross = (b - a).cross(c - a);
-                        let area = 0.5 * cross.length();
-                        if area > 0.0 && area.is_finite() {
-                            areas.push(area as f64);
-                            shape.tris.push((a, b - a, c - a, cross / (2.0 * area)));
-                        }
+                        let [a, b, c] = t.corners;
+                        areas.push(area as f64);
+                        shape.tris.push((a, b - a, c - a, t.cross / (2.0 * area)));
                     }
                 }
                 shape.by_area = Distribution1D::new(areas);
@@ -340,7 +341,11 @@ impl Targets {
         } else {
             0.0
         };
-        Some(Connection { point: y, lumens })
+        Some(Connection {
+            point: y,
+            lumens,
+            front: d.dot(n_y) < 0.0,
+        })
     }
 }
 

@@ -14,7 +14,7 @@ use crate::connect::Lobe;
 use crate::sampler::Sampler;
 use crate::sampling;
 use glam::{Mat3, Vec3};
-use invlight_scene::{LightKind, Opening, Photometry, Rgb, Scene, luminance};
+use invlight_scene::{InstanceId, LightKind, Opening, Photometry, Rgb, Scene, luminance};
 use invlight_stats::Distribution1D;
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -36,6 +36,18 @@ pub struct EmitSample<'a> {
     pub lumens: f32,
     /// The light's emission profile, which `dir` was drawn from (for connections).
     pub lobe: Lobe<'a>,
+    /// Index of the source the photon left ([`Emitters::origin`] says which light or
+    /// instance it is), so that tallies can keep each light's light apart.
+    pub source: u32,
+}
+
+/// What a source of [`Emitters`] is in the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SourceOrigin {
+    /// `scene.lights[i]`.
+    Light(u32),
+    /// An emissive triangle of this instance.
+    Instance(InstanceId),
 }
 
 /// An emissive triangle of a scene, in world space: an area light that emits from its
@@ -57,27 +69,27 @@ pub struct EmissiveTriangle {
 /// emitters and the renderer's shadow-ray lights both read the lights here, so they
 /// cannot disagree about where a light is or which way it faces.
 pub fn emissive_triangles(scene: &Scene) -> impl Iterator<Item = EmissiveTriangle> + '_ {
-    scene.instances.iter().flat_map(move |inst| {
-        let mesh = &scene.meshes[inst.mesh as usize];
-        mesh.materials
-            .iter()
-            .enumerate()
-            .filter_map(move |(t, &m)| {
-                let emission = scene.materials[m as usize].emission;
-                if emission.max_element() <= 0.0 {
-                    return None;
-                }
-                let corners = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
-                let [a, b, c] = corners;
-                let cross = (b - a).cross(c - a);
-                let area = 0.5 * cross.length();
-                (area > 0.0).then(|| EmissiveTriangle {
-                    corners,
-                    normal: cross.normalize(),
+    emissive_triangles_of(scene).map(|(_, t)| t)
+}
+
+/// [`emissive_triangles`] with the instance of each.
+fn emissive_triangles_of(
+    scene: &Scene,
+) -> impl Iterator<Item = (InstanceId, EmissiveTriangle)> + '_ {
+    scene.all_world_triangles().filter_map(move |(i, t)| {
+        let emission = scene.materials[t.material as usize].emission;
+        let area = t.area();
+        (emission.max_element() > 0.0 && area > 0.0).then(|| {
+            (
+                i,
+                EmissiveTriangle {
+                    corners: t.corners,
+                    normal: t.normal(),
                     emission,
                     area,
-                })
-            })
+                },
+            )
+        })
     })
 }
 
@@ -129,6 +141,10 @@ enum Source {
 #[derive(Debug, Clone, Default)]
 pub struct Emitters {
     sources: Vec<Source>,
+    /// What each source is.
+    origins: Vec<SourceOrigin>,
+    /// Each source's luminous flux, lm.
+    flux: Vec<f64>,
     /// The sources by luminous flux.
     by_flux: Distribution1D,
 }
@@ -143,7 +159,9 @@ impl Emitters {
             Some((lo, hi)) => ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3)),
             None => (Vec3::ZERO, 1.0),
         };
-        for light in &scene.lights {
+        let mut origins = Vec::new();
+        for (l, light) in scene.lights.iter().enumerate() {
+            origins.push(SourceOrigin::Light(l as u32));
             let flux = light.kind.flux();
             match light.kind {
                 LightKind::Point { position, .. } => sources.push(Source::Point {
@@ -194,7 +212,8 @@ impl Emitters {
             }
             flux_rgb.push(flux);
         }
-        for t in emissive_triangles(scene) {
+        for (i, t) in emissive_triangles_of(scene) {
+            origins.push(SourceOrigin::Instance(i));
             let [a, b, c] = t.corners;
             sources.push(Source::Triangle {
                 p0: a,
@@ -224,7 +243,28 @@ impl Emitters {
                 | Source::Triangle { power: p, .. } => *p = power,
             }
         }
-        Emitters { sources, by_flux }
+        let flux = flux_rgb.iter().map(|&f| luminance(f) as f64).collect();
+        Emitters {
+            sources,
+            origins,
+            flux,
+            by_flux,
+        }
+    }
+
+    /// The number of sources (lights and emissive triangles).
+    pub fn len(&self) -> usize {
+        self.sources.len()
+    }
+
+    /// What source `i` (an [`EmitSample::source`]) is in the scene.
+    pub fn origin(&self, i: u32) -> SourceOrigin {
+        self.origins[i as usize]
+    }
+
+    /// The luminous flux of source `i`, lm.
+    pub fn flux(&self, i: u32) -> f64 {
+        self.flux[i as usize]
     }
 
     /// Total luminous flux of the scene's lights, lm (for the sun: what crosses the disk
@@ -243,11 +283,14 @@ impl Emitters {
     /// stratified group stay aligned dimension by dimension whichever light they leave.
     #[inline]
     pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample<'_> {
-        let source = &self.sources[self.by_flux.sample(sampler.uniform())];
+        let index = self.by_flux.sample(sampler.uniform());
+        let source = &self.sources[index];
+        let source_index = index as u32;
         let (u1, u2) = sampler.uniform2();
         let (u3, u4) = sampler.uniform2();
         match *source {
             Source::Point { position, power } => EmitSample {
+                source: source_index,
                 origin: position,
                 dir: sampling::sphere(u1, u2),
                 surface_normal: None,
@@ -271,6 +314,7 @@ impl Emitters {
                     cos_outer + u1.cbrt() * (cos_inner - cos_outer)
                 };
                 EmitSample {
+                    source: source_index,
                     origin: position,
                     dir: sampling::cone(axis, cos_theta, u2),
                     surface_normal: None,
@@ -293,6 +337,7 @@ impl Emitters {
                 let (x, y) = sampling::disk(u1, u2);
                 let (t, b) = sampling::basis(direction);
                 EmitSample {
+                    source: source_index,
                     origin: centre + (t * x + b * y - direction * 1.01) * radius,
                     dir: direction,
                     surface_normal: None,
@@ -313,6 +358,7 @@ impl Emitters {
             } => {
                 let (b1, b2) = sampling::triangle(u1, u2);
                 EmitSample {
+                    source: source_index,
                     origin: p0 + e1 * b1 + e2 * b2,
                     dir: sampling::cosine_hemisphere(normal, u3, u4),
                     surface_normal: Some(normal),
@@ -334,6 +380,7 @@ impl Emitters {
                     opening => position + frame * opening.point(u3, u4),
                 };
                 EmitSample {
+                    source: source_index,
                     origin,
                     dir: (frame * d.dir).normalize(),
                     surface_normal: None,

@@ -48,20 +48,29 @@
 //! ```
 #![deny(missing_docs)]
 
+mod cells;
+mod channels;
 mod chunks;
 mod connect;
 mod emit;
 mod estimator;
+mod grid;
 mod measure;
 mod path;
 mod sampler;
 mod sampling;
 
-pub use chunks::{BLOCK, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
+pub use cells::{GridMeasurement, Uniformity};
+pub use channels::{Components, Side};
+pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use connect::{Connection, Departure, Lobe, Targets};
-pub use emit::{EmissiveTriangle, EmitSample, Emitters, emissive_triangles};
+pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
 pub use estimator::{GROUP, GroupTallies, MIN_GROUPS, MIN_PHOTONS, Tally, photons_traced};
-pub use measure::{Estimator, MeasureReport, Measurement, SurfaceReport, measure};
+pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
+pub use measure::{
+    Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, measure,
+    measure_with,
+};
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use sampler::{GroupKeys, Sampler};
 pub use sampling::{basis, cosine_hemisphere};

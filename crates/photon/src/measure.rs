@@ -7,15 +7,18 @@
 //! the same bits on one thread or many, and memory stays constant however many photons
 //! are traced.
 
+use crate::cells::{CellTallies, GridMeasurement};
+use crate::channels::{Components, Side, SurfaceTallies, channel, side_weights};
 use crate::chunks::{TraceSettings, trace_chunks};
 use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
-use crate::estimator::{GroupTallies, Tally, photons_traced};
+use crate::estimator::{GROUP, photons_traced};
+use crate::grid::SurfaceGrid;
 use crate::path::PathVisitor;
 use crate::sampler::Sampler;
 use glam::Vec3;
 use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
-use invlight_stats::{Confidence, Estimate};
+use invlight_stats::{ChannelSums, Confidence, Estimate};
 use invlight_trace::{Accel, Interaction};
 use serde::{Deserialize, Serialize};
 
@@ -45,6 +48,31 @@ impl Estimator {
     }
 }
 
+/// What to measure in one trace: surfaces, grids on some of them, and the components
+/// whose light is kept apart.
+#[derive(Debug, Clone)]
+pub struct Request<'a> {
+    /// The surfaces whose mean illuminance is measured (front and back apart).
+    pub surfaces: &'a [SurfaceId],
+    /// Grids read cell by cell: each on `surfaces[target]`, counting one side.
+    pub grids: Vec<GridRequest>,
+    /// Which lights' light is kept apart ([`Components::one`]: all together).
+    pub components: &'a Components,
+    /// How photons are counted.
+    pub estimator: Estimator,
+}
+
+/// A grid to read on one of a [`Request`]'s surfaces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridRequest {
+    /// Index in [`Request::surfaces`] of the surface the grid lies on.
+    pub target: usize,
+    /// The side counted.
+    pub side: Side,
+    /// The grid ([`SurfaceGrid::new`] or [`SurfaceGrid::en12464`] of that surface).
+    pub grid: SurfaceGrid,
+}
+
 /// What a measurement found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurement {
@@ -55,10 +83,16 @@ pub struct Measurement {
     pub rays: u64,
     /// Rays cast by connections (closest-hit queries toward the targets).
     pub connection_rays: u64,
-    /// One tally per target, in the order the targets were given.
-    pub tallies: Vec<Tally>,
-    /// Each target's area, m².
+    /// Each target's area, m², in the order the targets were given.
     pub areas: Vec<f64>,
+    /// Photon arrivals on each target.
+    pub hits: Vec<u64>,
+    /// Each target's group sums: 2K channels, its front's per component, then its back's.
+    channels: Vec<ChannelSums>,
+    /// The grids, in the order asked.
+    pub grids: Vec<GridMeasurement>,
+    /// The luminous flux of each component, lm, as traced (undimmed).
+    pub component_flux: Vec<f64>,
     /// Luminous power that left the scene, Σ over photons, lm·photons (divide by N).
     pub escaped: f64,
     /// The scene's total luminous flux Φ, lm: what each photon carries.
@@ -66,10 +100,42 @@ pub struct Measurement {
 }
 
 impl Measurement {
-    /// Mean illuminance of target `i`, in lux, with its standard error
-    /// ([`Tally::estimate`]).
+    /// The number of components.
+    pub fn components(&self) -> usize {
+        self.component_flux.len()
+    }
+
+    /// Mean illuminance of target `i`, both sides, every light at its authored output,
+    /// in lux, with its standard error.
     pub fn estimate(&self, i: usize) -> Estimate {
-        self.tallies[i].estimate(self.areas[i], self.photons, self.flux)
+        self.estimate_of(i, Side::Both, &vec![1.0; self.components()])
+    }
+
+    /// Mean illuminance of target `i` on `side`, each component `k` at `w[k]` times its
+    /// authored output (a dimming level), in lux, with its standard error from the same
+    /// groups.
+    ///
+    /// A target nothing reached has a sample variance of zero, which would claim the
+    /// mean 0 exact and let a comparison rule the surface out on no evidence. Its
+    /// standard error is then taken as the illuminance one arrival would have given,
+    /// Φ/(A·N) (times the largest weight): the binomial σ with the hit probability 1/N,
+    /// the smallest that is not ruled out.
+    pub fn estimate_of(&self, i: usize, side: Side, w: &[f64]) -> Estimate {
+        let weights = side_weights(side, w);
+        let inv = 1.0 / self.areas[i];
+        let groups = self.photons.div_ceil(GROUP);
+        let sums = &self.channels[i];
+        let mut e = sums.estimate(&weights, groups, self.photons, inv);
+        if sums.total(&weights) <= 0.0 && self.photons > 0 {
+            let w_max = w.iter().copied().fold(0.0, f64::max);
+            e.std_error = w_max * self.flux * inv / self.photons as f64;
+        }
+        e
+    }
+
+    /// The luminous flux of the lights at weights `w`, lm: exact, not estimated.
+    pub fn power(&self, w: &[f64]) -> f64 {
+        self.component_flux.iter().zip(w).map(|(f, w)| f * w).sum()
     }
 }
 
@@ -107,32 +173,63 @@ impl TargetMap {
     }
 }
 
+/// What a chunk's tally shares with every other: the maps from instances to targets,
+/// from targets to their grids and from sources to components.
+struct Plan<'a> {
+    map: TargetMap,
+    /// The grids of each target, by index in the request's grids.
+    grids_of: Vec<Vec<usize>>,
+    grids: &'a [GridRequest],
+    component_of: Vec<u32>,
+    components: usize,
+}
+
 /// Tallies one chunk of photons on the measured targets.
 struct ChunkTally<'a> {
-    map: &'a TargetMap,
+    plan: &'a Plan<'a>,
     /// The targets to connect departures to; `None` counts arrivals alone.
     connect: Option<(&'a Targets, &'a Accel)>,
-    tallies: GroupTallies,
+    surfaces: SurfaceTallies,
+    cells: Vec<CellTallies>,
     escaped: f64,
     connection_rays: u64,
+}
+
+impl ChunkTally<'_> {
+    /// The current photon, of component `k`, brings `lumens` to target `t` at `point`
+    /// on its front (`front`) or back.
+    #[inline]
+    fn add(&mut self, t: u32, k: u32, front: bool, point: Vec3, lumens: f64, arrived: bool) {
+        let plan = self.plan;
+        self.surfaces
+            .add(t, channel(front, k, plan.components), lumens);
+        for &g in &plan.grids_of[t as usize] {
+            let request = &plan.grids[g];
+            if request.side.counts(front) {
+                self.cells[g].add(request.grid.cell_of(point), k, lumens, arrived);
+            }
+        }
+    }
 }
 
 impl PathVisitor for ChunkTally<'_> {
     #[inline]
     fn depart(&mut self, from: &Departure, sampler: &mut Sampler<'_>) {
         if let Some((targets, accel)) = self.connect {
+            let k = self.plan.component_of[from.source as usize];
             for t in 0..targets.len() {
                 if let Some(c) = targets.connect(t, from, accel, sampler) {
                     self.connection_rays += 1;
-                    self.tallies.add(t as u32, c.lumens);
+                    self.add(t as u32, k, c.front, c.point, c.lumens, false);
                 }
             }
         }
     }
 
     #[inline]
-    fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
-        let on = self.map.of(at.instance);
+    fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
+        let plan = self.plan;
+        let on = plan.map.of(at.instance);
         if on.is_empty() {
             return;
         }
@@ -140,12 +237,15 @@ impl PathVisitor for ChunkTally<'_> {
         let weighing = self
             .connect
             .map(|(targets, _)| (targets, from.arrival_density(at.point, at.normal)));
+        let k = plan.component_of[from.source as usize];
+        let front = dir.dot(at.normal) < 0.0;
         for &t in on {
             let w = match weighing {
                 Some((targets, density)) => targets.arrival_weight(t as usize, density),
                 None => 1.0,
             };
-            self.tallies.arrive(t, (lumens * w) as f64);
+            self.surfaces.hit(t);
+            self.add(t, k, front, at.point, (lumens * w) as f64, true);
         }
     }
 
@@ -156,13 +256,21 @@ impl PathVisitor for ChunkTally<'_> {
 
     #[inline]
     fn end_group(&mut self) {
-        self.tallies.end_group();
+        self.surfaces.end_group();
+        for c in &mut self.cells {
+            c.end_group();
+        }
+    }
+
+    fn bytes(&self) -> usize {
+        self.surfaces.bytes() + self.cells.iter().map(CellTallies::bytes).sum::<usize>()
     }
 }
 
 /// Traces `settings.photons` photons, rounded up to whole stratified groups
 /// ([`photons_traced`]; [`Measurement::photons`] says how many), from the lights of
-/// `scene` and tallies what they bring to the surfaces `targets`. `progress` is called
+/// `scene` and tallies what they bring to the surfaces `targets`, every light together
+/// ([`measure_with`] keeps lights, sides and grid cells apart). `progress` is called
 /// from worker threads with the number of photons traced so far.
 ///
 /// # Panics
@@ -176,25 +284,76 @@ pub fn measure(
     estimator: Estimator,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Measurement {
+    let components = Components::one(scene);
+    let request = Request {
+        surfaces: targets,
+        grids: Vec::new(),
+        components: &components,
+        estimator,
+    };
+    measure_with(scene, accel, &request, settings, progress)
+}
+
+/// [`measure`] with the lights kept apart by component, each target's front and back
+/// apart, and the grids of `request` read cell by cell.
+///
+/// # Panics
+/// As [`measure`]; and if a grid's target is not one of the request's surfaces.
+pub fn measure_with(
+    scene: &Scene,
+    accel: &Accel,
+    request: &Request,
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Measurement {
     let settings = &TraceSettings {
         photons: photons_traced(settings.photons).expect("a photon count that fits in u64"),
         ..*settings
     };
+    let targets = request.surfaces;
     let emitters = Emitters::new(scene);
-    let map = TargetMap::new(scene, targets);
+    let k = request.components.count();
+    let mut grids_of = vec![Vec::new(); targets.len()];
+    for (g, grid) in request.grids.iter().enumerate() {
+        grids_of[grid.target].push(g);
+    }
+    let plan = Plan {
+        map: TargetMap::new(scene, targets),
+        grids_of,
+        grids: &request.grids,
+        component_of: request.components.of_sources(&emitters),
+        components: k,
+    };
     let shapes = Targets::new(scene, targets);
-    let connect = estimator == Estimator::Connected;
+    let connect = request.estimator == Estimator::Connected;
+    let flux = emitters.total_flux();
     let mut result = Measurement {
         photons: settings.photons,
         rays: 0,
         connection_rays: 0,
-        tallies: vec![Tally::default(); targets.len()],
         areas: targets
             .iter()
             .map(|&s| scene.surface_area(s) as f64)
             .collect(),
+        hits: vec![0; targets.len()],
+        channels: vec![ChannelSums::new(2 * k); targets.len()],
+        grids: request
+            .grids
+            .iter()
+            .map(|g| {
+                let mut m = GridMeasurement::new(
+                    g.grid.clone(),
+                    g.side,
+                    CellTallies::new(g.grid.cells(), k).sums,
+                );
+                m.photons = settings.photons;
+                m.flux = flux;
+                m
+            })
+            .collect(),
+        component_flux: request.components.flux(&emitters),
         escaped: 0.0,
-        flux: emitters.total_flux(),
+        flux,
     };
     result.rays = trace_chunks(
         scene,
@@ -202,14 +361,22 @@ pub fn measure(
         &emitters,
         settings,
         || ChunkTally {
-            map: &map,
+            plan: &plan,
             connect: connect.then_some((&shapes, accel)),
-            tallies: GroupTallies::new(targets.len()),
+            surfaces: SurfaceTallies::new(targets.len(), k),
+            cells: request
+                .grids
+                .iter()
+                .map(|g| CellTallies::new(g.grid.cells(), k))
+                .collect(),
             escaped: 0.0,
             connection_rays: 0,
         },
         |part| {
-            part.tallies.add_to(&mut result.tallies);
+            part.surfaces.add_to(&mut result.channels, &mut result.hits);
+            for (total, cells) in result.grids.iter_mut().zip(&part.cells) {
+                total.merge(&cells.sums);
+            }
             result.escaped += part.escaped;
             result.connection_rays += part.connection_rays;
         },
@@ -235,6 +402,24 @@ pub struct SurfaceReport {
     pub std_error: f64,
     /// Photon arrivals counted.
     pub hits: u64,
+    /// The side counted: `front`, `back` or `both`.
+    pub side: String,
+    /// Mean illuminance of the front alone (the side its counter-clockwise normal
+    /// faces), lx.
+    pub front: f64,
+    /// Mean illuminance of the back alone, lx.
+    pub back: f64,
+}
+
+impl SurfaceReport {
+    /// The back's share of the surface's light when more than a tenth of it arrives
+    /// there, the side a designer rarely means (a ceiling lit from above, a desk from
+    /// below): worth a warning when both sides are counted.
+    pub fn much_from_behind(&self) -> Option<f64> {
+        let total = self.front + self.back;
+        let share = if total > 0.0 { self.back / total } else { 0.0 };
+        (self.side == "both" && share > 0.1).then_some(share)
+    }
 }
 
 /// `invlight measure --json`: a measurement with its settings and costs.
@@ -307,23 +492,25 @@ impl MeasureReport {
 }
 
 impl Measurement {
-    /// The report of this measurement of surfaces named `names` (in target order), with
-    /// intervals at `confidence`, traced with `settings` and `estimator`.
+    /// The report of this measurement of surfaces named `names` (in target order), each
+    /// counted on `side`, with intervals at `confidence`, traced with `settings` and
+    /// `estimator`.
     pub fn report(
         &self,
         names: &[String],
+        side: Side,
         confidence: Confidence,
-        settings: &TraceSettings,
-        estimator: Estimator,
+        (settings, estimator): (&TraceSettings, Estimator),
         (seconds, build_seconds): (f64, f64),
     ) -> MeasureReport {
         let z = confidence.z();
+        let all = vec![1.0; self.components()];
         MeasureReport {
             surfaces: names
                 .iter()
                 .enumerate()
                 .map(|(i, name)| {
-                    let e = self.estimate(i);
+                    let e = self.estimate_of(i, side, &all);
                     let interval = e.interval(z);
                     SurfaceReport {
                         name: name.clone(),
@@ -332,7 +519,10 @@ impl Measurement {
                         low: interval.low,
                         high: interval.high,
                         std_error: e.std_error,
-                        hits: self.tallies[i].hits,
+                        hits: self.hits[i],
+                        side: side.name().into(),
+                        front: self.estimate_of(i, Side::Front, &all).mean,
+                        back: self.estimate_of(i, Side::Back, &all).mean,
                     }
                 })
                 .collect(),

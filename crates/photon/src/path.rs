@@ -33,6 +33,12 @@ pub trait PathVisitor {
     /// tally.
     #[inline]
     fn end_group(&mut self) {}
+
+    /// Bytes the visitor holds: [`crate::trace_chunks`] keeps fewer chunks' visitors
+    /// pending when they are large (fine grids), so that memory stays bounded.
+    fn bytes(&self) -> usize {
+        0
+    }
 }
 
 /// What happens to a photon at a surface, with the factor its power is multiplied by.
@@ -60,12 +66,14 @@ pub fn trace_photon(
         mut power,
         lumens,
         lobe,
+        source,
     } = emitters.sample(sampler);
     let mut from = Departure {
         point: origin,
         lobe,
         lumens,
         survival: 1.0,
+        source,
     };
     visitor.depart(&from, sampler);
     let mut ray = match surface_normal {
@@ -98,6 +106,7 @@ pub fn trace_photon(
             lobe: Lobe::Cosine { normal: n },
             lumens: roulette.rho_d * luminance(power),
             survival: roulette.p_d,
+            source,
         };
         if roulette.p_d > 0.0 {
             visitor.depart(&diffuse, sampler);
@@ -112,12 +121,12 @@ pub fn trace_photon(
             }
             Event::Mirror(f) => {
                 power *= f;
-                from = specular(at.point, power);
+                from = specular(at.point, power, source);
                 reflect(ray.dir, n)
             }
             Event::Dielectric(f) => {
                 power *= f;
-                from = specular(at.point, power);
+                from = specular(at.point, power, source);
                 let entering = at.normal.dot(ray.dir) < 0.0;
                 let ior = scene.materials[at.material as usize].ior;
                 let eta = if entering { 1.0 / ior } else { ior };
@@ -203,12 +212,13 @@ impl Roulette {
 
 /// A departure along a delta lobe (mirror, glass), which no connection competes with.
 #[inline]
-fn specular(point: Vec3, power: Rgb) -> Departure<'static> {
+fn specular(point: Vec3, power: Rgb, source: u32) -> Departure<'static> {
     Departure {
         point,
         lobe: Lobe::Specular,
         lumens: luminance(power),
         survival: 1.0,
+        source,
     }
 }
 

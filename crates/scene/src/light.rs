@@ -101,6 +101,17 @@ pub fn aimed_frame(aim: Vec3, reference: Vec3) -> Mat3 {
 }
 
 impl LightKind {
+    /// The factor every one of its intensities (or a sun's illuminance) is: the point
+    /// and spot's candela, the sun's lux, the goniometric light's multiplier on its
+    /// table. Scaling it scales the light's output and flux alike (dimming).
+    pub fn strength_mut(&mut self) -> &mut Rgb {
+        match self {
+            LightKind::Point { intensity, .. } | LightKind::Spot { intensity, .. } => intensity,
+            LightKind::Directional { illuminance, .. } => illuminance,
+            LightKind::Goniometric { multiplier, .. } => multiplier,
+        }
+    }
+
     /// Position of a point or spot light.
     pub fn position(&self) -> Option<Vec3> {
         match self {

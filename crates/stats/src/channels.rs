@@ -74,10 +74,10 @@ impl ChannelSums {
     pub fn product(&self, a: &[f64], b: &[f64]) -> f64 {
         let c = self.sum.len();
         let mut out = 0.0;
-        for i in 0..c {
-            for j in 0..c {
+        for (i, &ai) in a.iter().enumerate().take(c) {
+            for (j, &bj) in b.iter().enumerate().take(c) {
                 let (lo, hi) = if i <= j { (i, j) } else { (j, i) };
-                out += a[i] * b[j] * self.cross[upper(c, lo, hi)];
+                out += ai * bj * self.cross[upper(c, lo, hi)];
             }
         }
         out
@@ -116,7 +116,12 @@ mod tests {
     /// summed by hand.
     #[test]
     fn weighted_sums_match_sums_by_hand() {
-        let groups = [[1.0, 0.0, 2.0], [0.5, 3.0, 0.0], [2.0, 1.0, 1.0], [0.0, 0.0, 4.0]];
+        let groups = [
+            [1.0, 0.0, 2.0],
+            [0.5, 3.0, 0.0],
+            [2.0, 1.0, 1.0],
+            [0.0, 0.0, 4.0],
+        ];
         let mut s = ChannelSums::new(3);
         for g in &groups {
             s.add_group(g);
@@ -139,7 +144,12 @@ mod tests {
         // Two independent-looking channels: the covariance by hand.
         let (a, b): (Vec<f64>, Vec<f64>) = groups.iter().map(|g| (g[0], g[2])).unzip();
         let (ma, mb) = (a.iter().sum::<f64>() / 4.0, b.iter().sum::<f64>() / 4.0);
-        let cov_g: f64 = a.iter().zip(&b).map(|(x, y)| (x - ma) * (y - mb)).sum::<f64>() / 3.0;
+        let cov_g: f64 = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| (x - ma) * (y - mb))
+            .sum::<f64>()
+            / 3.0;
         let want = cov_g * 4.0 / (256.0 * 256.0);
         let got = s.covariance(&[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0], 4, 256);
         assert!((got - want).abs() < 1e-15, "{got} vs {want}");
