@@ -995,7 +995,7 @@ mod solve {
         let file: Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("result.json")).unwrap())
                 .unwrap();
-        assert_eq!(file["schema_version"], 1);
+        assert_eq!(file["schema_version"], 2);
         assert_eq!(file["evaluations"], rows.len() as u64 - 1);
         assert_eq!(file["objective"]["surface"], "Desk");
         let strip = |mut v: Value| {

@@ -114,7 +114,8 @@ pub struct SceneArgs {
     pub scene: PathBuf,
     /// With a problem file: apply configuration K of a solve's result (RESULT#K, a
     /// result.json written by `invlight solve`; K counts from 1 in result.json's order,
-    /// as isoc-01.png, isoc-02.png, … do; RESULT alone is member 1, the highest mean).
+    /// as isoc-01.png, isoc-02.png, … do; RESULT alone is member 1, the best; a result
+    /// with no feasible configuration numbers its closest instead).
     #[arg(long, value_name = "RESULT#K")]
     pub config: Option<String>,
     #[command(flatten)]
@@ -145,6 +146,28 @@ impl SceneArgs {
             member.apply(&problem, &mut scene)?;
         }
         Ok(scene)
+    }
+}
+
+/// Which side of a measured surface counts (`--side`).
+#[derive(clap::ValueEnum, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum SideArg {
+    /// The side its counter-clockwise normal faces (a desk's top).
+    Front,
+    /// The other side.
+    Back,
+    /// Every arrival, whichever side.
+    #[default]
+    Both,
+}
+
+impl From<SideArg> for invlight_photon::Side {
+    fn from(s: SideArg) -> Self {
+        match s {
+            SideArg::Front => invlight_photon::Side::Front,
+            SideArg::Back => invlight_photon::Side::Back,
+            SideArg::Both => invlight_photon::Side::Both,
+        }
     }
 }
 

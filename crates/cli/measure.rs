@@ -1,7 +1,7 @@
 //! `invlight measure`: mean illuminance of named surfaces
 //! ([`invlight_photon::measure`]).
 
-use crate::args::{SceneArgs, TraceArgs};
+use crate::args::{SceneArgs, SideArg, TraceArgs};
 use crate::progress::Progress;
 use clap::Args;
 use invlight_photon::{Estimator, measure, photons_traced};
@@ -18,6 +18,11 @@ pub struct MeasureArgs {
     /// for several). `invlight scene FILE` lists the names.
     #[arg(long = "surface", short = 's', value_name = "NAME", required = true)]
     pub surfaces: Vec<String>,
+    /// The side of the surfaces that counts: the front (the side the surface's
+    /// counter-clockwise normal faces, a desk's top), the back, or both. Front and back
+    /// are reported apart either way.
+    #[arg(long, value_enum, default_value_t = SideArg::Both)]
+    pub side: SideArg,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals on the surfaces, as the thesis does (eq. 3.2),
@@ -25,8 +30,9 @@ pub struct MeasureArgs {
     /// standard error, except when nearly every photon reaches the surface anyway.
     #[arg(long)]
     pub arrivals_only: bool,
-    /// Print one JSON object (surfaces with mean, low, high, std_error, hits; photons,
-    /// rays, estimator, flux, settings, seconds) instead of a table.
+    /// Print one JSON object (surfaces with mean, low, high, std_error, hits, side,
+    /// front, back; photons, rays, estimator, flux, settings, seconds) instead of a
+    /// table.
     #[arg(long)]
     pub json: bool,
 }
@@ -62,11 +68,22 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     let seconds = start.elapsed().as_secs_f64();
     let report = m.report(
         &args.surfaces,
+        args.side.into(),
         confidence,
-        &settings,
-        estimator,
+        (&settings, estimator),
         (seconds, build_seconds),
     );
+    for s in &report.surfaces {
+        if let Some(share) = s.much_from_behind() {
+            eprintln!(
+                "warning: '{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front): add --side front if only the front counts",
+                s.name,
+                100.0 * share,
+                invlight_stats::significant(s.back),
+                invlight_stats::significant(s.front)
+            );
+        }
+    }
     if args.json {
         crate::print_json(&report)?;
     } else {

@@ -10,7 +10,8 @@ use crate::args::{LoadArgs, TraceArgs};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
-    Binding, Isoc, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Problem, Record, Run,
+    Binding, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Problem, Record, Run,
+    Standing,
 };
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::Pictures;
@@ -118,7 +119,8 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     // and result.json is replaced atomically. A second handler cannot be installed in
     // one process (tests run several solves); the first sets the same flag.
     let pool = args.trace.pool()?;
-    let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces);
+    let mut eval =
+        PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces, problem.photons);
     STOP.store(false, Ordering::Relaxed);
     let _ = ctrlc::set_handler(|| {
         if STOP.swap(true, Ordering::Relaxed) {
@@ -127,11 +129,16 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     });
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
     bar.set(search.iteration());
+    let unit = match problem.goal.unit() {
+        "" => String::new(),
+        u => format!(" {u}"),
+    };
     let mut reporter = Reporter {
         output,
         bar,
         records,
         refused: 0,
+        unit,
     };
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter))
@@ -139,15 +146,36 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     reporter.bar.finish();
     reporter
         .output
-        .write_result(search.isoc())
+        .write_result(search.standing())
         .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
-    let result = reporter.output.result(search.isoc());
+    let result = reporter.output.result(search.standing());
+    for side in eval.first_sides() {
+        if side.back_share() > 0.1 {
+            eprintln!(
+                "warning: '{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front, at the first configuration): add side=\"front\" where it is named if only the front counts",
+                side.name,
+                100.0 * side.back_share(),
+                significant(side.back.mean),
+                significant(side.front.mean)
+            );
+        }
+    }
 
-    // 4. Pictures of the ISOC and of the search.
+    // 4. Pictures of the ISOC (or of the configurations closest to feasible) and of the
+    // search.
     if let Some(pictures) = &pictures {
         let started = std::time::Instant::now();
         let isoc = search.isoc();
-        let members: Vec<_> = isoc.by_mean().iter().map(|m| m.config.clone()).collect();
+        let members: Vec<_> = if isoc.members().is_empty() {
+            search
+                .standing()
+                .closest
+                .iter()
+                .map(|(_, m)| m.config.clone())
+                .collect()
+        } else {
+            isoc.best_first().iter().map(|m| m.config.clone()).collect()
+        };
         let bar = Progress::new(0, "rows", "the ISOC pictures");
         let report = |done: u64, total: u64| bar.set_total(done, total);
         let records = &reporter.records;
@@ -166,7 +194,9 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     outcome.note().into_iter().for_each(|n| eprintln!("{n}"));
     if reporter.refused > 0 {
         let n = reporter.refused;
-        eprintln!("{n} candidates put an object or light outside the scene and were not traced");
+        eprintln!(
+            "{n} candidates put an object or light outside the scene, or two identical lamps in one cell, and were not traced"
+        );
     }
     eprintln!(
         "{} evaluations, {photons} photons, {rays} rays in {:.1} s; results in {}",
@@ -193,20 +223,35 @@ struct Reporter<'b> {
     /// Every evaluation so far, for search.png.
     records: Vec<Record>,
     refused: u64,
+    /// The goal's unit, with a space before it.
+    unit: String,
 }
 
 impl Observer for Reporter<'_> {
-    fn evaluated(&mut self, record: &Record, isoc: &Isoc, changed: bool) -> std::io::Result<()> {
-        self.output.evaluated(record, isoc, changed)?;
+    fn evaluated(
+        &mut self,
+        record: &Record,
+        standing: Standing<'_>,
+        changed: bool,
+    ) -> std::io::Result<()> {
+        self.output.evaluated(record, standing, changed)?;
         self.records.push(record.clone());
+        let isoc = standing.isoc;
         if let Some(best) = isoc.best() {
-            let i = best.estimate.interval(isoc.z());
+            let goal = &best.evaluation.goal;
+            let i = goal.interval(isoc.z());
             self.bar.message(format!(
-                "best {} lx [{}, {}], {} indistinguishable",
-                significant(best.estimate.mean),
+                "best {}{} [{}, {}], {} indistinguishable",
+                significant(goal.mean),
+                self.unit,
                 significant(i.low),
                 significant(i.high),
                 isoc.members().len()
+            ));
+        } else if let Some((v, _)) = standing.closest.first() {
+            self.bar.message(format!(
+                "none feasible yet; the closest is {} % short",
+                significant(100.0 * v)
             ));
         }
         Ok(())

@@ -206,7 +206,14 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
         .ok_or_else(|| format!("'{id}' is not an emissive object (a point light has no extent to sweep); this sweep moves objects"))?;
     let panel = vertices(&scene, light);
     let (panel_centre, panel_half) = bounds(&panel);
-    let (target, target_half) = bounds(&vertices(&scene, binding.objective));
+    let goal = binding
+        .goal
+        .surface()
+        .ok_or("the problem's goal is about no surface")?;
+    let goal_surface = scene
+        .surface(&goal.name)
+        .ok_or("the goal's surface is not in the scene")?;
+    let (target, target_half) = bounds(&vertices(&scene, goal_surface));
     // The solver moves the light by P − A: its centre is at P + offset.
     let offset = panel_centre - rect.a;
     let seed = args.seed.unwrap_or(problem.seed);
@@ -220,7 +227,7 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
             offset.x,
             offset.y,
             offset.z,
-            problem.objective.surface,
+            goal.name,
             target.x,
             target.y,
             target.z,
@@ -276,8 +283,9 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
             scene.clone(),
             seed.wrapping_add(index as u64),
             args.bounces,
+            args.photons,
         );
-        let Ok(e) = eval.evaluate(&config, args.photons);
+        let e = eval.evaluate(&config, args.photons)?.goal;
         cells.push(Cell {
             centre,
             p: rect.point(s, t),

@@ -101,16 +101,16 @@ pub fn visits(
     let mut index: HashMap<Vec<u64>, usize> = HashMap::new();
     let key = |r: &Record| -> Vec<u64> { r.config.coords.iter().map(|c| c.to_bits()).collect() };
     for r in records.iter().filter(|r| r.verdict != Verdict::Refine) {
-        let interval = r.estimate.interval(isoc.z());
+        let interval = r.evaluation.goal.interval(isoc.z());
         let role = match r.verdict {
             Verdict::Initial => Role::Start,
             Verdict::Better => Role::Improvement,
-            Verdict::Invalid => Role::Invalid,
+            Verdict::Invalid | Verdict::Infeasible => Role::Invalid,
             _ => Role::Visited,
         };
         let point = Visit {
             coords: coords(domain, space.slice(&r.config, i)),
-            mean: r.estimate.mean,
+            mean: r.evaluation.goal.mean,
             low: interval.low,
             high: interval.high,
             role,

@@ -12,6 +12,7 @@
 //! point (Helly's theorem in one dimension): the SIISOC is always a real interval.
 
 use crate::space::{Cell, Configuration};
+use crate::vns::Evaluation;
 use invlight_stats::Estimate;
 use invlight_stats::{Comparison, Interval, compare};
 
@@ -22,8 +23,11 @@ pub struct Member {
     pub config: Configuration,
     /// Its cell.
     pub cell: Cell,
-    /// Its estimate.
+    /// Its score, the estimate the ISOC compares: the goal, or minus it for a goal to
+    /// minimise, or minus its distance to a target ([`crate::Sense::score`]).
     pub estimate: Estimate,
+    /// What was estimated: the goal and the constraints.
+    pub evaluation: Evaluation,
 }
 
 /// What happened to a candidate offered to the ISOC.
@@ -65,7 +69,7 @@ impl Isoc {
         &self.members
     }
 
-    /// The first of [`Isoc::by_mean`], found without sorting (for progress shown after
+    /// The first of [`Isoc::best_first`], found without sorting (for progress shown after
     /// every evaluation).
     pub fn best(&self) -> Option<&Member> {
         self.members
@@ -73,10 +77,10 @@ impl Isoc {
             .min_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean))
     }
 
-    /// The members, highest mean first (equal means oldest first): the order a reader
+    /// The members, best score first (equal scores oldest first): the order a reader
     /// expects in `result.json`, the pictures and the printed table, though the members
     /// cannot be told apart at the chosen confidence.
-    pub fn by_mean(&self) -> Vec<&Member> {
+    pub fn best_first(&self) -> Vec<&Member> {
         let mut members: Vec<&Member> = self.members.iter().collect();
         members.sort_by(|a, b| b.estimate.mean.total_cmp(&a.estimate.mean));
         members
@@ -154,6 +158,11 @@ mod tests {
                 std_error,
                 samples: 1000,
             },
+            evaluation: Evaluation::of(Estimate {
+                mean,
+                std_error,
+                samples: 1000,
+            }),
         }
     }
 

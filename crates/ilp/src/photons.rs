@@ -1,46 +1,110 @@
-//! The objective by photon tracing (thesis §3.3, §4.9.2): apply the configuration to
-//! the scene, rebuild the acceleration structure's top level if an instance moved (the
-//! instances no variable moves are baked into one tree once), trace, and read the
-//! objective surface's tally.
+//! The goal and constraints by photon tracing (thesis §3.3, §4.9.2): apply the
+//! configuration's arrangement to the scene, rebuild the acceleration structure's top
+//! level if an instance moved (the instances no variable moves are baked into one tree
+//! once), trace once for every measured surface and grid, and read each intention from
+//! the tallies.
 //!
 //! Every evaluation uses the same photon seed (common random numbers, DESIGN.md §2):
 //! photon i of two configurations starts from the same random numbers, so their
 //! difference is far less noisy than either value, and a fast estimate with n photons
 //! is the first n photons of the full one.
+//!
+//! Dimming costs no photons: each dimmed light's light is tallied apart and weighed by
+//! its level ([`Binding::levels`]), so every dimming of one arrangement is read from
+//! one trace, kept while the search tries dimmings of it. A problem whose only
+//! variables are dimming levels traces once, with N photons, whatever the search asks.
 
 use crate::binding::Binding;
 use crate::space::Configuration;
-use crate::vns::Evaluate;
-use invlight_photon::{Estimator, TraceSettings, measure, photons_traced};
+use crate::vns::{Evaluate, Evaluation};
+use invlight_photon::{
+    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_with,
+    photons_traced,
+};
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
 use invlight_trace::Accel;
-use std::convert::Infallible;
+use std::collections::HashMap;
+
+/// How many traces the evaluator keeps for dimmings of their arrangements.
+const KEPT_TRACES: usize = 64;
+
+/// The light a measured surface receives on each side, for the warning that much of it
+/// arrives from behind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SideSplit {
+    /// The surface.
+    pub name: String,
+    /// Mean illuminance on its front, lx.
+    pub front: Estimate,
+    /// On its back, lx.
+    pub back: Estimate,
+}
+
+impl SideSplit {
+    /// The back's share of the surface's light (0 when it has none).
+    pub fn back_share(&self) -> f64 {
+        let total = self.front.mean + self.back.mean;
+        if total > 0.0 {
+            self.back.mean / total
+        } else {
+            0.0
+        }
+    }
+}
 
 /// Evaluates configurations of a bound problem by photon tracing.
 pub struct PhotonEvaluator<'b> {
     binding: &'b Binding,
     scene: Scene,
     accel: Accel,
+    components: Components,
     seed: u64,
     max_bounces: u32,
+    /// N: what a problem of dimming levels alone traces, once.
+    full: u64,
     rays: u64,
     photons: u64,
+    traces: u64,
+    kept: HashMap<(Vec<u64>, u64), Measurement>,
+    first_sides: Option<Vec<SideSplit>>,
 }
+
+/// Why an evaluation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EvaluationError {
+    /// A measured surface moved to where no grid can be laid on it.
+    Grid(String, GridError),
+}
+
+impl std::fmt::Display for EvaluationError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EvaluationError::Grid(name, e) => write!(f, "cannot lay a grid on '{name}': {e}"),
+        }
+    }
+}
+
+impl std::error::Error for EvaluationError {}
 
 impl<'b> PhotonEvaluator<'b> {
     /// An evaluator owning `scene` (already prepared by [`Binding::new`]); photons use
-    /// `seed` and at most `max_bounces` bounces.
-    pub fn new(binding: &'b Binding, scene: Scene, seed: u64, max_bounces: u32) -> Self {
+    /// `seed` and at most `max_bounces` bounces, and a full evaluation traces `full`.
+    pub fn new(binding: &'b Binding, scene: Scene, seed: u64, max_bounces: u32, full: u64) -> Self {
         let accel = Accel::with_movable(&scene, &binding.movable_instances());
         PhotonEvaluator {
             binding,
+            components: binding.components(&scene),
             scene,
             accel,
             seed,
             max_bounces,
+            full,
             rays: 0,
             photons: 0,
+            traces: 0,
+            kept: HashMap::new(),
+            first_sides: None,
         }
     }
 
@@ -48,42 +112,99 @@ impl<'b> PhotonEvaluator<'b> {
     pub fn work(&self) -> (u64, u64) {
         (self.rays, self.photons)
     }
+
+    /// Traces so far: dimmings of an arrangement already traced take none.
+    pub fn traces(&self) -> u64 {
+        self.traces
+    }
+
+    /// Each measured surface's light by side at the first evaluation, for surfaces an
+    /// intention counts on both sides.
+    pub fn first_sides(&self) -> &[SideSplit] {
+        self.first_sides.as_deref().unwrap_or(&[])
+    }
+
+    fn trace(
+        &mut self,
+        config: &Configuration,
+        photons: u64,
+    ) -> Result<&Measurement, EvaluationError> {
+        let key = (self.binding.arrangement(config), photons);
+        if !self.kept.contains_key(&key) {
+            if self.binding.apply_arrangement(&mut self.scene, config) {
+                self.accel.update_instances(&self.scene);
+            }
+            let reading = &self.binding.reading;
+            let grids = reading
+                .grid_requests(&self.scene)
+                .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
+            let request = Request {
+                surfaces: &reading.surfaces,
+                grids,
+                components: &self.components,
+                estimator: Estimator::Connected,
+            };
+            let settings = TraceSettings {
+                photons,
+                seed: self.seed,
+                max_bounces: self.max_bounces,
+            };
+            let m = measure_with(&self.scene, &self.accel, &request, &settings, None);
+            self.rays += m.rays + m.connection_rays;
+            self.photons += m.photons;
+            self.traces += 1;
+            if self.kept.len() >= KEPT_TRACES {
+                self.kept.clear();
+            }
+            self.kept.insert(key.clone(), m);
+        }
+        Ok(&self.kept[&key])
+    }
 }
 
 impl Evaluate for PhotonEvaluator<'_> {
-    type Error = Infallible;
+    type Error = EvaluationError;
 
-    fn evaluate(&mut self, config: &Configuration, photons: u64) -> Result<Estimate, Infallible> {
-        if self.binding.apply(&mut self.scene, config) {
-            self.accel.update_instances(&self.scene);
+    fn evaluate(
+        &mut self,
+        config: &Configuration,
+        photons: u64,
+    ) -> Result<Evaluation, EvaluationError> {
+        let photons = self.samples(photons);
+        let levels = self.binding.levels(config);
+        let power = self.binding.power(config);
+        let binding = self.binding;
+        let first = self.first_sides.is_none();
+        let m = self.trace(config, photons)?;
+        let evaluation = binding.reading.read(m, &levels, power);
+        if first {
+            let reading = &binding.reading;
+            let sides = (0..reading.surfaces.len())
+                .filter(|&t| reading.both_sides[t])
+                .map(|t| SideSplit {
+                    name: reading.names[t].clone(),
+                    front: m.estimate_of(t, invlight_photon::Side::Front, &levels),
+                    back: m.estimate_of(t, invlight_photon::Side::Back, &levels),
+                })
+                .collect();
+            self.first_sides = Some(sides);
         }
-        let settings = TraceSettings {
-            photons: self.samples(photons),
-            seed: self.seed,
-            max_bounces: self.max_bounces,
-        };
-        let m = measure(
-            &self.scene,
-            &self.accel,
-            &[self.binding.objective],
-            &settings,
-            Estimator::Connected,
-            None,
-        );
-        self.rays += m.rays + m.connection_rays;
-        self.photons += m.photons;
-        Ok(m.estimate(0))
+        Ok(evaluation)
     }
 
     /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is
-    /// held at the largest whole number of groups (no run gets near either).
+    /// held at the largest whole number of groups (no run gets near either). A problem
+    /// of dimming levels alone always traces N: its one trace serves every evaluation.
     fn samples(&self, requested: u64) -> u64 {
+        let requested = if self.binding.dimming_only() {
+            requested.max(self.full)
+        } else {
+            requested
+        };
         photons_traced(requested).unwrap_or(u64::MAX - u64::MAX % invlight_photon::GROUP)
     }
 
     fn refuses(&self, config: &Configuration) -> Option<String> {
-        self.binding
-            .leaves_scene(config)
-            .map(|id| format!("it puts '{id}' outside the scene"))
+        self.binding.refusal(config)
     }
 }

@@ -286,6 +286,12 @@ pub struct Space {
     cells: Vec<u32>,
     /// First coordinate of each variable.
     offsets: Vec<usize>,
+    /// Groups of interchangeable members, each member its variables' indices
+    /// ([`Space::with_exchangeable`]).
+    exchangeable: Vec<Vec<Vec<usize>>>,
+    /// Per variable, whether changing it alone costs the evaluator next to nothing
+    /// ([`Space::with_cheap`]).
+    cheap: Vec<bool>,
 }
 
 impl Space {
@@ -306,7 +312,68 @@ impl Space {
             variables,
             cells,
             offsets,
+            exchangeable: Vec::new(),
+            cheap: Vec::new(),
         }
+    }
+
+    /// This space with the variables `cheap` marked as cheap to change: a configuration
+    /// that differs from an evaluated one in them alone is evaluated without new work
+    /// (dimming levels, read from the trace of the same arrangement).
+    pub fn with_cheap(mut self, cheap: &[usize]) -> Space {
+        self.cheap = (0..self.variables.len())
+            .map(|i| cheap.contains(&i))
+            .collect();
+        self
+    }
+
+    /// Whether some variables are cheap and some are not: then the search spends some
+    /// of its tries on the cheap ones alone.
+    pub fn has_cheap_part(&self) -> bool {
+        self.cheap.iter().any(|&c| c) && self.cheap.iter().any(|&c| !c)
+    }
+
+    /// This space with groups of interchangeable members: within a group, every member
+    /// is a list of variables of the same domains and meshes, and swapping two
+    /// members' values changes nothing that is measured (two identical lamps on one
+    /// rectangle). A cell is then taken in its canonical order, members sorted by their
+    /// cells, so the search never evaluates a swap of what it has seen.
+    ///
+    /// # Panics
+    /// If the members of a group do not have the same cells per coordinate.
+    pub fn with_exchangeable(mut self, groups: Vec<Vec<Vec<usize>>>) -> Space {
+        for g in &groups {
+            let shape = |m: &Vec<usize>| -> Vec<u32> {
+                m.iter()
+                    .flat_map(|&v| {
+                        let o = self.offsets[v];
+                        self.cells[o..o + self.variables[v].domain.dimensions()].to_vec()
+                    })
+                    .collect()
+            };
+            assert!(
+                g.windows(2).all(|w| shape(&w[0]) == shape(&w[1])),
+                "interchangeable members with different meshes"
+            );
+        }
+        self.exchangeable = groups;
+        self
+    }
+
+    /// The groups of interchangeable members ([`Space::with_exchangeable`]).
+    pub fn exchangeable(&self) -> &[Vec<Vec<usize>>] {
+        &self.exchangeable
+    }
+
+    /// The coordinate indices of a member of an interchangeable group.
+    fn member_coords(&self, member: &[usize]) -> Vec<usize> {
+        member
+            .iter()
+            .flat_map(|&v| {
+                let o = self.offsets[v];
+                o..o + self.variables[v].domain.dimensions()
+            })
+            .collect()
     }
 
     /// The variables, in order.
@@ -324,9 +391,29 @@ impl Space {
         &self.cells
     }
 
-    /// Total number of cells (as f64: it can exceed any integer type).
+    /// Total number of distinct cells (as f64: it can exceed any integer type): a group
+    /// of m interchangeable members of c cells each has C(c + m − 1, m) arrangements,
+    /// not c^m.
     pub fn cell_count(&self) -> f64 {
-        self.cells.iter().map(|&c| c as f64).product()
+        let mut grouped = vec![false; self.cells.len()];
+        let mut count = 1.0;
+        for g in &self.exchangeable {
+            let coords: Vec<Vec<usize>> = g.iter().map(|m| self.member_coords(m)).collect();
+            let c: f64 = coords[0].iter().map(|&i| self.cells[i] as f64).product();
+            // C(c + m − 1, m) = Π_{j=1..m} (c − 1 + j)/j.
+            count *= (1..=g.len())
+                .map(|j| (c - 1.0 + j as f64) / j as f64)
+                .product::<f64>();
+            coords.iter().flatten().for_each(|&i| grouped[i] = true);
+        }
+        count
+            * self
+                .cells
+                .iter()
+                .zip(&grouped)
+                .filter(|(_, g)| !**g)
+                .map(|(&c, _)| c as f64)
+                .product::<f64>()
     }
 
     /// The coordinates of variable `i` within a configuration.
@@ -335,16 +422,28 @@ impl Space {
         &config.coords[o..o + self.variables[i].domain.dimensions()]
     }
 
-    /// The cell a configuration lies in.
+    /// The cell a configuration lies in, interchangeable members in canonical order.
     pub fn cell(&self, config: &Configuration) -> Cell {
-        Cell(
-            config
-                .coords
+        let mut cell: Vec<u32> = config
+            .coords
+            .iter()
+            .zip(&self.cells)
+            .map(|(&x, &c)| ((x * c as f64).floor().max(0.0) as u32).min(c - 1))
+            .collect();
+        for g in &self.exchangeable {
+            let coords: Vec<Vec<usize>> = g.iter().map(|m| self.member_coords(m)).collect();
+            let mut tuples: Vec<Vec<u32>> = coords
                 .iter()
-                .zip(&self.cells)
-                .map(|(&x, &c)| ((x * c as f64).floor().max(0.0) as u32).min(c - 1))
-                .collect(),
-        )
+                .map(|c| c.iter().map(|&i| cell[i]).collect())
+                .collect();
+            tuples.sort_unstable();
+            for (c, t) in coords.iter().zip(tuples) {
+                for (&i, k) in c.iter().zip(t) {
+                    cell[i] = k;
+                }
+            }
+        }
+        Cell(cell)
     }
 
     /// The reference point (centre) of a cell.
@@ -367,8 +466,32 @@ impl Space {
     /// A random neighbour in N(x, r) = N₁(x₁, r) × … × Nₙ(xₙ, r) (thesis §3.2): every
     /// variable moves within its own neighbourhood of radius r.
     pub fn neighbour(&self, x: &Configuration, r: f64, rng: &mut SplitMix64) -> Configuration {
+        self.neighbour_moving(x, r, rng, |_| true)
+    }
+
+    /// A random neighbour in N(x, r) that moves the cheap variables alone
+    /// ([`Space::with_cheap`]).
+    pub fn cheap_neighbour(
+        &self,
+        x: &Configuration,
+        r: f64,
+        rng: &mut SplitMix64,
+    ) -> Configuration {
+        self.neighbour_moving(x, r, rng, |i| self.cheap.get(i).copied().unwrap_or(false))
+    }
+
+    fn neighbour_moving(
+        &self,
+        x: &Configuration,
+        r: f64,
+        rng: &mut SplitMix64,
+        moves: impl Fn(usize) -> bool,
+    ) -> Configuration {
         let mut out = x.clone();
         for (i, v) in self.variables.iter().enumerate() {
+            if !moves(i) {
+                continue;
+            }
             let o = self.offsets[i];
             let n = v.domain.dimensions();
             v.domain

@@ -16,8 +16,25 @@
 //! 3. repeat step 2 until `max_iterations` candidates were drawn (cache hits included,
 //!    as in ILPSolver), every cell was evaluated, or the caller asked to stop;
 //! 4. with `REFINE_ISOC_ON_END`, re-evaluate the ISOC with N samples and rebuild it.
+//!
+//! Beyond the thesis, the goal may be minimised or brought to a target ([`Sense`]: the
+//! search maximises a score, the goal or minus it or minus its distance to the target),
+//! and constraints decide which configurations may join the ISOC at all
+//! ([`Feasibility`], one-sided at the run's confidence): an infeasible candidate is
+//! out; one whose constraints cannot be decided with n samples but that could join is
+//! evaluated with N before it is admitted, and stays out if N does not decide either.
+//! The configurations that violate the constraints least are kept, so that a problem
+//! with no feasible configuration still says which came closest; until a feasible one
+//! is found the search draws around the closest, and coming closer counts as an
+//! improvement (a first phase toward feasibility, as in two-phase methods).
+//!
+//! When some variables are cheap to change ([`Space::with_cheap`]: dimming levels, which
+//! the photon evaluator reads from the trace of the same arrangement), every other
+//! candidate moves those alone: a second neighbourhood structure, as VNS allows
+//! (Mladenović & Hansen 1997), that searches the levels of each arrangement for free.
 
 use crate::cache::{Cache, Entry};
+use crate::intention::{Bound, Feasibility};
 use crate::isoc::{Admission, Isoc, Member};
 use crate::space::{Cell, Configuration, Space};
 use invlight_stats::{Confidence, Estimate};
@@ -75,6 +92,10 @@ pub enum Verdict {
     Beaten,
     /// Its interval lies entirely above the objective's cap.
     Invalid,
+    /// A constraint is violated at the confidence.
+    Infeasible,
+    /// Its constraints cannot be decided even with N samples.
+    Undecided,
     /// A fast estimate that reached the SIISOC: the next row re-evaluates it with N.
     Refine,
     /// `REFINE_ISOC_ON_END`: an ISOC member re-evaluated with N; the final ISOC is
@@ -83,13 +104,15 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    const ALL: [Verdict; 8] = [
+    const ALL: [Verdict; 10] = [
         Verdict::Initial,
         Verdict::Better,
         Verdict::Probable,
         Verdict::Bad,
         Verdict::Beaten,
         Verdict::Invalid,
+        Verdict::Infeasible,
+        Verdict::Undecided,
         Verdict::Refine,
         Verdict::Final,
     ];
@@ -103,6 +126,8 @@ impl Verdict {
             Verdict::Bad => "bad",
             Verdict::Beaten => "beaten",
             Verdict::Invalid => "invalid",
+            Verdict::Infeasible => "infeasible",
+            Verdict::Undecided => "undecided",
             Verdict::Refine => "refine",
             Verdict::Final => "final",
         }
@@ -111,6 +136,51 @@ impl Verdict {
     /// Parses the CSV spelling.
     pub fn parse(s: &str) -> Option<Verdict> {
         Verdict::ALL.into_iter().find(|v| v.name() == s)
+    }
+}
+
+/// Which way the goal is better.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sense {
+    /// The larger the better (`maximizeRadiance`, `maximizeUniformity`).
+    Maximize,
+    /// The smaller the better (`minimizeRadiance`, `minimizePower`).
+    Minimize,
+    /// The closer to this value the better (`targetRadiance`).
+    Target(f64),
+}
+
+impl Sense {
+    /// The score the search maximises for a goal estimate: the goal, minus it, or
+    /// minus its distance |E − T| to the target, each with the goal's standard error
+    /// (for a target, |E − T|'s first-order error; its interval is folded at T).
+    pub fn score(self, goal: &Estimate) -> Estimate {
+        let mean = match self {
+            Sense::Maximize => goal.mean,
+            Sense::Minimize => -goal.mean,
+            Sense::Target(t) => -(goal.mean - t).abs(),
+        };
+        Estimate { mean, ..*goal }
+    }
+}
+
+/// What one evaluation estimated: the goal, and each constraint's quantity in the
+/// order of [`Settings::constraints`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// The goal's quantity (lx, U0, lm), not its score.
+    pub goal: Estimate,
+    /// The constrained quantities.
+    pub constraints: Vec<Estimate>,
+}
+
+impl Evaluation {
+    /// An evaluation of a problem without constraints.
+    pub fn of(goal: Estimate) -> Evaluation {
+        Evaluation {
+            goal,
+            constraints: Vec::new(),
+        }
     }
 }
 
@@ -129,6 +199,10 @@ pub struct Settings {
     pub confidence: Confidence,
     /// `maxRadiosity`: a configuration whose interval lies entirely above it is invalid.
     pub cap: Option<f64>,
+    /// Which way the goal is better.
+    pub sense: Sense,
+    /// The bounds of the constraints, in the order evaluations give their estimates.
+    pub constraints: Vec<Bound>,
     /// Seed of the search's own random numbers.
     pub seed: u64,
     /// I of Algorithm 3.2, tries per radius; `None`: 4 per dimension, at least 8.
@@ -153,13 +227,16 @@ impl Settings {
     }
 }
 
-/// An objective estimate for a configuration with a given number of samples.
+/// Estimates of the goal and the constraints at a configuration with a given number of
+/// samples.
 pub trait Evaluate {
     /// Why an evaluation failed.
     type Error;
-    /// Estimates the objective at `config` from `photons` samples. Evaluations with the
-    /// same sample count should share random numbers (common random numbers).
-    fn evaluate(&mut self, config: &Configuration, photons: u64) -> Result<Estimate, Self::Error>;
+    /// Estimates the goal and constraints at `config` from `photons` samples.
+    /// Evaluations with the same sample count should share random numbers (common
+    /// random numbers).
+    fn evaluate(&mut self, config: &Configuration, photons: u64)
+    -> Result<Evaluation, Self::Error>;
 
     /// The samples an evaluation asked for `requested` really takes (the photon tracer
     /// rounds up to whole groups and a minimum): the search sizes its evaluations by
@@ -182,8 +259,8 @@ pub struct Record {
     pub iteration: u64,
     /// The configuration evaluated (a cell's reference point).
     pub config: Configuration,
-    /// The estimate.
-    pub estimate: Estimate,
+    /// What was estimated.
+    pub evaluation: Evaluation,
     /// Wall time of the evaluation, s.
     pub seconds: f64,
     /// What the search decided.
@@ -192,13 +269,14 @@ pub struct Record {
 
 /// Receives the search's progress.
 pub trait Observer {
-    /// After every evaluation, with the ISOC as it is now; `isoc_changed` when this
-    /// evaluation changed it.
+    /// After every evaluation, with the ISOC (and the configurations closest to
+    /// feasible) as they are now; `changed` when this evaluation changed what a result
+    /// file shows: the ISOC, or the closest while the ISOC is empty.
     fn evaluated(
         &mut self,
         record: &Record,
-        isoc: &Isoc,
-        isoc_changed: bool,
+        standing: Standing<'_>,
+        changed: bool,
     ) -> std::io::Result<()>;
     /// After every candidate drawn (cache hits included).
     fn iteration(&mut self, _iteration: u64) {}
@@ -211,6 +289,17 @@ pub trait Observer {
     fn should_stop(&mut self) -> bool {
         false
     }
+}
+
+/// Where a search stands: its ISOC and the configurations that came closest to
+/// meeting the constraints.
+#[derive(Debug, Clone, Copy)]
+pub struct Standing<'a> {
+    /// The ISOC: feasible configurations that cannot be told apart from the best.
+    pub isoc: &'a Isoc,
+    /// The configurations that violate the constraints least (by the largest relative
+    /// shortfall of their means), least first, with that shortfall.
+    pub closest: &'a [(f64, Member)],
 }
 
 /// Why a search stopped early.
@@ -270,7 +359,14 @@ pub struct Search<'s> {
     iteration: u64,
     evaluations: u64,
     started: bool,
+    /// The configurations that violate the constraints least, least first.
+    closest: Vec<(f64, Member)>,
+    /// Whether `closest` changed since the last report.
+    closest_changed: bool,
 }
+
+/// How many of the least-violating configurations a search keeps.
+const CLOSEST: usize = 5;
 
 impl<'s> Search<'s> {
     /// A search of `space` from `initial` (snapped to its cell).
@@ -286,8 +382,24 @@ impl<'s> Search<'s> {
             iteration: 0,
             evaluations: 0,
             started: false,
+            closest: Vec::new(),
+            closest_changed: false,
             settings,
         }
+    }
+
+    /// Where the search stands: the ISOC and the configurations closest to feasible
+    /// (what a problem without a feasible configuration came closest to).
+    pub fn standing(&self) -> Standing<'_> {
+        Standing {
+            isoc: &self.isoc,
+            closest: &self.closest,
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
     }
 
     /// The ISOC so far.
@@ -314,25 +426,24 @@ impl<'s> Search<'s> {
         for rec in records {
             let cell = self.space.cell(&rec.config);
             let config = self.space.cell_centre(&cell);
-            let member = Member {
-                config: config.clone(),
-                cell: cell.clone(),
-                estimate: rec.estimate,
-            };
+            let member = self.member(config.clone(), cell.clone(), &rec.evaluation);
             if rec.verdict == Verdict::Final {
                 let fresh = rebuilt.get_or_insert_with(|| Isoc::new(self.isoc.z()));
-                if !self.invalid(&rec.estimate) {
+                if !self.invalid(&rec.evaluation)
+                    && self.feasibility(&rec.evaluation) == Feasibility::Feasible
+                {
                     fresh.admit(member);
                 }
             } else {
                 if let Some(done) = rebuilt.take() {
                     self.isoc = done;
                 }
-                if matches!(
-                    rec.verdict,
-                    Verdict::Initial | Verdict::Better | Verdict::Probable
-                ) {
-                    self.isoc.admit(member);
+                match rec.verdict {
+                    Verdict::Initial | Verdict::Better | Verdict::Probable => {
+                        self.isoc.admit(member);
+                    }
+                    Verdict::Infeasible | Verdict::Undecided => self.keep_closest(member),
+                    _ => {}
                 }
             }
             if rec.iteration == 0 {
@@ -349,7 +460,7 @@ impl<'s> Search<'s> {
             self.cache.insert(
                 cell,
                 Entry::Evaluated {
-                    estimate: rec.estimate,
+                    estimate: rec.evaluation.goal,
                     verdict: rec.verdict,
                 },
             );
@@ -407,10 +518,137 @@ impl<'s> Search<'s> {
         self.cache.len() as f64 >= self.space.cell_count()
     }
 
-    fn invalid(&self, e: &Estimate) -> bool {
+    /// Whether the goal's whole interval lies above the cap (thesis §5.3.4).
+    fn invalid(&self, e: &Evaluation) -> bool {
         self.settings
             .cap
-            .is_some_and(|cap| e.interval(self.isoc.z()).low > cap)
+            .is_some_and(|cap| e.goal.interval(self.isoc.z()).low > cap)
+    }
+
+    /// Whether the constraints hold at the confidence, one-sided.
+    fn feasibility(&self, e: &Evaluation) -> Feasibility {
+        let z = self.settings.confidence.z_one_sided();
+        Feasibility::all(
+            self.settings
+                .constraints
+                .iter()
+                .zip(&e.constraints)
+                .map(|(bound, c)| Feasibility::of(c.mean, c.std_error, z, bound)),
+        )
+    }
+
+    /// How far the means are from meeting the constraints: the largest relative
+    /// shortfall (0 when every mean meets its bound).
+    fn violation(&self, e: &Evaluation) -> f64 {
+        self.settings
+            .constraints
+            .iter()
+            .zip(&e.constraints)
+            .map(|(bound, c)| {
+                let limit = bound.limit();
+                let short = if bound.is_lower() {
+                    limit - c.mean
+                } else {
+                    c.mean - limit
+                };
+                (short / limit.abs().max(f64::MIN_POSITIVE)).max(0.0)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// A member of the ISOC (or of the closest) for an evaluation.
+    fn member(&self, config: Configuration, cell: Cell, e: &Evaluation) -> Member {
+        Member {
+            config,
+            cell,
+            estimate: self.settings.sense.score(&e.goal),
+            evaluation: e.clone(),
+        }
+    }
+
+    /// Remembers a configuration that misses a constraint among the closest.
+    fn keep_closest(&mut self, member: Member) {
+        let v = self.violation(&member.evaluation);
+        if self.closest.iter().any(|(_, m)| m.cell == member.cell) {
+            self.closest.retain(|(_, m)| m.cell != member.cell);
+        }
+        let at = self.closest.partition_point(|(w, _)| *w <= v);
+        if at < CLOSEST {
+            self.closest.insert(at, (v, member));
+            self.closest.truncate(CLOSEST);
+            self.closest_changed = true;
+        }
+    }
+
+    /// The verdict of a full evaluation: invalid, infeasible, undecided, or what the
+    /// ISOC made of it (`initial` for the first configuration).
+    fn decide(
+        &mut self,
+        config: &Configuration,
+        cell: &Cell,
+        e: &Evaluation,
+        initial: bool,
+    ) -> Verdict {
+        if self.invalid(e) {
+            return Verdict::Invalid;
+        }
+        let member = self.member(config.clone(), cell.clone(), e);
+        match self.feasibility(e) {
+            Feasibility::Infeasible => {
+                self.keep_closest(member);
+                return Verdict::Infeasible;
+            }
+            Feasibility::Undecided => {
+                self.keep_closest(member);
+                return Verdict::Undecided;
+            }
+            Feasibility::Feasible => {}
+        }
+        match self.isoc.admit(member) {
+            _ if initial => Verdict::Initial,
+            Admission::Below => Verdict::Bad,
+            Admission::Beaten => Verdict::Beaten,
+            Admission::Joined { removed, was_empty } => {
+                if removed > 0 || was_empty {
+                    Verdict::Better
+                } else {
+                    Verdict::Probable
+                }
+            }
+        }
+    }
+
+    /// Whether an estimate made with fewer than N samples must be made again with N
+    /// before deciding: its constraints are undecided while it could join the ISOC.
+    fn undecided_but_promising(&self, e: &Evaluation) -> bool {
+        !self.invalid(e)
+            && self.feasibility(e) == Feasibility::Undecided
+            && self.isoc.reaches(&self.settings.sense.score(&e.goal))
+    }
+
+    /// Evaluates `config` with `photons` samples, and again with `full` when the first
+    /// leaves its constraints undecided but it could join (the first then is reported
+    /// as `refine`). Returns the last evaluation and its time.
+    fn evaluate_deciding<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+        (iteration, config, cell): (u64, &Configuration, &Cell),
+        (photons, full): (u64, u64),
+    ) -> Result<(Evaluation, f64), SearchError<E::Error>> {
+        let (e, seconds) = self.evaluate(eval, config, photons)?;
+        if photons >= full || !self.undecided_but_promising(&e) {
+            return Ok((e, seconds));
+        }
+        let record = Record {
+            iteration,
+            config: config.clone(),
+            evaluation: e,
+            seconds,
+            verdict: Verdict::Refine,
+        };
+        self.report(observer, cell.clone(), record)?;
+        self.evaluate(eval, config, full)
     }
 
     /// Step 1: the initial configuration, with N samples under
@@ -427,23 +665,15 @@ impl<'s> Search<'s> {
         };
         let config = self.start.clone();
         let cell = self.space.cell(&config);
-        let (estimate, seconds) = self.evaluate(eval, &config, photons)?;
-        let verdict = if self.invalid(&estimate) {
-            Verdict::Invalid
-        } else {
-            self.isoc.admit(Member {
-                config: config.clone(),
-                cell: cell.clone(),
-                estimate,
-            });
-            Verdict::Initial
-        };
+        let (evaluation, seconds) =
+            self.evaluate_deciding(eval, observer, (0, &config, &cell), (photons, full))?;
+        let verdict = self.decide(&config, &cell, &evaluation, true);
         self.started = true;
         self.iteration = 1;
         let record = Record {
             iteration: 0,
             config,
-            estimate,
+            evaluation,
             seconds,
             verdict,
         };
@@ -466,15 +696,27 @@ impl<'s> Search<'s> {
             if self.iteration >= self.settings.max_iterations || self.exhausted() {
                 return Ok(Some(false));
             }
+            // Around a random ISOC member; while there is none, around the configuration
+            // closest to meeting the constraints (the search first walks toward
+            // feasibility), else the start.
             let members = self.isoc.members();
-            let centre = if members.is_empty() {
-                self.start.clone()
+            let centre = if let Some(m) = (!members.is_empty())
+                .then(|| &members[self.rng.below(members.len())])
+                .or(self.closest.first().map(|(_, m)| m))
+            {
+                m.config.clone()
             } else {
-                members[self.rng.below(members.len())].config.clone()
+                self.start.clone()
             };
-            let candidate = self
-                .space
-                .snap(&self.space.neighbour(&centre, r, &mut self.rng));
+            let closest_before = self.closest.first().map(|(v, _)| *v);
+            // Every other try moves the cheap variables alone (dimming levels: the
+            // evaluator reads them from the arrangement's trace, for no photons).
+            let neighbour = if self.space.has_cheap_part() && self.iteration % 2 == 1 {
+                self.space.cheap_neighbour(&centre, r, &mut self.rng)
+            } else {
+                self.space.neighbour(&centre, r, &mut self.rng)
+            };
+            let candidate = self.space.snap(&neighbour);
             let cell = self.space.cell(&candidate);
             let iteration = self.iteration;
             self.iteration += 1;
@@ -488,6 +730,14 @@ impl<'s> Search<'s> {
                 continue;
             }
             if self.candidate(iteration, candidate, cell, eval, observer)? == Verdict::Better {
+                return Ok(Some(true));
+            }
+            // With no feasible configuration yet, coming closer to one is the
+            // improvement.
+            let closer = self.closest.first().map(|(v, _)| *v);
+            if self.isoc.members().is_empty()
+                && closer.is_some_and(|v| closest_before.is_none_or(|b| v < b))
+            {
                 return Ok(Some(true));
             }
         }
@@ -508,7 +758,10 @@ impl<'s> Search<'s> {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
             let verdict = if self.invalid(&fast) {
                 Some(Verdict::Invalid)
-            } else if !self.isoc.reaches(&fast) {
+            } else if self.feasibility(&fast) == Feasibility::Infeasible {
+                self.keep_closest(self.member(config.clone(), cell.clone(), &fast));
+                Some(Verdict::Infeasible)
+            } else if !self.isoc.reaches(&self.settings.sense.score(&fast.goal)) {
                 Some(Verdict::Bad)
             } else {
                 None
@@ -516,7 +769,7 @@ impl<'s> Search<'s> {
             let record = Record {
                 iteration,
                 config: config.clone(),
-                estimate: fast,
+                evaluation: fast,
                 seconds,
                 verdict: verdict.unwrap_or(Verdict::Refine),
             };
@@ -529,31 +782,13 @@ impl<'s> Search<'s> {
             Strategy::RefineOnIntersection => full,
             _ => n,
         };
-        let (estimate, seconds) = self.evaluate(eval, &config, photons)?;
-        let verdict = if self.invalid(&estimate) {
-            Verdict::Invalid
-        } else {
-            let member = Member {
-                config: config.clone(),
-                cell: cell.clone(),
-                estimate,
-            };
-            match self.isoc.admit(member) {
-                Admission::Below => Verdict::Bad,
-                Admission::Beaten => Verdict::Beaten,
-                Admission::Joined { removed, was_empty } => {
-                    if removed > 0 || was_empty {
-                        Verdict::Better
-                    } else {
-                        Verdict::Probable
-                    }
-                }
-            }
-        };
+        let (evaluation, seconds) =
+            self.evaluate_deciding(eval, observer, (iteration, &config, &cell), (photons, full))?;
+        let verdict = self.decide(&config, &cell, &evaluation, false);
         let record = Record {
             iteration,
             config,
-            estimate,
+            evaluation,
             seconds,
             verdict,
         };
@@ -562,7 +797,8 @@ impl<'s> Search<'s> {
     }
 
     /// Step 4 (`REFINE_ISOC_ON_END`): re-evaluates every member with N and rebuilds the
-    /// ISOC from the new estimates, oldest member first.
+    /// ISOC from the new estimates, oldest member first; a member whose constraints N
+    /// no longer finds met leaves.
     fn refine_on_end<E: Evaluate, O: Observer>(
         &mut self,
         eval: &mut E,
@@ -575,17 +811,16 @@ impl<'s> Search<'s> {
         let members = self.isoc.members().to_vec();
         self.isoc = Isoc::new(self.isoc.z());
         for m in members {
-            let (estimate, seconds) = self.evaluate(eval, &m.config, full)?;
-            if !self.invalid(&estimate) {
-                self.isoc.admit(Member {
-                    estimate,
-                    ..m.clone()
-                });
+            let (evaluation, seconds) = self.evaluate(eval, &m.config, full)?;
+            if !self.invalid(&evaluation) && self.feasibility(&evaluation) == Feasibility::Feasible
+            {
+                self.isoc
+                    .admit(self.member(m.config.clone(), m.cell.clone(), &evaluation));
             }
             let record = Record {
                 iteration: self.iteration,
                 config: m.config,
-                estimate,
+                evaluation,
                 seconds,
                 verdict: Verdict::Final,
             };
@@ -599,7 +834,7 @@ impl<'s> Search<'s> {
         eval: &mut E,
         config: &Configuration,
         photons: u64,
-    ) -> Result<(Estimate, f64), SearchError<E::Error>> {
+    ) -> Result<(Evaluation, f64), SearchError<E::Error>> {
         let t = Instant::now();
         let e = eval
             .evaluate(config, photons)
@@ -615,15 +850,16 @@ impl<'s> Search<'s> {
         cell: Cell,
         record: Record,
     ) -> Result<(), SearchError<X>> {
-        let (estimate, verdict) = (record.estimate, record.verdict);
+        let (estimate, verdict) = (record.evaluation.goal, record.verdict);
         self.cache
             .insert(cell, Entry::Evaluated { estimate, verdict });
         let changed = matches!(
             verdict,
             Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final
-        );
+        ) || (std::mem::take(&mut self.closest_changed)
+            && self.isoc.members().is_empty());
         observer
-            .evaluated(&record, &self.isoc, changed)
+            .evaluated(&record, self.standing(), changed)
             .map_err(SearchError::Output)
     }
 }
@@ -636,18 +872,18 @@ mod tests {
     struct Slope;
     impl Evaluate for Slope {
         type Error = ();
-        fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, ()> {
-            Ok(Estimate {
+        fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, ()> {
+            Ok(Evaluation::of(Estimate {
                 mean: c.coords[0],
                 std_error: 0.5 / (photons as f64).sqrt(),
                 samples: photons,
-            })
+            }))
         }
     }
 
     struct Log(Vec<Record>);
     impl Observer for Log {
-        fn evaluated(&mut self, r: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
+        fn evaluated(&mut self, r: &Record, _: Standing<'_>, _: bool) -> std::io::Result<()> {
             self.0.push(r.clone());
             Ok(())
         }
@@ -669,6 +905,8 @@ mod tests {
             strategy: Strategy::RefineOnIntersection,
             confidence: Confidence::DEFAULT,
             cap: None,
+            sense: Sense::Maximize,
+            constraints: Vec::new(),
             seed: 3,
             tries_per_radius: None,
         };

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use invlight_ilp::{
-    Binding, Comparison, Domain, Isoc, Observer, PhotonEvaluator, Problem, Record, Search,
+    Binding, Comparison, Domain, Observer, PhotonEvaluator, Problem, Record, Search, Standing,
     VariableValue, compare,
 };
 use invlight_scene::LoadOptions;
@@ -60,7 +60,7 @@ fn cornell_problems_bind_to_cornell_dae() {
             "{example}: anchor − P = {off}"
         );
         assert!(b.leaves_scene(&b.initial).is_none(), "authored inside");
-        assert_eq!(scene.surfaces[b.objective as usize].name, "Cone");
+        assert_eq!(scene.surfaces[b.reading.surfaces[0] as usize].name, "Cone");
     }
 }
 
@@ -71,7 +71,7 @@ fn cornell_problems_bind_to_cornell_dae() {
 fn cornell_problems_improve_on_their_start_with_a_small_budget() {
     struct Log(Vec<Record>);
     impl Observer for Log {
-        fn evaluated(&mut self, r: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
+        fn evaluated(&mut self, r: &Record, _: Standing<'_>, _: bool) -> std::io::Result<()> {
             self.0.push(r.clone());
             Ok(())
         }
@@ -85,19 +85,19 @@ fn cornell_problems_improve_on_their_start_with_a_small_budget() {
             .unwrap();
         let b = Binding::new(&problem, &mut scene).unwrap();
         let mut search = Search::new(&b.space, problem.settings(), &b.initial);
-        let mut eval = PhotonEvaluator::new(&b, scene, problem.seed, 16);
+        let mut eval = PhotonEvaluator::new(&b, scene, problem.seed, 16, problem.photons);
         let mut log = Log(Vec::new());
         search.run(&mut eval, &mut log).unwrap();
         assert_eq!(log.0.len() as u64, search.evaluations());
         let start = log.0.iter().find(|r| r.iteration == 0).unwrap();
         let z = problem.confidence.z();
-        let best = search.isoc().by_mean()[0];
+        let best = search.isoc().best_first()[0];
         assert_eq!(
-            compare(&best.estimate, &start.estimate, z),
+            compare(&best.estimate, &start.evaluation.goal, z),
             Comparison::Better,
             "{example}: best {:?} against the start {:?}",
             best.estimate,
-            start.estimate
+            start.evaluation.goal
         );
         for a in search.isoc().members() {
             for m in search.isoc().members() {

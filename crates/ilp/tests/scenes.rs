@@ -11,14 +11,14 @@
 use glam::{DVec3, Mat4, Vec3};
 use invlight_ilp::{
     Binding, Configuration, Isoc, Member, ObjectiveInfo, Observer, Output, PhotonEvaluator,
-    Problem, Record, Search, Solutions, Start, VariableValue,
+    Problem, Record, Search, Solutions, Standing, Start, VariableValue,
 };
 use invlight_scene::{Light, LightKind, Material, Mesh, Placement, Scene};
 use std::path::Path;
 
 struct Quiet;
 impl Observer for Quiet {
-    fn evaluated(&mut self, _: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
+    fn evaluated(&mut self, _: &Record, _: Standing<'_>, _: bool) -> std::io::Result<()> {
         Ok(())
     }
 }
@@ -96,7 +96,7 @@ fn solve(name: &str, problem: &Problem, mut scene: Scene) -> Solved {
     let start = std::time::Instant::now();
     let binding = Binding::new(problem, &mut scene).unwrap();
     let mut search = Search::new(&binding.space, problem.settings(), &binding.initial);
-    let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, 64);
+    let mut eval = PhotonEvaluator::new(&binding, scene, problem.seed, 64, problem.photons);
     search.run(&mut eval, &mut Quiet).unwrap();
     let isoc = search.isoc().clone();
     let evaluations = search.evaluations();
@@ -456,16 +456,16 @@ fn wall_colour_stays_under_the_cap() {
     let reference = Configuration {
         coords: vec![0.575],
     };
-    let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64);
+    let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
     let cap = invlight_ilp::Evaluate::evaluate(&mut eval, &reference, pb.photons).unwrap();
 
-    let (scene, pb) = wall_scene(Some(cap.mean));
+    let (scene, pb) = wall_scene(Some(cap.goal.mean));
     let solved = solve("wall colour", &pb, scene);
     let cells: Vec<u32> = solved.isoc.members().iter().map(|m| m.cell.0[0]).collect();
     assert!(cells.contains(&11), "ISOC cells {cells:?}, cap {cap:?}");
     // Every member is valid: its interval reaches below the cap.
     for m in solved.isoc.members() {
-        assert!(m.estimate.mean - solved.isoc.z() * m.estimate.std_error <= cap.mean);
+        assert!(m.estimate.mean - solved.isoc.z() * m.estimate.std_error <= cap.goal.mean);
     }
 }
 
@@ -528,13 +528,8 @@ fn lamp_files(threads: usize, dir: &Path) -> String {
     let (mut scene, pb) = lamp_scene();
     let binding = Binding::new(&pb, &mut scene).unwrap();
     let mut search = Search::new(&binding.space, pb.settings(), &binding.initial);
-    let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64);
-    let info = ObjectiveInfo {
-        surface: "Desk".into(),
-        sense: "maximize".into(),
-        unit: "lx".into(),
-        cap: None,
-    };
+    let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
+    let info = ObjectiveInfo::of(&pb);
     let start = Start::Fresh { replace: false };
     let mut out = Output::create(dir, &binding, info, &pb.settings(), 64, &start).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()

@@ -5,17 +5,22 @@
 
 use glam::DVec3;
 use invlight_ilp::{
-    Cell, Confidence, Configuration, Domain, Estimate, Evaluate, Hemisphere, Isoc, Observer,
-    Outcome, Parallelogram, Record, Search, Settings, Space, Strategy, Variable, Verdict,
+    Bound, Cell, Confidence, Configuration, Domain, Estimate, Evaluate, Evaluation, Hemisphere,
+    Isoc, Observer, Outcome, Parallelogram, Record, Search, Sense, Settings, Space, Standing,
+    Strategy, Variable, Verdict,
 };
 use invlight_stats::{SplitMix64, mix};
 use std::collections::HashSet;
 
-/// f(x) plus N(0, σ₁²/N) noise.
+/// A constrained quantity: g(x) with its own noise σ₁/√N.
+type Quantity = (Box<dyn Fn(&[f64]) -> f64>, f64);
+
+/// f(x) plus N(0, σ₁²/N) noise, and constrained quantities likewise.
 struct Noisy<F: Fn(&[f64]) -> f64> {
     f: F,
     sigma1: f64,
     seed: u64,
+    constraints: Vec<Quantity>,
     /// (cell coordinates as bits, photons) already evaluated: no cell twice per N.
     seen: HashSet<(Vec<u64>, u64)>,
 }
@@ -26,14 +31,28 @@ impl<F: Fn(&[f64]) -> f64> Noisy<F> {
             f,
             sigma1,
             seed: 99,
+            constraints: Vec::new(),
             seen: HashSet::new(),
         }
     }
+
+    fn with(mut self, g: impl Fn(&[f64]) -> f64 + 'static, sigma1: f64) -> Self {
+        self.constraints.push((Box::new(g), sigma1));
+        self
+    }
+}
+
+/// A draw of N(0, 1) from a stream keyed by `h`.
+fn gaussian(h: u64) -> f64 {
+    let mut rng = SplitMix64::new(h);
+    // Box–Muller.
+    let (u1, u2) = (1.0 - rng.next_f64(), rng.next_f64());
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
 }
 
 impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
     type Error = String;
-    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, String> {
+    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, String> {
         let bits: Vec<u64> = c.coords.iter().map(|x| x.to_bits()).collect();
         if !self.seen.insert((bits.clone(), photons)) {
             return Err(format!("{:?} traced twice with {photons}", c.coords));
@@ -41,15 +60,28 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
         let h = bits
             .iter()
             .fold(mix(self.seed ^ photons), |h, &b| mix(h ^ b));
-        let mut rng = SplitMix64::new(h);
-        // Box–Muller.
-        let (u1, u2) = (1.0 - rng.next_f64(), rng.next_f64());
-        let g = (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos();
-        let se = self.sigma1 / (photons as f64).sqrt();
-        Ok(Estimate {
-            mean: (self.f)(&c.coords) + se * g,
-            std_error: se,
-            samples: photons,
+        // The goal draws from the stream h itself, each constraint from its own.
+        let noisy = |value: f64, sigma1: f64, k: u64| {
+            let se = sigma1 / (photons as f64).sqrt();
+            let g = if k == 0 {
+                gaussian(h)
+            } else {
+                gaussian(mix(h ^ k))
+            };
+            Estimate {
+                mean: value + se * g,
+                std_error: se,
+                samples: photons,
+            }
+        };
+        Ok(Evaluation {
+            goal: noisy((self.f)(&c.coords), self.sigma1, 0),
+            constraints: self
+                .constraints
+                .iter()
+                .enumerate()
+                .map(|(k, (g, s))| noisy(g(&c.coords), *s, k as u64 + 1))
+                .collect(),
         })
     }
 }
@@ -62,7 +94,7 @@ struct Log {
 }
 
 impl Observer for Log {
-    fn evaluated(&mut self, r: &Record, _: &Isoc, _: bool) -> std::io::Result<()> {
+    fn evaluated(&mut self, r: &Record, _: Standing<'_>, _: bool) -> std::io::Result<()> {
         self.records.push(r.clone());
         Ok(())
     }
@@ -80,6 +112,8 @@ fn settings(max_iterations: u64, strategy: Strategy) -> Settings {
         strategy,
         confidence: Confidence::DEFAULT,
         cap: None,
+        sense: Sense::Maximize,
+        constraints: Vec::new(),
         seed: 7,
         tries_per_radius: None,
     }
@@ -310,7 +344,14 @@ fn same_seed_same_records() {
     let space = Space::new(vec![rectangle("o", 1.0, 1.0)], &[20, 6]);
     let strip = |rs: Vec<Record>| -> Vec<(u64, Vec<f64>, f64, Verdict)> {
         rs.into_iter()
-            .map(|r| (r.iteration, r.config.coords, r.estimate.mean, r.verdict))
+            .map(|r| {
+                (
+                    r.iteration,
+                    r.config.coords,
+                    r.evaluation.goal.mean,
+                    r.verdict,
+                )
+            })
             .collect()
     };
     let (_, a, _) = run(

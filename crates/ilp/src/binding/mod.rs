@@ -6,17 +6,22 @@
 mod colour;
 mod hole;
 mod placement;
+mod power;
 
 pub use colour::hsv_to_rgb;
 pub use placement::Bounds;
 
+use crate::intention::{Constraint, Goal};
 use crate::problem::{Anchor, PlacementSpec, Problem, VariableKind, VariableSpec};
+use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat4, Vec3};
+use invlight_photon::{Components, Emitters, SourceOrigin};
 use invlight_scene::{
     Diagnostic, InstanceId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
 use placement::{find_parallelogram, instance_bounds, onto_plane};
+use power::Dimmed;
 
 /// A variable's value in world terms, for the outputs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +44,8 @@ pub enum VariableValue {
         /// K_d, linear RGB.
         rgb: [f64; 3],
     },
+    /// A dimming level: the light's output is its authored output times it.
+    Power(f64),
 }
 
 /// What a placement moves, and how P turns into a translation.
@@ -67,6 +74,8 @@ enum Target {
         hue: f64,
         saturation: f64,
     },
+    /// A light's or emissive object's output, kept apart as component `component`.
+    Power { dimmed: Dimmed, component: usize },
 }
 
 /// A problem bound to a scene: the search space, where it starts, the objective and the
@@ -77,8 +86,12 @@ pub struct Binding {
     pub space: Space,
     /// The scene as authored, as a configuration.
     pub initial: Configuration,
-    /// The surface whose illuminance is maximised.
-    pub objective: SurfaceId,
+    /// What the goal and constraints measure.
+    pub reading: Reading,
+    /// The goal.
+    pub goal: Goal,
+    /// The constraints, in the problem's order.
+    pub constraints: Vec<Constraint>,
     /// The problem file's variables, in the space's order.
     pub specs: Vec<VariableSpec>,
     /// Warnings found while binding (e.g. a `lightInSurface` object that emits nothing).
@@ -87,6 +100,8 @@ pub struct Binding {
     /// Where placed things may go: everything no variable moves, and every moved thing
     /// as authored.
     bounds: Option<Bounds>,
+    /// The electric lights' authored flux per component, lm (daylight costs nothing).
+    electric_flux: Vec<f64>,
 }
 
 impl Binding {
@@ -163,6 +178,20 @@ impl Binding {
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
                 }
+                VariableKind::LightPower { min, max } => {
+                    let dimmed = power::bind(scene, &spec.id, &err)?;
+                    let component = 1 + targets
+                        .iter()
+                        .filter(|t| matches!(t, Target::Power { .. }))
+                        .count();
+                    (
+                        Domain::Segment {
+                            min: *min,
+                            max: *max,
+                        },
+                        Target::Power { dimmed, component },
+                    )
+                }
                 VariableKind::Color {
                     hue,
                     saturation,
@@ -202,47 +231,137 @@ impl Binding {
                 }
             };
             initial.extend(initial_coords(scene, &domain, &target));
+            if let Target::Power { dimmed, .. } = &target
+                && let Some(first) = targets
+                    .iter()
+                    .position(|t| matches!(t, Target::Power { dimmed: d, .. } if d.same(dimmed)))
+            {
+                return Err(err(format!(
+                    "a second <lightPower> of '{}', expected one per light (the first is '{}')",
+                    spec.id, problem.variables[first].id
+                )));
+            }
             variables.push(Variable {
                 id: spec.id.clone(),
                 domain,
             });
             targets.push(target);
         }
-        let objective = scene.surface(&problem.objective.surface).ok_or_else(|| {
-            Diagnostic::at_line(
-                path,
-                problem.objective.line,
-                format!(
-                    "no surface named '{}' in the scene, expected the surface to light",
-                    problem.objective.surface
-                ),
-            )
-            .with_hint(known_names(
-                scene.surfaces.iter().map(|s| s.name.as_str()),
-                "surfaces",
-            ))
-        })?;
-        // Illuminance is flux over area: a surface without area has none.
-        if scene.surface_area(objective) <= 0.0 {
-            return Err(Diagnostic::at_line(
-                path,
-                problem.objective.line,
-                format!(
-                    "the surface '{}' has no area, expected a surface to light",
-                    problem.objective.surface
-                ),
-            ));
-        }
+        let reading = Reading::new(problem, scene)?;
         let bounds = reachable_bounds(scene, &targets);
-        Ok(Binding {
-            space: Space::new(variables, &problem.cells_per_dimension),
+        let cheap: Vec<usize> = targets
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| matches!(t, Target::Power { .. }))
+            .map(|(i, _)| i)
+            .collect();
+        let exchangeable = exchangeable(scene, &problem.variables, &targets);
+        let space = Space::new(variables, &problem.cells_per_dimension)
+            .with_exchangeable(exchangeable)
+            .with_cheap(&cheap);
+        let mut binding = Binding {
             initial: Configuration { coords: initial },
-            objective,
+            space,
+            reading,
+            goal: problem.goal.clone(),
+            constraints: problem.constraints.clone(),
             specs: problem.variables.clone(),
             warnings,
             targets,
             bounds,
-        })
+            electric_flux: Vec::new(),
+        };
+        binding.electric_flux = binding.component_flux(scene);
+        Ok(binding)
+    }
+
+    /// The number of components the lights' light is kept apart in: one for the lights
+    /// no variable dims, one per `lightPower` variable.
+    pub fn component_count(&self) -> usize {
+        1 + self
+            .targets
+            .iter()
+            .filter(|t| matches!(t, Target::Power { .. }))
+            .count()
+    }
+
+    /// Which component each light and emissive instance of `scene` is in.
+    pub fn components(&self, scene: &Scene) -> Components {
+        let mut c = Components::new(scene, self.component_count());
+        for t in &self.targets {
+            if let Target::Power { dimmed, component } = t {
+                match dimmed {
+                    Dimmed::Light { light, .. } => c.set_light(*light, *component),
+                    Dimmed::Emissive { instances, .. } => instances
+                        .iter()
+                        .for_each(|&i| c.set_instance(i, *component)),
+                }
+            }
+        }
+        c
+    }
+
+    /// Each component's electric flux as authored, lm: every light but the sun.
+    fn component_flux(&self, scene: &Scene) -> Vec<f64> {
+        let emitters = Emitters::new(scene);
+        let components = self.components(scene);
+        let mut flux = vec![0.0; self.component_count()];
+        let of = components.of_sources(&emitters);
+        for (s, &k) in of.iter().enumerate() {
+            let s = s as u32;
+            let daylight = match emitters.origin(s) {
+                SourceOrigin::Light(l) => power::is_daylight(&scene.lights[l as usize].kind),
+                SourceOrigin::Instance(_) => false,
+            };
+            if !daylight {
+                flux[k as usize] += emitters.flux(s);
+            }
+        }
+        flux
+    }
+
+    /// The weight of each component at `config`: 1 for the undimmed lights, each
+    /// `lightPower` variable's level for its own.
+    pub fn levels(&self, config: &Configuration) -> Vec<f64> {
+        let mut w = vec![1.0; self.component_count()];
+        for (i, (t, v)) in self.targets.iter().zip(self.space.variables()).enumerate() {
+            if let (Target::Power { component, .. }, Domain::Segment { min, max }) = (t, &v.domain)
+            {
+                w[*component] = min + self.space.slice(config, i)[0] * (max - min);
+            }
+        }
+        w
+    }
+
+    /// The electric lights' luminous flux at `config`, lm: each component's authored
+    /// flux times its level (exact; daylight is not counted).
+    pub fn power(&self, config: &Configuration) -> f64 {
+        self.levels(config)
+            .iter()
+            .zip(&self.electric_flux)
+            .map(|(w, f)| w * f)
+            .sum()
+    }
+
+    /// The part of `config` that changes the scene's geometry or materials (everything
+    /// but the dimming levels, which one trace serves for all): configurations with the
+    /// same arrangement share a trace.
+    pub fn arrangement(&self, config: &Configuration) -> Vec<u64> {
+        let mut out = Vec::new();
+        for (i, t) in self.targets.iter().enumerate() {
+            if !matches!(t, Target::Power { .. }) {
+                out.extend(self.space.slice(config, i).iter().map(|x| x.to_bits()));
+            }
+        }
+        out
+    }
+
+    /// Whether no variable changes the arrangement: a problem of dimming levels alone,
+    /// which one trace answers.
+    pub fn dimming_only(&self) -> bool {
+        self.targets
+            .iter()
+            .all(|t| matches!(t, Target::Power { .. }))
     }
 
     /// The instances a configuration may move (objects, emissive objects and holes
@@ -275,6 +394,9 @@ impl Binding {
                         }
                     }
                     (Domain::Hemisphere(h), _) => VariableValue::Direction(h.direction(x[0], x[1])),
+                    (Domain::Segment { min, max }, Target::Power { .. }) => {
+                        VariableValue::Power(min + x[0] * (max - min))
+                    }
                     (Domain::Segment { min, max }, target) => {
                         let value = min + x[0] * (max - min);
                         let rgb = match target {
@@ -330,7 +452,10 @@ impl Binding {
                     let (phi, theta) = h.coords(*d);
                     coords.extend([phi, theta]);
                 }
-                (Domain::Segment { min, max }, VariableValue::Colour { value, .. }) => {
+                (
+                    Domain::Segment { min, max },
+                    VariableValue::Colour { value, .. } | VariableValue::Power(value),
+                ) => {
                     let x = if max > min {
                         (value - min) / (max - min)
                     } else {
@@ -350,6 +475,35 @@ impl Binding {
             }
         }
         Ok(self.space.snap(&Configuration { coords }))
+    }
+
+    /// Why `config` is not worth tracing, if it is not: it puts an object or light
+    /// outside the scene ([`Binding::leaves_scene`]), or two interchangeable lamps in
+    /// one cell of their rectangle, which no design means (two fixtures in one spot)
+    /// and which would make every split of their levels look like another answer.
+    pub fn refusal(&self, config: &Configuration) -> Option<String> {
+        if let Some(id) = self.leaves_scene(config) {
+            return Some(format!("it puts '{id}' outside the scene"));
+        }
+        let cell = self.space.cell(config);
+        let place = |v: usize| {
+            let o: usize = self.space.variables()[..v]
+                .iter()
+                .map(|x| x.domain.dimensions())
+                .sum();
+            &cell.0[o..o + 2]
+        };
+        for group in self.space.exchangeable() {
+            for (k, a) in group.iter().enumerate() {
+                for b in &group[k + 1..] {
+                    if place(a[0]) == place(b[0]) {
+                        let ids = |m: &[usize]| &self.space.variables()[m[0]].id;
+                        return Some(format!("it puts '{}' and '{}' in one cell", ids(a), ids(b)));
+                    }
+                }
+            }
+        }
+        None
     }
 
     /// The id of the first variable that would put its object (or light) outside the
@@ -374,9 +528,21 @@ impl Binding {
         None
     }
 
-    /// Applies a configuration; returns whether any instance transform changed (then
-    /// the caller refits the acceleration structure's top level).
+    /// Applies a configuration, dimming levels included (what `render`, `measure` and
+    /// `map --config` show); returns whether any instance transform changed (then the
+    /// caller refits the acceleration structure's top level).
     pub fn apply(&self, scene: &mut Scene, config: &Configuration) -> bool {
+        self.apply_parts(scene, config, true)
+    }
+
+    /// Applies a configuration's arrangement and leaves every light at its authored
+    /// output: the scene the photon evaluator traces, weighing each dimmed light's
+    /// light by its level afterwards ([`Binding::levels`]).
+    pub fn apply_arrangement(&self, scene: &mut Scene, config: &Configuration) -> bool {
+        self.apply_parts(scene, config, false)
+    }
+
+    fn apply_parts(&self, scene: &mut Scene, config: &Configuration, dim: bool) -> bool {
         let mut moved = false;
         for (value, target) in self.values(config).into_iter().zip(&self.targets) {
             match (value, target) {
@@ -408,6 +574,9 @@ impl Binding {
                         scene.materials[m as usize].diffuse =
                             Vec3::new(rgb[0] as f32, rgb[1] as f32, rgb[2] as f32);
                     }
+                }
+                (VariableValue::Power(level), Target::Power { dimmed, .. }) => {
+                    power::apply(scene, dimmed, if dim { level } else { 1.0 });
                 }
                 _ => {}
             }
@@ -596,8 +765,78 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
                 .unwrap_or(*max);
             vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
         }
+        (Domain::Segment { min, max }, Target::Power { .. }) => {
+            // The scene as authored is at level 1.
+            let x = if max > min {
+                (1.0 - min) / (max - min)
+            } else {
+                0.0
+            };
+            vec![x.clamp(0.0, 1.0)]
+        }
         (d, _) => vec![0.5; d.dimensions()],
     }
+}
+
+/// The groups of placement variables that are interchangeable: `lightInSurface`
+/// variables of identical lights (the same kind and output, wherever they are) on the
+/// same rectangle with the same anchor, each with its `lightPower` variable if it has
+/// one (of the same range). Swapping two members' values gives the same lit scene, so
+/// the search takes such configurations as one ([`Space::with_exchangeable`]). Each
+/// group is a list of members, each member its variables' indices.
+fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Vec<Vec<Vec<usize>>> {
+    let power_of = |light: usize| {
+        targets.iter().position(|t| {
+            matches!(t, Target::Power { dimmed: Dimmed::Light { light: l, .. }, .. } if *l == light)
+        })
+    };
+    let mut groups: Vec<(usize, Vec<Vec<usize>>)> = Vec::new();
+    for (i, (spec, target)) in specs.iter().zip(targets).enumerate() {
+        let (VariableKind::LightInSurface(p), Target::Move(m)) = (&spec.kind, target) else {
+            continue;
+        };
+        let [(light, _)] = m.lights[..] else {
+            continue;
+        };
+        if !m.instances.is_empty() {
+            continue;
+        }
+        let member = match power_of(light) {
+            Some(j) => vec![i, j],
+            None => vec![i],
+        };
+        let alike = |k: usize| {
+            let (VariableKind::LightInSurface(q), Target::Move(n)) = (&specs[k].kind, &targets[k])
+            else {
+                return false;
+            };
+            let other = n.lights[0].0;
+            let range = |j: Option<usize>| j.map(|j| &specs[j].kind);
+            q == p
+                && same_light(&scene.lights[light].kind, &scene.lights[other].kind)
+                && range(power_of(light)) == range(power_of(other))
+        };
+        match groups.iter_mut().find(|(first, _)| alike(*first)) {
+            Some((_, members)) => members.push(member),
+            None => groups.push((i, vec![member])),
+        }
+    }
+    groups
+        .into_iter()
+        .map(|(_, members)| members)
+        .filter(|members| members.len() > 1)
+        .collect()
+}
+
+/// Whether two lights are the same lamp (kind, output, aim), wherever they are.
+fn same_light(a: &LightKind, b: &LightKind) -> bool {
+    let (mut a, mut b) = (a.clone(), b.clone());
+    for k in [&mut a, &mut b] {
+        if let Some(p) = k.position_mut() {
+            *p = Vec3::ZERO;
+        }
+    }
+    a == b
 }
 
 #[cfg(test)]

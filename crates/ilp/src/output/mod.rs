@@ -16,14 +16,14 @@ mod solutions;
 
 pub use lock::FolderLock;
 pub use result::{
-    ObjectiveInfo, RESULT_SCHEMA, ResultEstimate, ResultFile, ResultMember, ResultValue,
+    ConstraintInfo, ObjectiveInfo, RESULT_SCHEMA, ResultConstraint, ResultEstimate, ResultFile,
+    ResultMember, ResultValue,
 };
 pub use run::{RUN_SCHEMA, RunFile};
 pub use solutions::{SolutionRow, Solutions, header as csv_header, line as csv_line};
 
 use crate::binding::Binding;
-use crate::isoc::Isoc;
-use crate::vns::{Observer, Record, Search, Settings};
+use crate::vns::{Observer, Record, Search, Settings, Standing};
 use invlight_scene::{Diagnostic, write_atomically};
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
@@ -194,6 +194,7 @@ pub struct Output<'b> {
     evaluations: u64,
     refused: u64,
     z: f64,
+    z_one_sided: f64,
     _lock: FolderLock,
 }
 
@@ -255,6 +256,7 @@ impl<'b> Output<'b> {
             evaluations,
             refused: 0,
             z: settings.confidence.z(),
+            z_one_sided: settings.confidence.z_one_sided(),
             _lock: lock,
         })
     }
@@ -264,17 +266,27 @@ impl<'b> Output<'b> {
         self.offset + self.started.elapsed().as_secs_f64()
     }
 
-    /// The `result.json` document for an ISOC.
-    pub fn result(&self, isoc: &Isoc) -> ResultFile {
+    /// The `result.json` document for where a search stands.
+    pub fn result(&self, standing: Standing<'_>) -> ResultFile {
+        let (isoc, closest) =
+            ResultFile::members(self.binding, standing, (self.z, self.z_one_sided));
         ResultFile {
             schema_version: RESULT_SCHEMA,
             objective: self.objective.clone(),
+            constraints: self
+                .binding
+                .constraints
+                .iter()
+                .map(ConstraintInfo::of)
+                .collect(),
             photons: self.photons,
             confidence: self.confidence,
             evaluations: self.evaluations,
             refused: self.refused,
             seconds: self.elapsed(),
-            isoc: ResultFile::members(self.binding, isoc),
+            feasible: !isoc.is_empty() || closest.is_empty(),
+            isoc,
+            closest,
         }
     }
 
@@ -282,8 +294,8 @@ impl<'b> Output<'b> {
     /// half of one. No fsync: the rename is atomic for readers, and syncing on every
     /// ISOC change (every evaluation while the ISOC is a plateau of zeros) cost more
     /// than the tracing of small scenes.
-    pub fn write_result(&self, isoc: &Isoc) -> io::Result<()> {
-        let result = self.result(isoc);
+    pub fn write_result(&self, standing: Standing<'_>) -> io::Result<()> {
+        let result = self.result(standing);
         write_atomically(&self.dir.join("result.json"), |w| {
             serde_json::to_writer_pretty(&mut *w, &result)?;
             writeln!(w)
@@ -310,12 +322,21 @@ impl<'b> Output<'b> {
 }
 
 impl Observer for Output<'_> {
-    fn evaluated(&mut self, record: &Record, isoc: &Isoc, changed: bool) -> io::Result<()> {
+    fn evaluated(
+        &mut self,
+        record: &Record,
+        standing: Standing<'_>,
+        changed: bool,
+    ) -> io::Result<()> {
         let row = SolutionRow::of(self.binding, record, self.elapsed());
-        self.append(&csv_line(row.fields(self.z)))?;
+        self.append(&csv_line(row.fields(
+            self.z,
+            self.z_one_sided,
+            &self.binding.constraints,
+        )))?;
         self.evaluations += 1;
         if changed {
-            self.write_result(isoc)?;
+            self.write_result(standing)?;
         }
         Ok(())
     }

@@ -3,8 +3,10 @@
 //! reads it.
 
 use crate::binding::{Binding, VariableValue};
-use crate::isoc::Isoc;
-use crate::problem::VariableKind;
+use crate::intention::{Constraint, Goal, Side};
+use crate::isoc::Member;
+use crate::problem::{VariableKind, VariableSpec};
+use crate::vns::Standing;
 use glam::DVec3;
 use invlight_scene::Diagnostic;
 use invlight_stats::significant;
@@ -12,32 +14,124 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// The version of `result.json`'s layout; readers refuse another.
-pub const RESULT_SCHEMA: u32 = 1;
+/// The version of `result.json`'s layout; readers refuse another. Version 2 added the
+/// goals other than `maximizeRadiance`, the constraints and `closest`; version 1 files
+/// (one surface maximised) still read.
+pub const RESULT_SCHEMA: u32 = 2;
 
-/// What `result.json` says of the objective.
+/// What `result.json` says of the goal.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObjectiveInfo {
-    /// The surface lit.
-    pub surface: String,
-    /// `maximize`.
+    /// The goal's problem-file element: `maximizeRadiance`, `minimizeRadiance`,
+    /// `targetRadiance`, `maximizeUniformity` or `minimizePower`.
+    #[serde(default = "maximize_radiance")]
+    pub element: String,
+    /// The surface it is about (none for `minimizePower`).
+    pub surface: Option<String>,
+    /// The side counted: `front`, `back` or `both`.
+    #[serde(default = "both")]
+    pub side: String,
+    /// `maximize`, `minimize`, `target`, `maximizeUniformity` or `minimizePower`.
     pub sense: String,
-    /// `lx`.
+    /// `lx`, `lm`, or `` for a uniformity.
     pub unit: String,
-    /// The cap, lx.
+    /// `maxRadiosity`, lx.
     pub cap: Option<f64>,
+    /// `targetRadiance`'s illuminance, lx.
+    #[serde(default)]
+    pub target: Option<f64>,
+}
+
+fn maximize_radiance() -> String {
+    "maximizeRadiance".into()
+}
+
+fn both() -> String {
+    "both".into()
 }
 
 impl ObjectiveInfo {
-    /// The objective of `problem`.
+    /// The goal of `problem`.
     pub fn of(problem: &crate::problem::Problem) -> ObjectiveInfo {
+        let goal = &problem.goal;
         ObjectiveInfo {
-            surface: problem.objective.surface.clone(),
-            sense: "maximize".into(),
-            unit: "lx".into(),
-            cap: problem.objective.cap,
+            element: goal.element().into(),
+            surface: goal.surface().map(|s| s.name.clone()),
+            side: goal.surface().map_or(Side::Both, |s| s.side).name().into(),
+            sense: goal.sense().into(),
+            unit: goal.unit().into(),
+            cap: match goal {
+                Goal::Maximize { cap, .. } => *cap,
+                _ => None,
+            },
+            target: match goal {
+                Goal::Target { lux, .. } => Some(*lux),
+                _ => None,
+            },
         }
     }
+
+    /// The goal in words, for tables: "the mean illuminance of 'Desk'".
+    fn words(&self) -> String {
+        let on = |what: &str| match (&self.surface, self.side.as_str()) {
+            (Some(s), "both") => format!("{what} of '{s}'"),
+            (Some(s), side) => format!("{what} of '{s}' ({side})"),
+            (None, _) => what.to_string(),
+        };
+        match self.element.as_str() {
+            "minimizeRadiance" => on("the least mean illuminance"),
+            "targetRadiance" => on(&format!(
+                "the mean illuminance closest to {} lx",
+                significant(self.target.unwrap_or_default())
+            )),
+            "maximizeUniformity" => on("the most uniform light (U0)"),
+            "minimizePower" => "the least lamp power".into(),
+            _ => on("the most light"),
+        }
+    }
+}
+
+/// What `result.json` says of a constraint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ConstraintInfo {
+    /// Its label, as the columns of `solutions.csv` name it: `Desk.minLux`.
+    pub label: String,
+    /// The surface.
+    pub surface: String,
+    /// The side counted.
+    pub side: String,
+    /// The bound's attribute: `minLux`, `maxLux`, `minUniformity` or `minPointLux`.
+    pub bound: String,
+    /// The limit, in `unit`.
+    pub limit: f64,
+    /// `lx`, or `` for a uniformity.
+    pub unit: String,
+}
+
+impl ConstraintInfo {
+    /// The constraint `c`.
+    pub fn of(c: &Constraint) -> ConstraintInfo {
+        ConstraintInfo {
+            label: c.label(),
+            surface: c.surface.name.clone(),
+            side: c.surface.side.name().into(),
+            bound: c.bound.attribute().into(),
+            limit: c.bound.limit(),
+            unit: c.unit().into(),
+        }
+    }
+}
+
+/// A constraint's estimate in a member, with its verdict.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ResultConstraint {
+    /// [`ConstraintInfo::label`].
+    pub label: String,
+    /// The estimate of the bounded quantity.
+    #[serde(flatten)]
+    pub estimate: ResultEstimate,
+    /// `feasible`, `infeasible` or `undecided`, one-sided at the run's confidence.
+    pub verdict: String,
 }
 
 /// A member's estimate.
@@ -97,6 +191,12 @@ pub enum ResultValue {
         /// K_d, linear RGB.
         rgb: [f64; 3],
     },
+    /// `lightPower`: the dimming level, the light's output over its authored output.
+    #[serde(rename = "lightPower")]
+    LightPower {
+        /// The level.
+        value: f64,
+    },
 }
 
 impl ResultValue {
@@ -119,6 +219,7 @@ impl ResultValue {
                 direction: d.to_array(),
             },
             (VariableValue::Colour { value, rgb }, _) => ResultValue::Color { value, rgb },
+            (VariableValue::Power(value), _) => ResultValue::LightPower { value },
         }
     }
 
@@ -135,17 +236,25 @@ impl ResultValue {
                 VariableValue::Direction(DVec3::from_array(direction))
             }
             ResultValue::Color { value, rgb } => VariableValue::Colour { value, rgb },
+            ResultValue::LightPower { value } => VariableValue::Power(value),
         }
     }
 }
 
-/// An ISOC member.
+/// An ISOC member (or one of the configurations closest to feasible).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ResultMember {
     /// Each variable's value, by id.
     pub variables: BTreeMap<String, ResultValue>,
-    /// Its estimate.
+    /// The goal's estimate, in its unit.
     pub estimate: ResultEstimate,
+    /// Each constraint's estimate and verdict, in the problem's order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub constraints: Vec<ResultConstraint>,
+    /// For a configuration closest to feasible: the largest relative shortfall of a
+    /// constraint's mean from its limit (0.1: 10 % short).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub violation: Option<f64>,
 }
 
 /// `result.json`.
@@ -153,47 +262,109 @@ pub struct ResultMember {
 pub struct ResultFile {
     /// [`RESULT_SCHEMA`].
     pub schema_version: u32,
-    /// The objective.
+    /// The goal.
     pub objective: ObjectiveInfo,
+    /// The constraints.
+    #[serde(default)]
+    pub constraints: Vec<ConstraintInfo>,
     /// N, photons of a full evaluation.
     pub photons: u64,
     /// Confidence of the intervals and comparisons.
     pub confidence: f64,
     /// Evaluations so far (a resumed run's included).
     pub evaluations: u64,
-    /// Candidates not traced because they put an object or light outside the scene.
+    /// Candidates not traced: they put an object or light outside the scene, or two
+    /// interchangeable lamps in one cell.
     pub refused: u64,
     /// Seconds since the run (first) started.
     pub seconds: f64,
-    /// The ISOC, highest mean first.
+    /// Whether a configuration meeting every constraint was found: when not, `isoc` is
+    /// empty and `closest` says which came nearest.
+    #[serde(default = "yes")]
+    pub feasible: bool,
+    /// The ISOC, best first: feasible configurations that cannot be told apart.
     pub isoc: Vec<ResultMember>,
+    /// When the ISOC is empty, the configurations that violate the constraints least,
+    /// least first.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub closest: Vec<ResultMember>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl ResultMember {
+    /// The member `m` as `binding`'s variables give it, intervals at `z`, verdicts at
+    /// the one-sided `z_one_sided`.
+    pub fn new(binding: &Binding, m: &Member, (z, z_one_sided): (f64, f64)) -> ResultMember {
+        let variables = binding
+            .specs
+            .iter()
+            .zip(binding.values(&m.config))
+            .enumerate()
+            .map(|(i, (spec, value))| {
+                (
+                    VariableSpec::key(&binding.specs, i),
+                    ResultValue::new(&spec.kind, &value),
+                )
+            })
+            .collect();
+        let estimate = |e: &invlight_stats::Estimate| {
+            let i = e.interval(z);
+            ResultEstimate {
+                mean: e.mean,
+                low: i.low,
+                high: i.high,
+                std_error: e.std_error,
+                photons: e.samples,
+            }
+        };
+        ResultMember {
+            variables,
+            estimate: estimate(&m.evaluation.goal),
+            constraints: binding
+                .constraints
+                .iter()
+                .zip(&m.evaluation.constraints)
+                .map(|(c, e)| ResultConstraint {
+                    label: c.label(),
+                    estimate: estimate(e),
+                    verdict: c.verdict(e, z_one_sided).name().into(),
+                })
+                .collect(),
+            violation: None,
+        }
+    }
 }
 
 impl ResultFile {
-    /// The members of `isoc`, highest mean first, as `binding`'s variables give them.
-    pub fn members(binding: &Binding, isoc: &Isoc) -> Vec<ResultMember> {
-        isoc.by_mean()
+    /// The ISOC of `standing`, best first, and when it is empty the closest, as
+    /// `binding`'s variables give them.
+    pub fn members(
+        binding: &Binding,
+        standing: Standing<'_>,
+        z: (f64, f64),
+    ) -> (Vec<ResultMember>, Vec<ResultMember>) {
+        let isoc = standing
+            .isoc
+            .best_first()
             .into_iter()
-            .map(|m| {
-                let variables = binding
-                    .specs
-                    .iter()
-                    .zip(binding.values(&m.config))
-                    .map(|(spec, value)| (spec.id.clone(), ResultValue::new(&spec.kind, &value)))
-                    .collect();
-                let i = m.estimate.interval(isoc.z());
-                ResultMember {
-                    variables,
-                    estimate: ResultEstimate {
-                        mean: m.estimate.mean,
-                        low: i.low,
-                        high: i.high,
-                        std_error: m.estimate.std_error,
-                        photons: m.estimate.samples,
-                    },
-                }
-            })
-            .collect()
+            .map(|m| ResultMember::new(binding, m, z))
+            .collect::<Vec<_>>();
+        let closest = if isoc.is_empty() {
+            standing
+                .closest
+                .iter()
+                .map(|(v, m)| ResultMember {
+                    violation: Some(*v),
+                    ..ResultMember::new(binding, m, z)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        (isoc, closest)
     }
 
     /// Reads a `result.json`.
@@ -207,7 +378,7 @@ impl ResultFile {
                 format!("not a result.json of this invlight: {e}"),
             )
         })?;
-        if file.schema_version != RESULT_SCHEMA {
+        if !(1..=RESULT_SCHEMA).contains(&file.schema_version) {
             return Err(Diagnostic::new(
                 path,
                 format!(
@@ -220,18 +391,39 @@ impl ResultFile {
         Ok(file)
     }
 
-    /// The ISOC as a table for people, best mean first, each placed thing at its anchor
-    /// with its placement point P beside it.
+    /// The ISOC as a table for people, best first, each placed thing at its anchor
+    /// with its placement point P beside it, and each member's constraints; when no
+    /// configuration met the constraints, the closest.
     pub fn table(&self, binding: &Binding) -> String {
-        let surface = &self.objective.surface;
         let level = self.confidence * 100.0;
-        let mut out = match self.isoc.len() {
-            0 => "No configuration could be ranked: every one tried was invalid.\n".to_string(),
-            1 => format!(
-                "One configuration lights '{surface}' best, better at {level} % confidence than every other one tried:\n"
+        let goal = self.objective.words();
+        let lights_best = match (&self.objective.surface, self.objective.element.as_str()) {
+            (Some(s), "maximizeRadiance") => format!("light '{s}' best"),
+            _ => format!("give {goal}"),
+        };
+        let subject = |one: bool| {
+            if one {
+                lights_best
+                    .replacen("light ", "lights ", 1)
+                    .replacen("give ", "gives ", 1)
+            } else {
+                lights_best.clone()
+            }
+        };
+        let mut out = match (self.isoc.len(), self.closest.is_empty()) {
+            (0, true) => {
+                "No configuration could be ranked: every one tried was invalid.\n".to_string()
+            }
+            (0, false) => format!(
+                "No configuration tried meets every constraint at {level} % confidence. Those closest to meeting them (largest shortfall of a mean from its limit):\n"
             ),
-            n => format!(
-                "{n} configurations light '{surface}' best: the ISOC, those that cannot be told apart at {level} % confidence, each better than every one left out (thesis §3.3.4):\n"
+            (1, _) => format!(
+                "One configuration {}, better at {level} % confidence than every other one tried:\n",
+                subject(true)
+            ),
+            (n, _) => format!(
+                "{n} configurations {}: the ISOC, those that cannot be told apart at {level} % confidence, each better than every one left out (thesis §3.3.4):\n",
+                subject(false)
             ),
         };
         let v3 = |p: [f64; 3]| {
@@ -242,11 +434,26 @@ impl ResultFile {
                 significant(p[2])
             )
         };
-        for (k, m) in self.isoc.iter().enumerate() {
+        let unit = match self.objective.unit.as_str() {
+            "" => String::new(),
+            u => format!(" {u}"),
+        };
+        let rows = if self.isoc.is_empty() {
+            &self.closest
+        } else {
+            &self.isoc
+        };
+        for (k, m) in rows.iter().enumerate() {
             let vars: Vec<String> = binding
                 .specs
                 .iter()
-                .filter_map(|spec| Some((&spec.id, m.variables.get(&spec.id)?)))
+                .enumerate()
+                .filter_map(|(i, spec)| {
+                    Some((
+                        &spec.id,
+                        m.variables.get(&VariableSpec::key(&binding.specs, i))?,
+                    ))
+                })
                 .map(|(id, value)| match *value {
                     ResultValue::ObjectInSurface { position, anchor }
                     | ResultValue::LightInSurface { position, anchor }
@@ -257,16 +464,42 @@ impl ResultFile {
                         format!("{id} along {}", v3(direction))
                     }
                     ResultValue::Color { value, .. } => format!("{id} V = {}", significant(value)),
+                    ResultValue::LightPower { value } => {
+                        format!("{id} at {} %", significant(100.0 * value))
+                    }
                 })
                 .collect();
+            let e = &m.estimate;
             out += &format!(
-                "{:>3}. {} lx [{}, {}]  {}\n",
+                "{:>3}. {}{unit} [{}, {}]  {}\n",
                 k + 1,
-                significant(m.estimate.mean),
-                significant(m.estimate.low),
-                significant(m.estimate.high),
+                significant(e.mean),
+                significant(e.low),
+                significant(e.high),
                 vars.join(", ")
             );
+            for (c, info) in m.constraints.iter().zip(&self.constraints) {
+                let cu = match info.unit.as_str() {
+                    "" => String::new(),
+                    u => format!(" {u}"),
+                };
+                let sign = match info.bound.as_str() {
+                    "maxLux" => "≤",
+                    _ => "≥",
+                };
+                out += &format!(
+                    "       {}: {}{cu} [{}, {}], {sign} {}{cu}: {}\n",
+                    c.label,
+                    significant(c.estimate.mean),
+                    significant(c.estimate.low),
+                    significant(c.estimate.high),
+                    significant(info.limit),
+                    c.verdict
+                );
+            }
+            if let Some(v) = m.violation {
+                out += &format!("       short by {} %\n", significant(100.0 * v));
+            }
         }
         out
     }
@@ -278,28 +511,30 @@ impl ResultFile {
         binding: &Binding,
         number: usize,
     ) -> Result<crate::space::Configuration, String> {
+        // A problem without a feasible configuration has its closest ones instead.
+        let members = if self.isoc.is_empty() {
+            &self.closest
+        } else {
+            &self.isoc
+        };
         let member = number
             .checked_sub(1)
-            .and_then(|k| self.isoc.get(k))
+            .and_then(|k| members.get(k))
             .ok_or_else(|| {
                 format!(
                     "no ISOC member {number} (it has {}, counted from 1)",
-                    self.isoc.len()
+                    members.len()
                 )
             })?;
-        let values = binding
-            .specs
-            .iter()
-            .map(|spec| {
+        let values = (0..binding.specs.len())
+            .map(|i| {
+                let key = VariableSpec::key(&binding.specs, i);
                 member
                     .variables
-                    .get(&spec.id)
+                    .get(&key)
                     .map(|v| v.value())
                     .ok_or_else(|| {
-                        format!(
-                            "ISOC member {number} has no value for variable '{}'",
-                            spec.id
-                        )
+                        format!("ISOC member {number} has no value for variable '{key}'")
                     })
             })
             .collect::<Result<Vec<_>, String>>()?;

@@ -4,13 +4,18 @@
 //!
 //! Columns: `iteration`; per variable its world value — a placement's point P
 //! (`<id>.x`, `<id>.y`, `<id>.z`) and anchor (`<id>.anchor.x`, …), a direction
-//! (`<id>.x`, …), a colour value (`<id>.value`); then `low`, `mean`, `high` (the
-//! interval at the run's confidence), `std_error`, `photons`, `seconds` (of this
-//! evaluation), `elapsed` (since the run started) and `verdict`.
+//! (`<id>.x`, …), a colour value or a dimming level (`<id>.value`); then the goal's
+//! `low`, `mean`, `high` (the interval at the run's confidence), `std_error`, `photons`,
+//! `seconds` (of this evaluation), `elapsed` (since the run started) and `verdict`; then
+//! per constraint (labelled `Desk.minLux`, [`Constraint::label`]) `<label>.low`,
+//! `<label>.mean`, `<label>.high`, `<label>.std_error` and `<label>.verdict`
+//! (`feasible`, `infeasible` or `undecided`, one-sided at the run's confidence).
 
 use crate::binding::{Binding, VariableValue};
+use crate::intention::{Constraint, Feasibility};
+use crate::problem::VariableKind;
 use crate::space::Domain;
-use crate::vns::{Record, Verdict};
+use crate::vns::{Evaluation, Record, Verdict};
 use glam::DVec3;
 use invlight_scene::Diagnostic;
 use invlight_stats::Estimate;
@@ -23,8 +28,8 @@ pub struct SolutionRow {
     pub iteration: u64,
     /// Each variable's world value, in variable order.
     pub values: Vec<VariableValue>,
-    /// The estimate: mean, standard error, photons.
-    pub estimate: Estimate,
+    /// The goal's and the constraints' estimates.
+    pub evaluation: Evaluation,
     /// Seconds this evaluation took.
     pub seconds: f64,
     /// Seconds since the run started (resumed runs go on counting).
@@ -59,8 +64,15 @@ pub fn header(binding: &Binding) -> Vec<String> {
         ]
         .map(String::from),
     );
+    for c in &binding.constraints {
+        let label = c.label();
+        h.extend(["low", "mean", "high", "std_error", "verdict"].map(|f| format!("{label}.{f}")));
+    }
     h
 }
+
+/// Columns per constraint.
+const CONSTRAINT_COLUMNS: usize = 5;
 
 /// A CSV line (with its newline) of the fields `fields`, quoted where they need it.
 pub fn line<I, S>(fields: I) -> String
@@ -81,16 +93,17 @@ impl SolutionRow {
         SolutionRow {
             iteration: record.iteration,
             values: binding.values(&record.config),
-            estimate: record.estimate,
+            evaluation: record.evaluation.clone(),
             seconds: record.seconds,
             elapsed,
             verdict: record.verdict,
         }
     }
 
-    /// The fields, in [`header`]'s order, `low` and `high` at `z`. Numbers are written
-    /// in Rust's shortest form that reads back to the same f64.
-    pub fn fields(&self, z: f64) -> Vec<String> {
+    /// The fields, in [`header`]'s order, `low` and `high` at `z`, the constraints'
+    /// verdicts at the one-sided `z_one_sided`. Numbers are written in Rust's shortest
+    /// form that reads back to the same f64.
+    pub fn fields(&self, z: f64, z_one_sided: f64, constraints: &[Constraint]) -> Vec<String> {
         let mut f = vec![self.iteration.to_string()];
         for v in &self.values {
             match *v {
@@ -99,20 +112,33 @@ impl SolutionRow {
                     f.extend(anchor.to_array().map(|c| c.to_string()));
                 }
                 VariableValue::Direction(d) => f.extend(d.to_array().map(|c| c.to_string())),
-                VariableValue::Colour { value, .. } => f.push(value.to_string()),
+                VariableValue::Colour { value, .. } | VariableValue::Power(value) => {
+                    f.push(value.to_string())
+                }
             }
         }
-        let i = self.estimate.interval(z);
+        let goal = &self.evaluation.goal;
+        let i = goal.interval(z);
         f.extend([
             i.low.to_string(),
-            self.estimate.mean.to_string(),
+            goal.mean.to_string(),
             i.high.to_string(),
-            self.estimate.std_error.to_string(),
-            self.estimate.samples.to_string(),
+            goal.std_error.to_string(),
+            goal.samples.to_string(),
             format!("{:.6}", self.seconds),
             format!("{:.3}", self.elapsed),
             self.verdict.name().to_string(),
         ]);
+        for (c, e) in constraints.iter().zip(&self.evaluation.constraints) {
+            let i = e.interval(z);
+            f.extend([
+                i.low.to_string(),
+                e.mean.to_string(),
+                i.high.to_string(),
+                e.std_error.to_string(),
+                c.verdict(e, z_one_sided).name().to_string(),
+            ]);
+        }
         f
     }
 
@@ -122,7 +148,7 @@ impl SolutionRow {
         Ok(Record {
             iteration: self.iteration,
             config: binding.configuration(&self.values)?,
-            estimate: self.estimate,
+            evaluation: self.evaluation.clone(),
             seconds: self.seconds,
             verdict: self.verdict,
         })
@@ -214,7 +240,7 @@ impl Solutions {
             let vec3 = |c: usize| -> Result<DVec3, Diagnostic> {
                 Ok(DVec3::new(real(c)?, real(c + 1)?, real(c + 2)?))
             };
-            for v in binding.space.variables() {
+            for (v, spec) in binding.space.variables().iter().zip(&binding.specs) {
                 match &v.domain {
                     Domain::Parallelogram(_) => {
                         values.push(VariableValue::Position {
@@ -228,11 +254,14 @@ impl Solutions {
                         c += 3;
                     }
                     Domain::Segment { .. } => {
-                        // The row holds V alone; K_d follows from it (and is not needed to
-                        // map the row back to a configuration).
-                        values.push(VariableValue::Colour {
-                            value: real(c)?,
-                            rgb: [0.0; 3],
+                        // A colour's row holds V alone; K_d follows from it (and is not
+                        // needed to map the row back to a configuration).
+                        values.push(match spec.kind {
+                            VariableKind::LightPower { .. } => VariableValue::Power(real(c)?),
+                            _ => VariableValue::Colour {
+                                value: real(c)?,
+                                rgb: [0.0; 3],
+                            },
                         });
                         c += 1;
                     }
@@ -258,13 +287,38 @@ impl Solutions {
                 ));
             }
             last_elapsed = elapsed;
-            let row = SolutionRow {
-                iteration,
-                values,
-                estimate: Estimate {
+            let mut constraints = Vec::new();
+            for k in 0..binding.constraints.len() {
+                let at = c + 8 + k * CONSTRAINT_COLUMNS;
+                let (low, mean, high, std_error) =
+                    (real(at)?, real(at + 1)?, real(at + 2)?, real(at + 3)?);
+                if Feasibility::parse(&row[at + 4]).is_none()
+                    || !(std_error >= 0.0 && low <= mean && mean <= high)
+                {
+                    return Err(bad(
+                        n,
+                        format!(
+                            "the estimate of constraint {} is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, a verdict feasible, infeasible or undecided)",
+                            binding.constraints[k].label()
+                        ),
+                    ));
+                }
+                constraints.push(Estimate {
                     mean,
                     std_error,
                     samples,
+                });
+            }
+            let row = SolutionRow {
+                iteration,
+                values,
+                evaluation: Evaluation {
+                    goal: Estimate {
+                        mean,
+                        std_error,
+                        samples,
+                    },
+                    constraints,
                 },
                 seconds,
                 elapsed,

@@ -4,7 +4,7 @@
 use super::*;
 use crate::Configuration;
 use crate::problem::Problem;
-use crate::vns::{Evaluate, Search, Settings, Strategy, Verdict};
+use crate::vns::{Evaluate, Evaluation, Search, Sense, Settings, Strategy, Verdict};
 use glam::{Mat4, Vec3};
 use invlight_scene::{Light, LightKind, Material, Mesh, Scene};
 use invlight_stats::{Confidence, Estimate};
@@ -13,13 +13,13 @@ use std::io::Write;
 struct Bowl;
 impl Evaluate for Bowl {
     type Error = ();
-    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, ()> {
+    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, ()> {
         let x = &c.coords;
-        Ok(Estimate {
+        Ok(Evaluation::of(Estimate {
             mean: 10.0 - (x[0] - 0.3).powi(2) - (x[2] - 0.6).powi(2) - x[3],
             std_error: 0.01,
             samples: photons,
-        })
+        }))
     }
 }
 
@@ -61,6 +61,8 @@ fn settings() -> Settings {
         strategy: Strategy::RefineOnIntersection,
         confidence: Confidence::DEFAULT,
         cap: Some(9.5),
+        sense: Sense::Maximize,
+        constraints: Vec::new(),
         seed: 4,
         tries_per_radius: None,
     }
@@ -68,10 +70,13 @@ fn settings() -> Settings {
 
 fn info() -> ObjectiveInfo {
     ObjectiveInfo {
-        surface: "Floor, left".into(),
+        element: "maximizeRadiance".into(),
+        surface: Some("Floor, left".into()),
+        side: "both".into(),
         sense: "maximize".into(),
         unit: "lx".into(),
         cap: Some(9.5),
+        target: None,
     }
 }
 
@@ -129,7 +134,7 @@ fn csv_and_json_round_trip() {
     assert_eq!(result.schema_version, RESULT_SCHEMA);
     assert_eq!(result.objective.cap, Some(9.5));
     assert_eq!(result.isoc.len(), search.isoc().members().len());
-    let by_mean = search.isoc().by_mean();
+    let by_mean = search.isoc().best_first();
     for (k, m) in by_mean.iter().enumerate() {
         assert_eq!(result.configuration(&b, k + 1).unwrap(), m.config);
     }
@@ -239,4 +244,136 @@ fn folders_are_not_shared_or_silently_overwritten() {
     );
     drop(out);
     assert!(!dir.join(lock::LOCK_FILE).exists(), "released");
+}
+
+/// A lamp placed on a rail and dimmed, with a constraint: the rows and result.json carry
+/// the constraint's estimate and verdict and the level, and read back into the same
+/// search; a problem nothing satisfies writes its closest configurations.
+#[test]
+fn constraints_and_levels_round_trip() {
+    let mut s = Scene::default();
+    let grey = s.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let floor = s.add_mesh(Mesh::quad(
+        [
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(0.0, 0.0, -1.0),
+        ],
+        grey,
+    ));
+    s.add_instance("Desk", floor, Mat4::IDENTITY);
+    s.lights.push(Light {
+        name: "Lamp".into(),
+        kind: LightKind::Point {
+            position: Vec3::new(0.5, 1.0, -0.5),
+            intensity: Vec3::ONE,
+        },
+    });
+    s.placements.push(invlight_scene::Placement {
+        name: "Rail".into(),
+        vertices: vec![
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(1.0, 1.0, -1.0),
+            Vec3::new(0.0, 1.0, -1.0),
+        ],
+    });
+    let problem = |limit: f64| {
+        Problem::parse(
+            Path::new("/p/x.xml"),
+            &format!("<input><scene path=\"s.gltf\"/><conditions meshSize=\"5\"><lightInSurface id=\"Lamp\" surface=\"Rail\" anchor=\"centre\"/><lightPower id=\"Lamp\" min=\"0.1\" max=\"1\"/></conditions><objectives><minimizePower/><constraint surface=\"Desk\" side=\"front\" minLux=\"{limit}\"/></objectives></input>"),
+        )
+        .unwrap()
+    };
+    // The "illuminance": 10 × level × (1 − distance of the lamp from the rail's
+    // middle), σ 0.05.
+    struct Lit;
+    impl Evaluate for Lit {
+        type Error = ();
+        fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, ()> {
+            let x = &c.coords;
+            let level = 0.1 + 0.9 * x[2];
+            let near = 1.0 - ((x[0] - 0.5).powi(2) + (x[1] - 0.5).powi(2)).sqrt();
+            Ok(Evaluation {
+                goal: Estimate {
+                    mean: 100.0 * level,
+                    std_error: 0.0,
+                    samples: photons,
+                },
+                constraints: vec![Estimate {
+                    mean: 10.0 * level * near,
+                    std_error: 0.05,
+                    samples: photons,
+                }],
+            })
+        }
+    }
+    for limit in [5.0, 50.0] {
+        let p = problem(limit);
+        let mut scene = s.clone();
+        let b = Binding::new(&p, &mut scene).unwrap();
+        let header = csv_line(csv_header(&b));
+        assert!(
+            header.ends_with("Lamp.value,low,mean,high,std_error,photons,seconds,elapsed,verdict,Desk.front.minLux.low,Desk.front.minLux.mean,Desk.front.minLux.high,Desk.front.minLux.std_error,Desk.front.minLux.verdict\n"),
+            "{header}"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let dir = dir.path();
+        let settings = Settings {
+            max_iterations: 80,
+            ..p.settings()
+        };
+        let mut search = Search::new(&b.space, settings.clone(), &b.initial);
+        {
+            let info = ObjectiveInfo::of(&p);
+            let mut out = Output::create(dir, &b, info, &settings, 7, &fresh(false)).unwrap();
+            search.run(&mut Lit, &mut out).unwrap();
+        }
+        let rows = Solutions::read(&dir.join("solutions.csv"), &b).unwrap();
+        assert!(
+            rows.records
+                .iter()
+                .all(|r| r.evaluation.constraints.len() == 1)
+        );
+        let mut again = Search::new(&b.space, settings.clone(), &b.initial);
+        again.replay(&rows.records);
+        assert_eq!(again.isoc().members(), search.isoc().members());
+        let result = ResultFile::read(&dir.join("result.json")).unwrap();
+        assert_eq!(result.objective.element, "minimizePower");
+        assert_eq!(result.objective.unit, "lm");
+        assert_eq!(result.constraints[0].label, "Desk.front.minLux");
+        let table = result.table(&b);
+        if limit == 5.0 {
+            assert!(result.feasible && !result.isoc.is_empty() && result.closest.is_empty());
+            let m = &result.isoc[0];
+            assert!(matches!(
+                m.variables["Lamp.power"],
+                ResultValue::LightPower { .. }
+            ));
+            assert_eq!(m.constraints[0].verdict, "feasible");
+            assert!(m.constraints[0].estimate.low >= 5.0 - 0.2);
+            assert!(
+                table.contains("Desk.front.minLux") && table.contains("feasible"),
+                "{table}"
+            );
+            assert_eq!(
+                result.configuration(&b, 1).unwrap(),
+                search.isoc().best_first()[0].config
+            );
+        } else {
+            // 10 lx at most: nothing reaches 50.
+            assert!(!result.feasible && result.isoc.is_empty(), "{result:?}");
+            assert!(!result.closest.is_empty());
+            let first = &result.closest[0];
+            assert!(first.violation.unwrap() > 0.75);
+            assert_eq!(first.constraints[0].verdict, "infeasible");
+            assert!(
+                table.starts_with("No configuration tried meets every constraint"),
+                "{table}"
+            );
+            // --config numbers the closest when nothing is feasible.
+            assert!(result.configuration(&b, 1).is_ok());
+        }
+    }
 }

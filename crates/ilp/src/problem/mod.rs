@@ -10,7 +10,8 @@
 
 mod bare_attributes;
 
-use crate::vns::{Settings, Strategy};
+use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
+use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
 use invlight_scene::{Diagnostic, LoadOptions, Scene, UpAxis};
 use invlight_stats::Confidence;
@@ -63,6 +64,14 @@ pub enum VariableKind {
     HoleInSurface(PlacementSpec),
     /// `directionalLight`: the direction of a sun.
     DirectionalLight,
+    /// `lightPower`: the dimming level of a light or an emissive object (its authored
+    /// output × the level).
+    LightPower {
+        /// Lowest level.
+        min: f64,
+        /// Highest level.
+        max: f64,
+    },
     /// `color`: the HSV value V of a material with fixed hue and saturation.
     Color {
         /// Hue, degrees.
@@ -85,6 +94,7 @@ impl VariableKind {
             VariableKind::HoleInSurface(_) => "holeInSurface",
             VariableKind::DirectionalLight => "directionalLight",
             VariableKind::Color { .. } => "color",
+            VariableKind::LightPower { .. } => "lightPower",
         }
     }
 
@@ -110,15 +120,21 @@ pub struct VariableSpec {
     pub line: u32,
 }
 
-/// The objective: maximise a surface's mean illuminance, optionally under a cap.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Objective {
-    /// The surface's name.
-    pub surface: String,
-    /// `maxRadiosity`, in the objective's unit (lx): positive and finite.
-    pub cap: Option<f64>,
-    /// Line of its element.
-    pub line: u32,
+impl VariableSpec {
+    /// The key of variable `i` of `specs` in `result.json`'s `variables`: its id, or
+    /// `<id>.power` for a `lightPower` whose light another variable also places.
+    pub fn key(specs: &[VariableSpec], i: usize) -> String {
+        let spec = &specs[i];
+        let shared = specs
+            .iter()
+            .enumerate()
+            .any(|(j, other)| j != i && other.id == spec.id);
+        if shared && matches!(spec.kind, VariableKind::LightPower { .. }) {
+            format!("{}.power", spec.id)
+        } else {
+            spec.id.clone()
+        }
+    }
 }
 
 /// The scene a problem is posed on: `<scene path="…" scale="…" up="…"/>`.
@@ -147,8 +163,12 @@ pub struct Problem {
     pub cells_per_dimension: Vec<u32>,
     /// The free variables, in file order.
     pub variables: Vec<VariableSpec>,
-    /// What to maximise.
-    pub objective: Objective,
+    /// What to achieve above all.
+    pub goal: Goal,
+    /// Line of the goal's element.
+    pub goal_line: u32,
+    /// What must hold as well.
+    pub constraints: Vec<Constraint>,
     /// `maxIterations` (default 1000).
     pub max_iterations: u64,
     /// `fastEvaluationQuality`, q of §4.7 (default 0.25, the thesis' value).
@@ -168,12 +188,20 @@ pub struct Problem {
 }
 
 const TOP: &[&str] = &["scene", "output", "conditions", "objectives"];
+const GOALS: &[&str] = &[
+    "maximizeRadiance",
+    "minimizeRadiance",
+    "targetRadiance",
+    "maximizeUniformity",
+    "minimizePower",
+];
 const VARIABLES: &[&str] = &[
     "objectInSurface",
     "lightInSurface",
     "holeInSurface",
     "directionalLight",
     "color",
+    "lightPower",
 ];
 const VERTEX_ATTRS: [&str; 4] = [
     "vertexAIndex",
@@ -231,7 +259,16 @@ impl Problem {
             fast_quality: self.fast_quality,
             strategy: self.strategy,
             confidence: self.confidence,
-            cap: self.objective.cap,
+            cap: match self.goal {
+                Goal::Maximize { cap, .. } => cap,
+                _ => None,
+            },
+            sense: match self.goal {
+                Goal::Maximize { .. } | Goal::MaximizeUniformity { .. } => Sense::Maximize,
+                Goal::Minimize { .. } | Goal::MinimizePower => Sense::Minimize,
+                Goal::Target { lux, .. } => Sense::Target(lux),
+            },
+            constraints: self.constraints.iter().map(|c| c.bound).collect(),
             seed: self.seed,
             tries_per_radius: None,
         }
@@ -455,7 +492,20 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut variables = Vec::new();
         for v in self.elements(conditions) {
             if let Some(spec) = self.variable(v)? {
-                if variables.iter().any(|w: &VariableSpec| w.id == spec.id) {
+                // A light may be placed and dimmed: one lightPower beside one
+                // lightInSurface of the same id; any other repeat is a mistake.
+                let power = |w: &VariableSpec| matches!(w.kind, VariableKind::LightPower { .. });
+                let placed = |w: &VariableSpec| matches!(w.kind, VariableKind::LightInSurface(_));
+                let same: Vec<&VariableSpec> = variables
+                    .iter()
+                    .filter(|w: &&VariableSpec| w.id == spec.id)
+                    .collect();
+                let allowed = match same[..] {
+                    [] => true,
+                    [other] => (power(other) && placed(&spec)) || (placed(other) && power(&spec)),
+                    _ => false,
+                };
+                if !allowed {
                     return Err(self.error(
                         v,
                         format!(
@@ -532,43 +582,61 @@ impl<'a, 'i> Reader<'a, 'i> {
             Some(c) => Confidence::new(c).map_err(|e| self.error(objectives, e.to_string()))?,
         };
         let max_bounces = self.number(objectives, "maxBounces", "a non-negative integer")?;
-        let mut objective = None;
+        let mut goal: Option<(Goal, u32)> = None;
+        let mut constraints = Vec::new();
         for o in self.elements(objectives) {
-            if o.tag_name().name() != "maximizeRadiance" {
-                self.warn(
-                    o,
-                    format!(
-                        "unknown objective <{}> ignored (expected maximizeRadiance)",
-                        o.tag_name().name()
-                    ),
-                );
-                continue;
-            }
-            if objective.is_some() {
-                return Err(self.error(o, "a second <maximizeRadiance>, expected one objective"));
-            }
-            self.check_attributes(o, &["surface", "maxRadiosity"]);
-            let cap = match self.real(o, "maxRadiosity", "a positive illuminance (lx)")? {
-                Some(c) if c <= 0.0 => {
+            let name = o.tag_name().name();
+            if name == "constraint" {
+                let c = self.constraint(o)?;
+                if let Some(first) = constraints
+                    .iter()
+                    .find(|d: &&Constraint| d.label() == c.label())
+                {
                     return Err(self
                         .error(
                             o,
-                            format!("'maxRadiosity' of <maximizeRadiance> is {c}, expected a positive illuminance (lx)"),
+                            format!(
+                                "a second {} constraint on '{}', expected one (the first is on line {})",
+                                c.bound.attribute(),
+                                c.surface.name,
+                                first.line
+                            ),
                         )
-                        .with_hint("every lit configuration would exceed a cap of zero or less; leave the attribute out for no cap"));
+                        .with_hint("the stricter of two bounds of one kind is the one that holds"));
                 }
-                c => c,
+                constraints.push(c);
+                continue;
+            }
+            let Some(parsed) = self.goal(o)? else {
+                self.warn(
+                    o,
+                    format!(
+                        "unknown objective <{name}> ignored (expected one of: {}, or <constraint>)",
+                        GOALS.join(", ")
+                    ),
+                );
+                continue;
             };
-            objective = Some(Objective {
-                surface: self.required(o, "surface")?,
-                cap,
-                line: self.line(o),
-            });
+            if let Some((first, line)) = &goal {
+                return Err(self
+                    .error(
+                        o,
+                        format!(
+                            "a second goal <{name}>, expected one (the first is <{}> on line {line})",
+                            first.element()
+                        ),
+                    )
+                    .with_hint("state other wishes as <constraint> elements"));
+            }
+            goal = Some((parsed, self.line(o)));
         }
-        let objective = objective.ok_or_else(|| {
+        let (goal, goal_line) = goal.ok_or_else(|| {
             self.error(
                 objectives,
-                "no <maximizeRadiance surface=\"…\"/> in <objectives>, expected one",
+                format!(
+                    "no goal in <objectives>, expected one of: {}",
+                    GOALS.join(", ")
+                ),
             )
         })?;
 
@@ -578,7 +646,9 @@ impl<'a, 'i> Reader<'a, 'i> {
             output,
             cells_per_dimension,
             variables,
-            objective,
+            goal,
+            goal_line,
+            constraints,
             max_iterations,
             fast_quality,
             strategy,
@@ -587,6 +657,166 @@ impl<'a, 'i> Reader<'a, 'i> {
             confidence,
             max_bounces,
             warnings: Vec::new(),
+        })
+    }
+
+    /// A surface reference: `surface` and `side`.
+    fn surface_ref(&self, node: Node) -> Result<SurfaceRef, Diagnostic> {
+        let side = match node.attribute("side").map(str::trim) {
+            None => Side::Both,
+            Some(s) => Side::parse(s).ok_or_else(|| {
+                self.error(
+                    node,
+                    format!(
+                        "'side' of <{}> is '{s}', expected front, back or both",
+                        node.tag_name().name()
+                    ),
+                )
+            })?,
+        };
+        Ok(SurfaceRef {
+            name: self.required(node, "surface")?,
+            side,
+        })
+    }
+
+    /// `grid`: `auto` (EN 12464-1) or a spacing in metres.
+    fn grid(&self, node: Node) -> Result<Grid, Diagnostic> {
+        match node.attribute("grid").map(str::trim) {
+            None | Some("auto") => Ok(Grid::Auto),
+            Some(_) => match self.real(node, "grid", "auto or a spacing in metres")? {
+                Some(m) if m > 0.0 => Ok(Grid::Spacing(m)),
+                _ => Err(self.error(
+                    node,
+                    format!(
+                        "'grid' of <{}> is not positive, expected auto or a spacing in metres",
+                        node.tag_name().name()
+                    ),
+                )),
+            },
+        }
+    }
+
+    /// A positive illuminance attribute.
+    fn lux(&self, node: Node, attr: &str) -> Result<Option<f64>, Diagnostic> {
+        match self.real(node, attr, "an illuminance (lx)")? {
+            Some(x) if x <= 0.0 => Err(self.error(
+                node,
+                format!(
+                    "'{attr}' of <{}> is {x}, expected a positive illuminance (lx)",
+                    node.tag_name().name()
+                ),
+            )),
+            x => Ok(x),
+        }
+    }
+
+    /// One of the goal elements, or `None` for another element.
+    fn goal(&self, o: Node) -> Result<Option<Goal>, Diagnostic> {
+        let name = o.tag_name().name();
+        let goal = match name {
+            "maximizeRadiance" => {
+                self.check_attributes(o, &["surface", "side", "maxRadiosity"]);
+                let cap = self.lux(o, "maxRadiosity").map_err(|e| {
+                    e.with_hint("every lit configuration would exceed a cap of zero or less; leave the attribute out for no cap")
+                })?;
+                Goal::Maximize {
+                    surface: self.surface_ref(o)?,
+                    cap,
+                }
+            }
+            "minimizeRadiance" => {
+                self.check_attributes(o, &["surface", "side"]);
+                Goal::Minimize {
+                    surface: self.surface_ref(o)?,
+                }
+            }
+            "targetRadiance" => {
+                self.check_attributes(o, &["surface", "side", "lux"]);
+                let lux = self.lux(o, "lux")?.ok_or_else(|| {
+                    self.error(o, "<targetRadiance> needs 'lux', the illuminance to reach")
+                })?;
+                Goal::Target {
+                    surface: self.surface_ref(o)?,
+                    lux,
+                }
+            }
+            "maximizeUniformity" => {
+                self.check_attributes(o, &["surface", "side", "grid"]);
+                Goal::MaximizeUniformity {
+                    surface: self.surface_ref(o)?,
+                    grid: self.grid(o)?,
+                }
+            }
+            "minimizePower" => {
+                self.check_attributes(o, &[]);
+                Goal::MinimizePower
+            }
+            _ => return Ok(None),
+        };
+        Ok(Some(goal))
+    }
+
+    /// A `<constraint>`: a surface and exactly one bound.
+    fn constraint(&self, c: Node) -> Result<Constraint, Diagnostic> {
+        const BOUNDS: [&str; 4] = ["minLux", "maxLux", "minUniformity", "minPointLux"];
+        self.check_attributes(
+            c,
+            &[
+                "surface",
+                "side",
+                "grid",
+                "minLux",
+                "maxLux",
+                "minUniformity",
+                "minPointLux",
+            ],
+        );
+        let given: Vec<&str> = BOUNDS
+            .into_iter()
+            .filter(|b| c.attribute(*b).is_some())
+            .collect();
+        if given.len() != 1 {
+            return Err(self
+                .error(
+                    c,
+                    format!(
+                        "<constraint> has {}, expected exactly one of {}",
+                        if given.is_empty() {
+                            "no bound".to_string()
+                        } else {
+                            given.join(" and ")
+                        },
+                        BOUNDS.join(", ")
+                    ),
+                )
+                .with_hint("write one <constraint> element per bound"));
+        }
+        let bound = match given[0] {
+            "minLux" => Bound::MinLux(self.lux(c, "minLux")?.unwrap_or_default()),
+            "maxLux" => Bound::MaxLux(self.lux(c, "maxLux")?.unwrap_or_default()),
+            "minPointLux" => Bound::MinPointLux(
+                self.lux(c, "minPointLux")?.unwrap_or_default(),
+                self.grid(c)?,
+            ),
+            _ => Bound::MinUniformity(
+                self.unit(c, "minUniformity", 0.0, 1.0)?.unwrap_or_default(),
+                self.grid(c)?,
+            ),
+        };
+        if c.attribute("grid").is_some() && bound.grid().is_none() {
+            self.warn(
+                c,
+                format!(
+                    "'grid' of a {} constraint ignored: it bounds the mean",
+                    bound.attribute()
+                ),
+            );
+        }
+        Ok(Constraint {
+            surface: self.surface_ref(c)?,
+            bound,
+            line: self.line(c),
         })
     }
 
@@ -658,6 +888,26 @@ impl<'a, 'i> Reader<'a, 'i> {
                     min,
                     max,
                 }
+            }
+            "lightPower" => {
+                self.check_attributes(v, &["id", "min", "max"]);
+                let level = |attr: &str, default: f64| -> Result<f64, Diagnostic> {
+                    match self.real(v, attr, "a level (1 is the authored output)")? {
+                        Some(x) if x < 0.0 => Err(self.error(
+                            v,
+                            format!("'{attr}' of <lightPower> is {x}, expected a level ≥ 0 (1 is the authored output)"),
+                        )),
+                        x => Ok(x.unwrap_or(default)),
+                    }
+                };
+                let (min, max) = (level("min", 0.0)?, level("max", 1.0)?);
+                if min >= max {
+                    return Err(self.error(
+                        v,
+                        format!("<lightPower> has min {min} ≥ max {max}, expected min < max"),
+                    ));
+                }
+                VariableKind::LightPower { min, max }
             }
             other => {
                 self.warn(
@@ -743,7 +993,13 @@ mod tests {
                 max: 0.9
             }
         );
-        assert_eq!(p.objective.cap, Some(300.0));
+        assert!(matches!(
+            p.goal,
+            Goal::Maximize {
+                cap: Some(300.0),
+                ..
+            }
+        ));
         assert_eq!(p.strategy, Strategy::RefineOnEnd);
         assert_eq!(
             (p.photons, p.seed, p.max_bounces, p.max_iterations),
@@ -819,6 +1075,128 @@ mod tests {
         assert!(e.message.contains("centre"), "{e}");
     }
 
+    /// Every intention element reads, with its sides and grids; mistakes are errors on
+    /// their line.
+    #[test]
+    fn intentions_read_and_their_mistakes_are_errors() {
+        let wrap = |objectives: &str| {
+            format!(
+                "<input><scene path=\"s.obj\"/><conditions><lightPower id=\"L\" min=\"0.2\"/><lightInSurface id=\"L\" surface=\"C\"/></conditions>\n<objectives>{objectives}</objectives></input>"
+            )
+        };
+        let p = parse(&wrap(
+            "<minimizePower/><constraint surface=\"Desk\" side=\"front\" minLux=\"500\"/><constraint surface=\"Desk\" side=\"front\" minUniformity=\"0.6\"/><constraint surface=\"Screen\" maxLux=\"300\"/><constraint surface=\"Desk\" minPointLux=\"300\" grid=\"0.25\"/>",
+        ))
+        .unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        assert_eq!(p.goal, Goal::MinimizePower);
+        let labels: Vec<String> = p.constraints.iter().map(Constraint::label).collect();
+        assert_eq!(
+            labels,
+            [
+                "Desk.front.minLux",
+                "Desk.front.minUniformity",
+                "Screen.maxLux",
+                "Desk.minPointLux"
+            ]
+        );
+        assert_eq!(
+            p.constraints[1].bound,
+            Bound::MinUniformity(0.6, Grid::Auto)
+        );
+        assert_eq!(
+            p.constraints[3].bound,
+            Bound::MinPointLux(300.0, Grid::Spacing(0.25))
+        );
+        assert_eq!(
+            p.variables[0].kind,
+            VariableKind::LightPower { min: 0.2, max: 1.0 }
+        );
+        assert_eq!(VariableSpec::key(&p.variables, 0), "L.power");
+        assert_eq!(VariableSpec::key(&p.variables, 1), "L");
+        let settings = p.settings();
+        assert_eq!(settings.sense, Sense::Minimize);
+        assert_eq!(settings.constraints.len(), 4);
+        for (goal, sense) in [
+            (
+                "<targetRadiance surface=\"D\" lux=\"500\"/>",
+                Sense::Target(500.0),
+            ),
+            (
+                "<minimizeRadiance surface=\"D\" side=\"back\"/>",
+                Sense::Minimize,
+            ),
+            (
+                "<maximizeUniformity surface=\"D\" grid=\"auto\"/>",
+                Sense::Maximize,
+            ),
+        ] {
+            assert_eq!(
+                parse(&wrap(goal)).unwrap().settings().sense,
+                sense,
+                "{goal}"
+            );
+        }
+        for (objectives, what) in [
+            ("", "no goal"),
+            ("<minimizePower/><minimizePower/>", "a second goal"),
+            ("<targetRadiance surface=\"D\"/>", "'lux'"),
+            ("<targetRadiance surface=\"D\" lux=\"-5\"/>", "positive"),
+            ("<minimizePower/><constraint surface=\"D\"/>", "no bound"),
+            (
+                "<minimizePower/><constraint surface=\"D\" minLux=\"1\" maxLux=\"2\"/>",
+                "exactly one",
+            ),
+            (
+                "<minimizePower/><constraint surface=\"D\" minUniformity=\"1.5\"/>",
+                "minUniformity",
+            ),
+            (
+                "<minimizePower/><constraint surface=\"D\" minLux=\"5\" side=\"top\"/>",
+                "front, back or both",
+            ),
+            (
+                "<minimizePower/><constraint surface=\"D\" minPointLux=\"5\" grid=\"-1\"/>",
+                "grid",
+            ),
+            (
+                "<minimizePower/><constraint surface=\"D\" minLux=\"5\"/><constraint surface=\"D\" minLux=\"7\"/>",
+                "a second minLux",
+            ),
+        ] {
+            let e = parse(&wrap(objectives)).unwrap_err();
+            assert!(e.to_string().contains(what), "{objectives}: {e}");
+            assert!(e.line.is_some(), "{e}");
+        }
+        for (conditions, what) in [
+            (
+                "<lightPower id=\"L\" min=\"0.5\" max=\"0.5\"/>",
+                "min < max",
+            ),
+            ("<lightPower id=\"L\" min=\"-1\"/>", "≥ 0"),
+            (
+                "<lightPower id=\"L\"/><lightPower id=\"L\"/>",
+                "a second variable",
+            ),
+            (
+                "<color id=\"L\" hue=\"0\" saturation=\"0\"/><lightPower id=\"L\"/>",
+                "a second variable",
+            ),
+        ] {
+            let text = format!(
+                "<input><scene path=\"s.obj\"/><conditions>{conditions}</conditions><objectives><minimizePower/></objectives></input>"
+            );
+            let e = parse(&text).unwrap_err();
+            assert!(e.to_string().contains(what), "{conditions}: {e}");
+        }
+        // 'grid' on a bound of the mean is ignored with a warning.
+        let p = parse(&wrap(
+            "<minimizePower/><constraint surface=\"D\" minLux=\"5\" grid=\"1\"/>",
+        ))
+        .unwrap();
+        assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    }
+
     /// A scene path that does not exist is named with the problem file's line and the
     /// folder it is relative to.
     #[test]
@@ -891,7 +1269,13 @@ mod files {
         assert_eq!(cone.strategy, Strategy::RefineOnEnd);
         assert_eq!(cone.fast_quality, 0.00390625);
         let color = Problem::read(&dir.join("sponza-color.xml")).unwrap();
-        assert_eq!(color.objective.cap, Some(0.0003));
+        assert!(matches!(
+            color.goal,
+            Goal::Maximize {
+                cap: Some(0.0003),
+                ..
+            }
+        ));
     }
 
     #[test]
@@ -913,6 +1297,6 @@ mod files {
         assert_eq!(p.max_iterations, 1000);
         assert_eq!(p.warnings.len(), 1, "the unquoted maxIterations");
         assert_eq!(p.warnings[0].line, Some(28));
-        assert_eq!(p.objective.surface, "Suzzane");
+        assert_eq!(p.goal.surface().unwrap().name, "Suzzane");
     }
 }

@@ -1,0 +1,129 @@
+//! Dimming (`<lightPower id min max>`): a light's or an emissive object's authored
+//! output times a level. The search never traces a dimming: the photon evaluator keeps
+//! each dimmed light's light apart ([`invlight_photon::Components`]) and weighs it by
+//! the level. Applying a level to the scene is for everything else that reads a
+//! configuration (`render`, `measure` and `map --config`), which must see the lamps as
+//! dimmed.
+
+use invlight_scene::{
+    Diagnostic, InstanceId, LightKind, MaterialId, Rgb, Scene, SurfaceId, known_names,
+};
+
+/// What a `lightPower` variable dims, with its authored output.
+#[derive(Debug, Clone)]
+pub enum Dimmed {
+    /// `scene.lights[light]`, of authored strength `authored`
+    /// ([`LightKind::strength_mut`]).
+    Light {
+        /// Index of the light.
+        light: usize,
+        /// Its authored strength.
+        authored: Rgb,
+    },
+    /// The emissive materials of a surface's instances (private copies, so that other
+    /// objects sharing a material stay lit), each with its authored emission.
+    Emissive {
+        /// The instances dimmed.
+        instances: Vec<InstanceId>,
+        /// The copies and their authored emission.
+        materials: Vec<(MaterialId, Rgb)>,
+    },
+}
+
+impl Dimmed {
+    /// Whether two dim the same light or object.
+    pub fn same(&self, other: &Dimmed) -> bool {
+        match (self, other) {
+            (Dimmed::Light { light: a, .. }, Dimmed::Light { light: b, .. }) => a == b,
+            (Dimmed::Emissive { instances: a, .. }, Dimmed::Emissive { instances: b, .. }) => {
+                a.iter().any(|i| b.contains(i))
+            }
+            _ => false,
+        }
+    }
+}
+
+/// Binds the light or emissive object `id`. An object's emissive materials are copied
+/// for its instances alone.
+pub fn bind(
+    scene: &mut Scene,
+    id: &str,
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<Dimmed, Diagnostic> {
+    if let Some(light) = scene.light(id) {
+        let authored = *scene.lights[light].kind.clone().strength_mut();
+        return Ok(Dimmed::Light { light, authored });
+    }
+    let surface: SurfaceId = scene.surface(id).ok_or_else(|| {
+        err(format!(
+            "no light or surface named '{id}' in the scene, expected the light or emissive object to dim"
+        ))
+        .with_hint(known_names(
+            scene.lights.iter().map(|l| l.name.as_str()),
+            "lights",
+        ))
+    })?;
+    let instances = scene.surfaces[surface as usize].instances.clone();
+    let mut copies: Vec<(MaterialId, MaterialId)> = Vec::new();
+    for &i in &instances {
+        let mesh = scene.instances[i as usize].mesh as usize;
+        if !scene.meshes[mesh]
+            .materials
+            .iter()
+            .any(|&m| scene.materials[m as usize].is_emissive())
+        {
+            continue;
+        }
+        let mut copy = scene.meshes[mesh].clone();
+        for m in copy.materials.iter_mut() {
+            if !scene.materials[*m as usize].is_emissive() {
+                continue;
+            }
+            let own = match copies.iter().find(|(from, _)| from == m) {
+                Some(&(_, to)) => to,
+                None => {
+                    let mut material = scene.materials[*m as usize].clone();
+                    material.name = format!("{} ({id})", material.name);
+                    let to = scene.add_material(material);
+                    copies.push((*m, to));
+                    to
+                }
+            };
+            *m = own;
+        }
+        scene.instances[i as usize].mesh = scene.add_mesh(copy);
+    }
+    if copies.is_empty() {
+        return Err(err(format!(
+            "'{id}' emits no light, expected a light or an emissive object to dim"
+        )));
+    }
+    let materials = copies
+        .into_iter()
+        .map(|(_, m)| (m, scene.materials[m as usize].emission))
+        .collect();
+    Ok(Dimmed::Emissive {
+        instances,
+        materials,
+    })
+}
+
+/// Sets what `dimmed` dims to `level` times its authored output.
+pub fn apply(scene: &mut Scene, dimmed: &Dimmed, level: f64) {
+    let level = level as f32;
+    match dimmed {
+        Dimmed::Light { light, authored } => {
+            *scene.lights[*light].kind.strength_mut() = *authored * level;
+        }
+        Dimmed::Emissive { materials, .. } => {
+            for &(m, emission) in materials {
+                scene.materials[m as usize].emission = emission * level;
+            }
+        }
+    }
+}
+
+/// Whether `kind` is daylight, which costs no power.
+pub fn is_daylight(kind: &LightKind) -> bool {
+    matches!(kind, LightKind::Directional { .. })
+}

@@ -1,0 +1,310 @@
+//! Lighting intentions as designers state them: one goal ("the most light on the desk",
+//! "500 lx on the desk", "as even as possible", "the least power") and any number of
+//! constraints ("at least 500 lx", "at most 300 lx on the screen", "U0 ≥ 0.6",
+//! "nowhere below 300 lx"), each on a named surface and a side of it.
+//!
+//! Uniformity and point values are read on a grid over the surface: EN 12464-1:2021's
+//! grid by default (`grid="auto"`, [`en12464_spacing`]), or a spacing in metres; the
+//! photon layer measures them ([`invlight_photon::measure_with`]).
+
+pub use invlight_photon::{Side, en12464_spacing};
+use std::fmt;
+
+/// A surface an intention is about.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceRef {
+    /// Its name in the scene.
+    pub name: String,
+    /// Which side counts.
+    pub side: Side,
+}
+
+impl fmt::Display for SurfaceRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.side {
+            Side::Both => write!(f, "'{}'", self.name),
+            side => write!(f, "'{}' ({})", self.name, side.name()),
+        }
+    }
+}
+
+/// The grid uniformity and point values are read on.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Grid {
+    /// EN 12464-1:2021's spacing for the surface's size ([`en12464_spacing`]).
+    #[default]
+    Auto,
+    /// Cells at most this wide, m.
+    Spacing(f64),
+}
+
+/// What a configuration should achieve above all.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Goal {
+    /// `<maximizeRadiance surface maxRadiosity?>`: the most mean illuminance, lx; a
+    /// configuration whose whole interval lies above `cap` is invalid (the thesis'
+    /// objective, §5.3.4).
+    Maximize {
+        /// The surface.
+        surface: SurfaceRef,
+        /// `maxRadiosity`, lx.
+        cap: Option<f64>,
+    },
+    /// `<minimizeRadiance surface>`: the least mean illuminance, lx.
+    Minimize {
+        /// The surface.
+        surface: SurfaceRef,
+    },
+    /// `<targetRadiance surface lux>`: the mean illuminance closest to `lux`.
+    Target {
+        /// The surface.
+        surface: SurfaceRef,
+        /// The target, lx.
+        lux: f64,
+    },
+    /// `<maximizeUniformity surface grid>`: the largest U0 = Emin/Eavg over the grid.
+    MaximizeUniformity {
+        /// The surface.
+        surface: SurfaceRef,
+        /// Its grid.
+        grid: Grid,
+    },
+    /// `<minimizePower/>`: the least luminous flux of the scene's lights as dimmed, lm.
+    MinimizePower,
+}
+
+impl Goal {
+    /// The problem-file element.
+    pub fn element(&self) -> &'static str {
+        match self {
+            Goal::Maximize { .. } => "maximizeRadiance",
+            Goal::Minimize { .. } => "minimizeRadiance",
+            Goal::Target { .. } => "targetRadiance",
+            Goal::MaximizeUniformity { .. } => "maximizeUniformity",
+            Goal::MinimizePower => "minimizePower",
+        }
+    }
+
+    /// The surface it is about, if any.
+    pub fn surface(&self) -> Option<&SurfaceRef> {
+        match self {
+            Goal::Maximize { surface, .. }
+            | Goal::Minimize { surface }
+            | Goal::Target { surface, .. }
+            | Goal::MaximizeUniformity { surface, .. } => Some(surface),
+            Goal::MinimizePower => None,
+        }
+    }
+
+    /// The unit of its value: `lx`, `` (a ratio) or `lm`.
+    pub fn unit(&self) -> &'static str {
+        match self {
+            Goal::MaximizeUniformity { .. } => "",
+            Goal::MinimizePower => "lm",
+            _ => "lx",
+        }
+    }
+
+    /// How `result.json` names its sense.
+    pub fn sense(&self) -> &'static str {
+        match self {
+            Goal::Maximize { .. } => "maximize",
+            Goal::Minimize { .. } => "minimize",
+            Goal::Target { .. } => "target",
+            Goal::MaximizeUniformity { .. } => "maximizeUniformity",
+            Goal::MinimizePower => "minimizePower",
+        }
+    }
+}
+
+/// What a constraint bounds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bound {
+    /// `minLux`: the mean illuminance at least this, lx.
+    MinLux(f64),
+    /// `maxLux`: the mean illuminance at most this, lx.
+    MaxLux(f64),
+    /// `minUniformity`: U0 over the grid at least this.
+    MinUniformity(f64, Grid),
+    /// `minPointLux`: Emin over the grid at least this, lx.
+    MinPointLux(f64, Grid),
+}
+
+impl Bound {
+    /// The problem-file attribute.
+    pub fn attribute(&self) -> &'static str {
+        match self {
+            Bound::MinLux(_) => "minLux",
+            Bound::MaxLux(_) => "maxLux",
+            Bound::MinUniformity(..) => "minUniformity",
+            Bound::MinPointLux(..) => "minPointLux",
+        }
+    }
+
+    /// The limit.
+    pub fn limit(&self) -> f64 {
+        match *self {
+            Bound::MinLux(x) | Bound::MaxLux(x) | Bound::MinUniformity(x, _) => x,
+            Bound::MinPointLux(x, _) => x,
+        }
+    }
+
+    /// Whether it bounds from below.
+    pub fn is_lower(&self) -> bool {
+        !matches!(self, Bound::MaxLux(_))
+    }
+
+    /// The grid it is read on, when it is read on one.
+    pub fn grid(&self) -> Option<Grid> {
+        match *self {
+            Bound::MinUniformity(_, g) | Bound::MinPointLux(_, g) => Some(g),
+            _ => None,
+        }
+    }
+}
+
+/// `<constraint surface side? minLux|maxLux|minUniformity|minPointLux grid?>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Constraint {
+    /// The surface.
+    pub surface: SurfaceRef,
+    /// What is bounded, and how.
+    pub bound: Bound,
+    /// Line of its element.
+    pub line: u32,
+}
+
+impl Constraint {
+    /// A short label for columns and tables: `Desk.minLux`, `Desk.front.minLux` when a
+    /// side is named (a problem holds at most one constraint per label).
+    pub fn label(&self) -> String {
+        match self.surface.side {
+            Side::Both => format!("{}.{}", self.surface.name, self.bound.attribute()),
+            side => format!(
+                "{}.{}.{}",
+                self.surface.name,
+                side.name(),
+                self.bound.attribute()
+            ),
+        }
+    }
+
+    /// The unit of the bounded quantity: `lx`, or `` for a uniformity.
+    pub fn unit(&self) -> &'static str {
+        match self.bound {
+            Bound::MinUniformity(..) => "",
+            _ => "lx",
+        }
+    }
+
+    /// Its verdict for an estimate of its quantity, at the one-sided `z`.
+    pub fn verdict(&self, e: &invlight_stats::Estimate, z: f64) -> Feasibility {
+        Feasibility::of(e.mean, e.std_error, z, &self.bound)
+    }
+}
+
+/// What a configuration's constraint evaluation decided (at the run's confidence,
+/// one-sided: the lower end of the interval for a lower bound, the upper for an upper
+/// bound).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feasibility {
+    /// Holds at the confidence.
+    Feasible,
+    /// Is violated at the confidence.
+    Infeasible,
+    /// The interval straddles the limit: more photons may tell.
+    Undecided,
+}
+
+impl Feasibility {
+    /// The output spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Feasibility::Feasible => "feasible",
+            Feasibility::Infeasible => "infeasible",
+            Feasibility::Undecided => "undecided",
+        }
+    }
+
+    /// Parses the output spelling.
+    pub fn parse(s: &str) -> Option<Feasibility> {
+        [
+            Feasibility::Feasible,
+            Feasibility::Infeasible,
+            Feasibility::Undecided,
+        ]
+        .into_iter()
+        .find(|f| f.name() == s)
+    }
+
+    /// The verdict of an estimate `mean ± z·σ` (z one-sided) against `bound`.
+    pub fn of(mean: f64, std_error: f64, z: f64, bound: &Bound) -> Feasibility {
+        let (low, high) = (mean - z * std_error, mean + z * std_error);
+        let limit = bound.limit();
+        let (holds, fails) = if bound.is_lower() {
+            (low >= limit, high < limit)
+        } else {
+            (high <= limit, low > limit)
+        };
+        if holds {
+            Feasibility::Feasible
+        } else if fails {
+            Feasibility::Infeasible
+        } else {
+            Feasibility::Undecided
+        }
+    }
+
+    /// The verdict of several constraints together: infeasible if one is, feasible if
+    /// all are, undecided otherwise.
+    pub fn all(verdicts: impl IntoIterator<Item = Feasibility>) -> Feasibility {
+        let mut out = Feasibility::Feasible;
+        for v in verdicts {
+            match v {
+                Feasibility::Infeasible => return Feasibility::Infeasible,
+                Feasibility::Undecided => out = Feasibility::Undecided,
+                Feasibility::Feasible => {}
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn verdicts_are_one_sided() {
+        let min = Bound::MinLux(500.0);
+        assert_eq!(
+            Feasibility::of(520.0, 5.0, 1.645, &min),
+            Feasibility::Feasible
+        );
+        assert_eq!(
+            Feasibility::of(480.0, 5.0, 1.645, &min),
+            Feasibility::Infeasible
+        );
+        assert_eq!(
+            Feasibility::of(505.0, 5.0, 1.645, &min),
+            Feasibility::Undecided
+        );
+        let max = Bound::MaxLux(300.0);
+        assert_eq!(
+            Feasibility::of(290.0, 5.0, 1.645, &max),
+            Feasibility::Feasible
+        );
+        assert_eq!(
+            Feasibility::of(310.0, 5.0, 1.645, &max),
+            Feasibility::Infeasible
+        );
+        assert_eq!(
+            Feasibility::all([Feasibility::Feasible, Feasibility::Undecided]),
+            Feasibility::Undecided
+        );
+        assert_eq!(
+            Feasibility::all([Feasibility::Undecided, Feasibility::Infeasible]),
+            Feasibility::Infeasible
+        );
+    }
+}

@@ -1,0 +1,237 @@
+//! What a problem's intentions ask the photon tracer to measure, and how an evaluation
+//! is read from one measurement: the distinct surfaces named by the goal and the
+//! constraints (each measured once, front and back apart), the grids uniformity and
+//! point values need, and for each intention the quantity it reads (a side's mean, a
+//! grid's U0 or Emin, the lamps' power).
+
+use crate::intention::{Bound, Goal, Grid, Side, SurfaceRef};
+use crate::problem::Problem;
+use crate::vns::Evaluation;
+use invlight_photon::{GridError, GridRequest, Measurement, SurfaceGrid};
+use invlight_scene::{Diagnostic, Scene, SurfaceId, known_names};
+use invlight_stats::Estimate;
+
+/// A grid to lay on one of the measured surfaces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridSpec {
+    /// Index of the surface in [`Reading::surfaces`].
+    pub target: usize,
+    /// The side counted.
+    pub side: Side,
+    /// Its spacing.
+    pub grid: Grid,
+}
+
+/// The quantity one intention reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Quantity {
+    /// The mean illuminance of a surface's side, lx.
+    Mean {
+        /// Index in [`Reading::surfaces`].
+        target: usize,
+        /// The side.
+        side: Side,
+    },
+    /// U0 over a grid.
+    Uniformity {
+        /// Index in [`Reading::grids`].
+        grid: usize,
+    },
+    /// Emin over a grid, lx.
+    MinPoint {
+        /// Index in [`Reading::grids`].
+        grid: usize,
+    },
+    /// The electric lights' luminous flux as dimmed, lm (exact).
+    Power,
+}
+
+/// What a problem measures and reads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reading {
+    /// The distinct surfaces measured.
+    pub surfaces: Vec<SurfaceId>,
+    /// Their names.
+    pub names: Vec<String>,
+    /// Whether some intention counts a surface's both sides (then its back's share is
+    /// worth a warning).
+    pub both_sides: Vec<bool>,
+    /// The distinct grids.
+    pub grids: Vec<GridSpec>,
+    /// The goal's quantity.
+    pub goal: Quantity,
+    /// Each constraint's quantity, in the problem's order.
+    pub constraints: Vec<Quantity>,
+}
+
+impl Reading {
+    /// The measurement plan of `problem`'s goal and constraints on `scene`: every named
+    /// surface must exist and have area, and every grid must lie on a planar surface.
+    pub fn new(problem: &Problem, scene: &Scene) -> Result<Reading, Diagnostic> {
+        let mut reading = Reading {
+            surfaces: Vec::new(),
+            names: Vec::new(),
+            both_sides: Vec::new(),
+            grids: Vec::new(),
+            goal: Quantity::Power,
+            constraints: Vec::new(),
+        };
+        let line = problem.goal_line;
+        reading.goal = match &problem.goal {
+            Goal::Maximize { surface, .. }
+            | Goal::Minimize { surface }
+            | Goal::Target { surface, .. } => reading.mean(problem, scene, surface, line)?,
+            Goal::MaximizeUniformity { surface, grid } => {
+                let grid = reading.grid(problem, scene, surface, *grid, line)?;
+                Quantity::Uniformity { grid }
+            }
+            Goal::MinimizePower => Quantity::Power,
+        };
+        for c in &problem.constraints {
+            let q = match c.bound {
+                Bound::MinLux(_) | Bound::MaxLux(_) => {
+                    reading.mean(problem, scene, &c.surface, c.line)?
+                }
+                Bound::MinUniformity(_, grid) => Quantity::Uniformity {
+                    grid: reading.grid(problem, scene, &c.surface, grid, c.line)?,
+                },
+                Bound::MinPointLux(_, grid) => Quantity::MinPoint {
+                    grid: reading.grid(problem, scene, &c.surface, grid, c.line)?,
+                },
+            };
+            reading.constraints.push(q);
+        }
+        Ok(reading)
+    }
+
+    /// The index of surface `r`, added when new.
+    fn target(
+        &mut self,
+        problem: &Problem,
+        scene: &Scene,
+        r: &SurfaceRef,
+        line: u32,
+    ) -> Result<usize, Diagnostic> {
+        let err = |msg: String| Diagnostic::at_line(&problem.path, line, msg);
+        let id = scene.surface(&r.name).ok_or_else(|| {
+            err(format!(
+                "no surface named '{}' in the scene, expected the surface to light",
+                r.name
+            ))
+            .with_hint(known_names(
+                scene.surfaces.iter().map(|s| s.name.as_str()),
+                "surfaces",
+            ))
+        })?;
+        // Illuminance is flux over area: a surface without area has none.
+        if scene.surface_area(id) <= 0.0 {
+            return Err(err(format!(
+                "the surface '{}' has no area, expected a surface to light",
+                r.name
+            )));
+        }
+        let t = match self.surfaces.iter().position(|&s| s == id) {
+            Some(t) => t,
+            None => {
+                self.surfaces.push(id);
+                self.names.push(r.name.clone());
+                self.both_sides.push(false);
+                self.surfaces.len() - 1
+            }
+        };
+        self.both_sides[t] |= r.side == Side::Both;
+        Ok(t)
+    }
+
+    fn mean(
+        &mut self,
+        problem: &Problem,
+        scene: &Scene,
+        r: &SurfaceRef,
+        line: u32,
+    ) -> Result<Quantity, Diagnostic> {
+        Ok(Quantity::Mean {
+            target: self.target(problem, scene, r, line)?,
+            side: r.side,
+        })
+    }
+
+    /// The index of the grid of `r` spaced by `grid`, added (and checked on `scene`)
+    /// when new.
+    fn grid(
+        &mut self,
+        problem: &Problem,
+        scene: &Scene,
+        r: &SurfaceRef,
+        grid: Grid,
+        line: u32,
+    ) -> Result<usize, Diagnostic> {
+        let target = self.target(problem, scene, r, line)?;
+        let spec = GridSpec {
+            target,
+            side: r.side,
+            grid,
+        };
+        if let Some(g) = self.grids.iter().position(|g| *g == spec) {
+            return Ok(g);
+        }
+        lay(scene, self.surfaces[target], grid).map_err(|e| {
+            Diagnostic::at_line(
+                &problem.path,
+                line,
+                format!("cannot lay a grid on '{}': {e}", r.name),
+            )
+            .with_hint(match e {
+                GridError::NotPlanar { .. } => {
+                    "uniformity and point values are read on a planar surface: name a flat part (a desk's top, a floor)"
+                }
+                _ => "choose a larger grid spacing",
+            })
+        })?;
+        self.grids.push(spec);
+        Ok(self.grids.len() - 1)
+    }
+
+    /// The grids on `scene` as it is now (a measured surface may have moved); an error
+    /// names the surface whose grid cannot be laid.
+    pub fn grid_requests(&self, scene: &Scene) -> Result<Vec<GridRequest>, (String, GridError)> {
+        self.grids
+            .iter()
+            .map(|g| {
+                Ok(GridRequest {
+                    target: g.target,
+                    side: g.side,
+                    grid: lay(scene, self.surfaces[g.target], g.grid)
+                        .map_err(|e| (self.names[g.target].clone(), e))?,
+                })
+            })
+            .collect()
+    }
+
+    /// The evaluation of a measurement at component weights `w` (the dimming levels),
+    /// with the electric lights' flux `power`, lm.
+    pub fn read(&self, m: &Measurement, w: &[f64], power: f64) -> Evaluation {
+        let quantity = |q: &Quantity| match *q {
+            Quantity::Mean { target, side } => m.estimate_of(target, side, w),
+            Quantity::Uniformity { grid } => m.grids[grid].uniformity(w).u0,
+            Quantity::MinPoint { grid } => m.grids[grid].uniformity(w).min,
+            Quantity::Power => Estimate {
+                mean: power,
+                std_error: 0.0,
+                samples: m.photons,
+            },
+        };
+        Evaluation {
+            goal: quantity(&self.goal),
+            constraints: self.constraints.iter().map(quantity).collect(),
+        }
+    }
+}
+
+/// The grid `grid` on `surface`.
+fn lay(scene: &Scene, surface: SurfaceId, grid: Grid) -> Result<SurfaceGrid, GridError> {
+    match grid {
+        Grid::Auto => SurfaceGrid::en12464(scene, surface),
+        Grid::Spacing(p) => SurfaceGrid::new(scene, surface, p as f32),
+    }
+}
