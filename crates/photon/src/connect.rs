@@ -228,14 +228,14 @@ impl Targets {
             .map(|&s| {
                 let mut shape = Shape::default();
                 let mut areas = Vec::new();
-                shape.instances = scene.surfaces[s as usize].instances.clone();
+                shape.instances = scene.surfaces[s].instances.clone();
                 shape.instances.sort_unstable();
                 shape.instances.dedup();
-                for &i in &scene.surfaces[s as usize].instances {
-                    let inst = &scene.instances[i as usize];
-                    let mesh = &scene.meshes[inst.mesh as usize];
+                for &i in &scene.surfaces[s].instances {
+                    let inst = &scene.instances[i];
+                    let mesh = &scene.meshes[inst.mesh];
                     for (t, &m) in mesh.materials.iter().enumerate() {
-                        if scene.materials[m as usize].hole {
+                        if scene.materials[m].hole {
                             continue;
                         }
                         let [a, b, c] =

@@ -58,12 +58,12 @@ pub struct EmissiveTriangle {
 /// cannot disagree about where a light is or which way it faces.
 pub fn emissive_triangles(scene: &Scene) -> impl Iterator<Item = EmissiveTriangle> + '_ {
     scene.instances.iter().flat_map(move |inst| {
-        let mesh = &scene.meshes[inst.mesh as usize];
+        let mesh = &scene.meshes[inst.mesh];
         mesh.materials
             .iter()
             .enumerate()
             .filter_map(move |(t, &m)| {
-                let emission = scene.materials[m as usize].emission;
+                let emission = scene.materials[m].emission;
                 if emission.max_element() <= 0.0 {
                     return None;
                 }

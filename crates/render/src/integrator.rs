@@ -192,10 +192,10 @@ impl<'a> Integrator<'a> {
                 continue;
             };
             let y = self.accel.interaction(&ray, &hit);
-            let m = &self.scene.materials[y.material as usize];
+            let m = &self.scene.materials[y.material];
             let mut kd = m.diffuse;
             if let Some(t) = m.texture {
-                kd *= self.scene.textures[t as usize].sample(y.uv);
+                kd *= self.scene.textures[t].sample(y.uv);
             }
             if kd.max_element() > 0.0 {
                 let ny = if y.normal.dot(dir) < 0.0 {
@@ -327,13 +327,13 @@ impl<'a> Integrator<'a> {
             return Vec3::ZERO;
         };
         let at = self.accel.interaction(ray, &hit);
-        let m = &self.scene.materials[at.material as usize];
+        let m = &self.scene.materials[at.material];
         let front = at.normal.dot(ray.dir) < 0.0;
         let n = if front { at.normal } else { -at.normal };
         let mut l = if front { m.emission } else { Vec3::ZERO };
         let mut kd = m.diffuse;
         if let Some(t) = m.texture {
-            kd *= self.scene.textures[t as usize].sample(at.uv);
+            kd *= self.scene.textures[t].sample(at.uv);
         }
         if kd.max_element() > 0.0 {
             l += kd / PI * self.irradiance(&at, n, rng);

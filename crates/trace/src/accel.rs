@@ -7,7 +7,7 @@ use crate::ray::{Hit, Interaction, Ray};
 use crate::triangle::{Tri, TriRay};
 use crate::wide::{self, NodeRay, NodeTest};
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec3A};
-use invlight_scene::{InstanceId, MAX_COORDINATE, MaterialId, Mesh, Scene};
+use invlight_scene::{InstanceId, MAX_COORDINATE, MaterialId, Mesh, MeshId, Scene};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::node::Bvh2Node;
@@ -77,15 +77,20 @@ struct TlasItem {
     /// The transform is the identity: the world ray's constants serve as they are.
     identity: bool,
     blas: u32,
+    /// The instance hit; [`MERGED`] for the merged BVH, whose hits take theirs from
+    /// [`Blas::instances`].
     instance: InstanceId,
 }
+
+/// The top-level entry of the merged BVH of static instances stands for no one instance.
+const MERGED: InstanceId = InstanceId::from_index(u32::MAX as usize);
 
 /// Each scene instance's transforms.
 #[derive(Debug, Clone, Copy)]
 struct Placed {
     world_from_object: Affine3A,
     object_from_world: Affine3A,
-    mesh: u32,
+    mesh: MeshId,
     /// −1 when the transform mirrors (negative determinant), else 1. The front face is
     /// the counter-clockwise side *in world space*, as emission (`photon::Emitters`) and
     /// the loaders (glTF re-winds mirrored meshes) take it; the inverse transpose alone
@@ -371,7 +376,7 @@ impl Accel {
             scene
                 .instances
                 .iter()
-                .filter_map(|i| scene.meshes.get(i.mesh as usize))
+                .filter_map(|i| scene.meshes.get(i.mesh.index()))
                 .map(|m| m.triangles.len() as u64)
                 .sum()
         } else {
@@ -403,7 +408,7 @@ impl Accel {
             Some(ids) => {
                 let mut v = vec![false; n];
                 for &i in ids {
-                    if let Some(s) = v.get_mut(i as usize) {
+                    if let Some(s) = v.get_mut(i.index()) {
                         *s = true;
                     }
                 }
@@ -412,7 +417,7 @@ impl Accel {
         };
         let mut needed = vec![false; scene.meshes.len()];
         for (inst, &sep) in scene.instances.iter().zip(&separate) {
-            if sep && let Some(u) = needed.get_mut(inst.mesh as usize) {
+            if sep && let Some(u) = needed.get_mut(inst.mesh.index()) {
                 *u = true;
             }
         }
@@ -435,7 +440,7 @@ impl Accel {
                 if separate[id] || inst.transform.determinant() == 0.0 {
                     continue;
                 }
-                let Some(mesh) = scene.meshes.get(inst.mesh as usize) else {
+                let Some(mesh) = scene.meshes.get(inst.mesh.index()) else {
                     continue;
                 };
                 let (local, _) = mesh_triangles(mesh, &hole_material);
@@ -448,7 +453,7 @@ impl Accel {
                     let w = v.map(|p| inst.transform.transform_point3(p));
                     if w.iter().all(|&p| traceable(p)) {
                         tris.push((w, t));
-                        owners.push(id as InstanceId);
+                        owners.push(InstanceId::from_index(id));
                     }
                 }
             }
@@ -546,7 +551,7 @@ impl Accel {
             if self.baked[id].is_some() {
                 continue;
             }
-            let Some(blas) = self.blas.get(p.mesh as usize) else {
+            let Some(blas) = self.blas.get(p.mesh.index()) else {
                 continue;
             };
             if let Some((lo, hi)) = blas.bounds
@@ -559,8 +564,8 @@ impl Accel {
                 candidates.push(TlasItem {
                     object_from_world: p.object_from_world,
                     identity: p.world_from_object == Affine3A::IDENTITY,
-                    blas: p.mesh,
-                    instance: id as InstanceId,
+                    blas: p.mesh.index() as u32,
+                    instance: InstanceId::from_index(id),
                 });
             }
         }
@@ -573,7 +578,7 @@ impl Accel {
                 object_from_world: Affine3A::IDENTITY,
                 identity: true,
                 blas: (self.blas.len() - 1) as u32,
-                instance: InstanceId::MAX,
+                instance: MERGED,
             });
         }
         let tlas = if boxes.is_empty() {
@@ -604,7 +609,7 @@ impl Accel {
             .instances
             .iter()
             .filter_map(|inst| {
-                let (lo, hi) = (*self.hole_bounds.get(inst.mesh as usize)?)?;
+                let (lo, hi) = (*self.hole_bounds.get(inst.mesh.index())?)?;
                 HoleVolume::new(lo, hi, &inst.transform, thickness)
             })
             .collect();
@@ -784,8 +789,8 @@ impl Accel {
     /// interpolated from the barycentrics, geometric normal, material and texture
     /// coordinates.
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
-        let placed = &self.placed[hit.instance as usize];
-        let mesh = &self.meshes[placed.mesh as usize];
+        let placed = &self.placed[hit.instance.index()];
+        let mesh = &self.meshes[placed.mesh.index()];
         let t = hit.triangle as usize;
         let [i0, i1, i2] = mesh.triangles[t].map(|i| i as usize);
         let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);
@@ -893,9 +898,9 @@ fn bakes(scene: &Scene, separate: &[bool]) -> bool {
     let mut flattened = 0usize;
     let mut used = vec![false; scene.meshes.len()];
     for (inst, _) in scene.instances.iter().zip(separate).filter(|(_, s)| !**s) {
-        if let Some(mesh) = scene.meshes.get(inst.mesh as usize) {
+        if let Some(mesh) = scene.meshes.get(inst.mesh.index()) {
             flattened += mesh.triangles.len();
-            used[inst.mesh as usize] = true;
+            used[inst.mesh.index()] = true;
         }
     }
     let unique: usize = scene
@@ -930,7 +935,7 @@ type Corners = ([Vec3; 3], u32);
 /// out.
 fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<(Vec3, Vec3)>) {
     let is_hole = |t: usize| {
-        let m = mesh.materials.get(t).copied().unwrap_or(u32::MAX) as usize;
+        let m = mesh.materials.get(t).map_or(usize::MAX, |m| m.index());
         hole_material.get(m).copied().unwrap_or(false)
     };
     let corners = |t: usize| -> Option<[Vec3; 3]> {

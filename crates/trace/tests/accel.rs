@@ -5,7 +5,7 @@ mod common;
 
 use common::Rng;
 use glam::{Mat4, Quat, Vec2, Vec3};
-use invlight_scene::{Material, Mesh, Scene};
+use invlight_scene::{InstanceId, Material, MaterialId, Mesh, MeshId, Scene};
 use invlight_trace::{Accel, Ray};
 
 /// A scene of random triangles: 3 meshes, each placed twice with random rotations,
@@ -48,12 +48,12 @@ fn random_scene(rng: &mut Rng) -> Scene {
 
 /// All world-space hits of `ray`, in f64 (Möller–Trumbore): (t, instance, triangle,
 /// smallest barycentric), sorted by t.
-fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, u32, u32, f64)> {
+fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, InstanceId, u32, f64)> {
     let o = ray.origin.as_dvec3();
     let d = ray.dir.as_dvec3();
     let mut hits = Vec::new();
     for (i, inst) in scene.instances.iter().enumerate() {
-        let mesh = &scene.meshes[inst.mesh as usize];
+        let mesh = &scene.meshes[inst.mesh];
         let m = inst.transform.as_dmat4();
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|k| m.transform_point3(mesh.positions[k as usize].as_dvec3()));
@@ -70,7 +70,7 @@ fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, u32, u32, f64)> {
             let dist = e2.dot(q) / det;
             let margin = u.min(v).min(1.0 - u - v);
             if margin >= -1e-9 && dist > 0.0 && dist < ray.t_max as f64 {
-                hits.push((dist, i as u32, t as u32, margin));
+                hits.push((dist, InstanceId::from_index(i), t as u32, margin));
             }
         }
     }
@@ -161,7 +161,7 @@ fn merged_static_instances_match_brute_force_and_move() {
     let mut rng = Rng::new(8);
     let mut scene = random_scene(&mut rng);
     // Instances 1 and 4 separate, the other four baked into one tree.
-    let mut accel = Accel::with_movable(&scene, &[1, 4]);
+    let mut accel = Accel::with_movable(&scene, &[1, 4].map(InstanceId::from_index));
     assert_eq!(accel.stats().instances, 3);
     check_against_brute_force(&accel, &scene, &mut rng, 1000);
 
@@ -455,7 +455,7 @@ fn degenerate_input_does_not_panic() {
         Mat4::ZERO,
     );
     scene.meshes[0].triangles.push([0, 1, 99]);
-    scene.meshes[0].materials.push(0);
+    scene.meshes[0].materials.push(MaterialId::from_index(0));
     let accel = Accel::new(&scene);
     assert_eq!(accel.stats().instances, 0, "a zero transform is not traced");
     let nan = Ray::new(Vec3::NAN, Vec3::X);
@@ -496,10 +496,13 @@ fn closest_hit_is_the_nearer_of_stacked_planes() {
     let accel = Accel::new(&scene);
     let up = Ray::new(Vec3::new(0.3, 0.6, 2.5), Vec3::Z);
     let h = accel.intersect(&up).unwrap();
-    assert_eq!(h.instance, 3);
+    assert_eq!(h.instance, InstanceId::from_index(3));
     assert!((h.t - 0.5).abs() < 1e-6);
     let down = Ray::new(Vec3::new(0.3, 0.6, 2.5), Vec3::NEG_Z);
-    assert_eq!(accel.intersect(&down).unwrap().instance, 2);
+    assert_eq!(
+        accel.intersect(&down).unwrap().instance,
+        InstanceId::from_index(2)
+    );
     let short = Ray { t_max: 0.4, ..up };
     assert!(!accel.occluded(&short) && accel.intersect(&short).is_none());
 }
@@ -513,7 +516,11 @@ fn zero_direction_components_of_either_sign() {
         [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
         Mat4::IDENTITY,
     );
-    scene.add_instance("Copy", 0, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)));
+    scene.add_instance(
+        "Copy",
+        MeshId::from_index(0),
+        Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)),
+    );
     let accel = Accel::new(&scene);
     for (sx, sy) in [(0.0f32, 0.0f32), (-0.0, 0.0), (0.0, -0.0), (-0.0, -0.0)] {
         for (x, y) in [(0.5, 0.5), (0.1, 0.9), (3.5, 0.25), (3.99, 0.01)] {
@@ -567,7 +574,7 @@ fn mirrored_instance_front_is_the_world_winding() {
 fn r19_boxes_shared_by_many_triangles_match_brute_force() {
     let mut rng = Rng::new(19);
     let mut scene = random_scene(&mut rng);
-    let mat = scene.materials.len() as u32 - 1;
+    let mat = MaterialId::from_index(scene.materials.len() - 1);
     let mut mesh = Mesh::default();
     for t in 0..64u32 {
         let inner = rng.in_box(Vec3::splat(-0.5), Vec3::splat(0.5));
@@ -603,6 +610,9 @@ fn r19_boxes_shared_by_many_triangles_match_brute_force() {
     assert_eq!(accel.stats().triangles, 1 + 40 + 300 + 64 + 200);
     let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
     let hit = accel.intersect(&ray).unwrap();
-    assert_eq!(hit.instance, scene.instances.len() as u32 - 1);
+    assert_eq!(
+        hit.instance,
+        InstanceId::from_index(scene.instances.len() - 1)
+    );
     assert!((hit.t - 3.0).abs() < 1e-6, "{}", hit.t);
 }
