@@ -79,7 +79,7 @@ pub fn trace_photon(
             visitor.escape(power);
             break;
         };
-        let at = accel.interaction(&ray, &hit);
+        let at = accel.interaction(scene, &ray, &hit);
         visitor.arrive(&at, ray.dir, power, bounce, &from);
         if bounce == max_bounces {
             break;

@@ -191,7 +191,7 @@ impl<'a> Integrator<'a> {
             let Some(hit) = self.accel.intersect(&ray) else {
                 continue;
             };
-            let y = self.accel.interaction(&ray, &hit);
+            let y = self.accel.interaction(self.scene, &ray, &hit);
             let m = &self.scene.materials[y.material];
             let mut kd = m.diffuse;
             if let Some(t) = m.texture {
@@ -326,7 +326,7 @@ impl<'a> Integrator<'a> {
         let Some(hit) = self.accel.intersect(ray) else {
             return Vec3::ZERO;
         };
-        let at = self.accel.interaction(ray, &hit);
+        let at = self.accel.interaction(self.scene, ray, &hit);
         let m = &self.scene.materials[at.material];
         let front = at.normal.dot(ray.dir) < 0.0;
         let n = if front { at.normal } else { -at.normal };
@@ -371,7 +371,7 @@ impl<'a> Integrator<'a> {
     /// Illuminance (lx) and |cos| of the first surface along `ray`, if any.
     pub fn illuminance(&self, ray: &Ray, rng: &mut Pcg32) -> Option<(f32, f32)> {
         let hit = self.accel.intersect(ray)?;
-        let at = self.accel.interaction(ray, &hit);
+        let at = self.accel.interaction(self.scene, ray, &hit);
         let cos = at.normal.dot(ray.dir);
         let n = if cos < 0.0 { at.normal } else { -at.normal };
         Some((luminance(self.irradiance(&at, n, rng)), cos.abs()))

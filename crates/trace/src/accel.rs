@@ -7,7 +7,7 @@ use crate::ray::{Hit, Interaction, Ray};
 use crate::triangle::{Tri, TriRay};
 use crate::wide::{self, NodeRay, NodeTest};
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec3A};
-use invlight_scene::{InstanceId, MAX_COORDINATE, MaterialId, Mesh, MeshId, Scene};
+use invlight_scene::{InstanceId, MAX_COORDINATE, Mesh, MeshId, Scene};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::node::Bvh2Node;
@@ -61,15 +61,6 @@ struct Blas {
     instances: Vec<InstanceId>,
 }
 
-/// What an interaction needs of a mesh beyond the BVH.
-#[derive(Debug, Clone, Default)]
-struct MeshAttrs {
-    positions: Vec<Vec3>,
-    uvs: Vec<Vec2>,
-    triangles: Vec<[u32; 3]>,
-    materials: Vec<MaterialId>,
-}
-
 /// An instance as the top level stores it.
 #[derive(Debug, Clone, Copy)]
 struct TlasItem {
@@ -106,13 +97,13 @@ pub struct Accel {
     /// A BVH per mesh (empty for meshes no separate instance uses), then the merged BVH
     /// of static instances.
     blas: Vec<Blas>,
-    /// Object-space bounds of each mesh's hole triangles.
+    /// Object-space bounds of each mesh's hole triangles: one entry per mesh of the
+    /// scene built from.
     hole_bounds: Vec<Option<(Vec3, Vec3)>>,
     /// With [`Accel::with_movable`]: the instances kept separate, and the transform each
     /// merged instance was baked with (`None` for separate ones).
     movable: Option<Vec<InstanceId>>,
     baked: Vec<Option<Mat4>>,
-    meshes: Vec<MeshAttrs>,
     placed: Vec<Placed>,
     tlas: Vec<CwBvhNode>,
     items: Vec<TlasItem>,
@@ -366,9 +357,9 @@ impl Accel {
     /// An upper bound of the bytes building an [`Accel`] of `scene` takes at its peak,
     /// by [`Accel::new`] or [`Accel::with_movable`] with any instances movable: the larger
     /// of the mesh triangles and the triangles baking would flatten (when it bakes) at
-    /// [`BUILD_BYTES_PER_TRIANGLE`], the instances at [`BYTES_PER_INSTANCE`], and the
-    /// copies of the meshes' vertices and triangles interactions read. A program can
-    /// compare it with the memory it may use before building ([`Accel::check_memory`]).
+    /// [`BUILD_BYTES_PER_TRIANGLE`] and the instances at [`BYTES_PER_INSTANCE`]. A program
+    /// can compare it with the memory it may use before building ([`Accel::check_memory`]).
+    /// The scene's own meshes are not counted: interactions read them where they are.
     pub fn estimated_bytes(scene: &Scene) -> u64 {
         let unique: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
         let all_static = vec![false; scene.instances.len()];
@@ -382,19 +373,8 @@ impl Accel {
         } else {
             0
         };
-        let attrs: u64 = scene
-            .meshes
-            .iter()
-            .map(|m| {
-                (m.positions.len() * size_of::<Vec3>()
-                    + m.uvs.len() * size_of::<Vec2>()
-                    + m.triangles.len() * (size_of::<[u32; 3]>() + size_of::<MaterialId>()))
-                    as u64
-            })
-            .sum();
         unique.max(baked) * BUILD_BYTES_PER_TRIANGLE
             + scene.instances.len() as u64 * BYTES_PER_INSTANCE
-            + attrs
     }
 
     /// Builds the bottom level (a BVH per mesh used by a separate instance, plus the
@@ -459,16 +439,6 @@ impl Accel {
             }
             blas.push(build_blas(tris, owners));
         }
-        let meshes = scene
-            .meshes
-            .iter()
-            .map(|m| MeshAttrs {
-                positions: m.positions.clone(),
-                uvs: m.uvs.clone(),
-                triangles: m.triangles.clone(),
-                materials: m.materials.clone(),
-            })
-            .collect();
         let stats = AccelStats {
             meshes: blas.iter().filter(|b| !b.nodes.is_empty()).count(),
             triangles: blas.iter().map(|b| b.tris.len()).sum(),
@@ -486,7 +456,6 @@ impl Accel {
             hole_bounds,
             movable,
             baked,
-            meshes,
             placed: Vec::new(),
             tlas: Vec::new(),
             items: Vec::new(),
@@ -510,7 +479,7 @@ impl Accel {
                 .iter()
                 .zip(&self.baked)
                 .any(|(inst, b)| b.is_some_and(|m| m != inst.transform));
-        if scene.meshes.len() != self.meshes.len()
+        if scene.meshes.len() != self.hole_bounds.len()
             || scene.instances.len() != self.baked.len()
             || moved_baked
         {
@@ -788,9 +757,14 @@ impl Accel {
     /// The surface at `hit` (a hit of `ray` returned by [`Accel::intersect`]): point
     /// interpolated from the barycentrics, geometric normal, material and texture
     /// coordinates.
-    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+    ///
+    /// `scene` is the scene the structure was built or last updated with: the vertices,
+    /// texture coordinates and materials are read from its meshes, which the structure
+    /// does not copy (its own triangles are in leaf order, without them).
+    pub fn interaction(&self, scene: &Scene, ray: &Ray, hit: &Hit) -> Interaction {
+        debug_assert_eq!(scene.meshes.len(), self.hole_bounds.len(), "another scene");
         let placed = &self.placed[hit.instance.index()];
-        let mesh = &self.meshes[placed.mesh.index()];
+        let mesh = &scene.meshes[placed.mesh];
         let t = hit.triangle as usize;
         let [i0, i1, i2] = mesh.triangles[t].map(|i| i as usize);
         let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);

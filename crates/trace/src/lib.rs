@@ -32,7 +32,7 @@
 //! let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::NEG_Z);
 //! let hit = accel.intersect(&ray).unwrap();
 //! assert!((hit.t - 3.0).abs() < 1e-6);
-//! let surface = accel.interaction(&ray, &hit);
+//! let surface = accel.interaction(&scene, &ray, &hit);
 //! assert_eq!(surface.normal, Vec3::Z);
 //! assert!(!accel.occluded(&surface.spawn(Vec3::Z)));
 //! ```

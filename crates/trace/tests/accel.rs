@@ -130,7 +130,7 @@ fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usi
                     h.t
                 );
                 // The barycentrics reproduce the hit point.
-                let it = accel.interaction(&ray, &h);
+                let it = accel.interaction(scene, &ray, &h);
                 let p = ray.at(h.t);
                 assert!(
                     (it.point - p).length() < 1e-4,
@@ -401,7 +401,7 @@ fn spawned_rays_never_hit_their_own_surface() {
             surface = None;
             continue;
         };
-        let it = accel.interaction(&ray, &hit);
+        let it = accel.interaction(&scene, &ray, &hit);
         if let Some(prev) = surface {
             // Another face: the normals differ (faces of a box are not coplanar).
             assert!(it.normal.dot(prev.normal) < 0.99, "self-hit at {i}");
@@ -431,7 +431,7 @@ fn interaction_reports_front_normal_material_and_uv() {
     // Hit from behind: the normal still names the front.
     let ray = Ray::new(Vec3::new(0.0, 0.25, -0.75), Vec3::X);
     let hit = accel.intersect(&ray).unwrap();
-    let it = accel.interaction(&ray, &hit);
+    let it = accel.interaction(&scene, &ray, &hit);
     assert!((it.normal - Vec3::X).length() < 1e-6, "{:?}", it.normal);
     assert_eq!(it.material, red);
     let object = t.inverse().transform_point3(it.point);
@@ -557,7 +557,7 @@ fn mirrored_instance_front_is_the_world_winding() {
     for accel in [Accel::new(&scene), Accel::with_movable(&scene, &[])] {
         let ray = Ray::new(Vec3::new(-0.3, 0.4, 2.0), -Vec3::Z);
         let hit = accel.intersect(&ray).expect("the quad is below");
-        let at = accel.interaction(&ray, &hit);
+        let at = accel.interaction(&scene, &ray, &hit);
         assert!(
             (at.normal - front).length() < 1e-6,
             "{} vs {front}",
