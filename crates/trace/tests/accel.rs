@@ -1,15 +1,19 @@
-//! The acceleration structure against brute force, and the geometric promises: TLAS
-//! updates, holes, watertight shared edges, self-intersection-free spawned rays.
+//! The acceleration structure against brute force, on the trees of every build preset
+//! (as obvhs's own tests run over its `BUILD_PARAM_SET`), and the geometric promises:
+//! TLAS updates, holes, watertight shared edges, self-intersection-free spawned rays.
 
 mod common;
 
 use common::Rng;
 use glam::{Mat4, Quat, Vec2, Vec3};
 use invlight_scene::{InstanceId, Material, MaterialId, Mesh, MeshId, Scene};
-use invlight_trace::{Accel, Ray};
+use invlight_trace::{Accel, BuildPreset, Ray};
 
-/// A scene of random triangles: 3 meshes, each placed twice with random rotations,
-/// non-uniform scales (one mirrored) and translations.
+/// A scene of random triangles: 3 meshes of small ones, each placed twice with random
+/// rotations, non-uniform scales (one mirrored) and translations, and a mesh placed as
+/// it is of 100 small ones and 8 slivers across the whole scene (what the slow presets'
+/// pre-splits cut into several boxes: they split triangles much larger than their
+/// tree's mean).
 fn random_scene(rng: &mut Rng) -> Scene {
     let mut scene = Scene::default();
     let mat = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
@@ -43,6 +47,22 @@ fn random_scene(rng: &mut Rng) -> Scene {
             scene.add_instance(&format!("m{m}i{k}"), id, t);
         }
     }
+    let mut mixed = Mesh::default();
+    for t in 0..108u32 {
+        let c = rng.in_box(Vec3::splat(-2.0), Vec3::splat(2.0));
+        let corners = if t < 100 {
+            [(); 3].map(|_| c + 0.3 * rng.in_box(Vec3::splat(-1.0), Vec3::splat(1.0)))
+        } else {
+            // A sliver 5 m long, whose box is mostly empty.
+            let d = 2.5 * rng.direction();
+            [c - d, c + d, c + 0.2 * rng.direction()]
+        };
+        mixed.positions.extend(corners);
+        mixed.triangles.push([3 * t, 3 * t + 1, 3 * t + 2]);
+        mixed.materials.push(mat);
+    }
+    let id = scene.add_mesh(mixed);
+    scene.add_instance("mixed", id, Mat4::IDENTITY);
     scene
 }
 
@@ -93,8 +113,22 @@ fn random_ray(rng: &mut Rng, bounded: bool) -> Ray {
     r
 }
 
-/// Compares `accel` with brute force on `n` random rays (half of them bounded).
-fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usize) {
+/// Whether `preset` cuts large triangles' boxes, so that a triangle may sit in several
+/// leaves and count more than once in [`invlight_trace::AccelStats::triangles`].
+fn splits(preset: BuildPreset) -> bool {
+    matches!(preset, BuildPreset::Slow | BuildPreset::VerySlow)
+}
+
+/// Compares `accel` (built with `preset`) with brute force on `n` random rays (half of
+/// them bounded): the closest hit's instance, triangle and distance, the point its
+/// barycentrics give, and the any-hit answer.
+fn check_against_brute_force(
+    accel: &Accel,
+    preset: BuildPreset,
+    scene: &Scene,
+    rng: &mut Rng,
+    n: usize,
+) {
     let (mut compared, mut hits) = (0, 0);
     for i in 0..n {
         let ray = random_ray(rng, i % 2 == 1);
@@ -117,16 +151,16 @@ fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usi
         assert_eq!(
             accel.occluded(&ray),
             !reference.is_empty(),
-            "ray {i}: {ray:?}"
+            "{preset:?}, ray {i}: {ray:?}"
         );
         match (got, reference.first()) {
             (None, None) => {}
             (Some(h), Some(&(t, inst, tri, _))) => {
                 hits += 1;
-                assert_eq!((h.instance, h.triangle), (inst, tri), "ray {i}");
+                assert_eq!((h.instance, h.triangle), (inst, tri), "{preset:?}, ray {i}");
                 assert!(
                     (h.t as f64 - t).abs() <= T_TOL * t.max(1.0),
-                    "ray {i}: {} vs {t}",
+                    "{preset:?}, ray {i}: {} vs {t}",
                     h.t
                 );
                 // The barycentrics reproduce the hit point.
@@ -134,49 +168,70 @@ fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usi
                 let p = ray.at(h.t);
                 assert!(
                     (it.point - p).length() < 1e-4,
-                    "ray {i}: {:?} vs {p:?}",
+                    "{preset:?}, ray {i}: {:?} vs {p:?}",
                     it.point
                 );
             }
-            (g, r) => panic!("ray {i}: accel {g:?}, brute force {r:?}"),
+            (g, r) => panic!("{preset:?}, ray {i}: accel {g:?}, brute force {r:?}"),
         }
     }
     // Ambiguous rays are rare (~1 %), and about an eighth of the rays hit.
-    assert!(compared * 100 > n * 97, "{compared} rays compared");
-    assert!(hits * 10 > n, "{hits} hits compared");
+    assert!(
+        compared * 100 > n * 97,
+        "{preset:?}: {compared} rays compared"
+    );
+    assert!(hits * 10 > n, "{preset:?}: {hits} hits compared");
 }
 
 #[test]
 fn closest_and_any_hit_match_brute_force() {
-    let mut rng = Rng::new(7);
-    let scene = random_scene(&mut rng);
-    let accel = Accel::new(&scene);
-    assert_eq!(accel.stats().instances, 6);
-    assert_eq!(accel.stats().triangles, 341);
-    check_against_brute_force(&accel, &scene, &mut rng, 3000);
+    for preset in BuildPreset::ALL {
+        let mut rng = Rng::new(7);
+        let scene = random_scene(&mut rng);
+        let accel = Accel::with_preset(&scene, None, preset);
+        assert_eq!(accel.stats().instances, 7);
+        let triangles = accel.stats().triangles;
+        if splits(preset) {
+            assert!(triangles > 449, "{preset:?} split no triangle: {triangles}");
+        } else {
+            assert_eq!(triangles, 449, "{preset:?}");
+        }
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 3000);
+    }
+    // The default constructor builds the default preset's tree.
+    let scene = random_scene(&mut Rng::new(7));
+    let medium = Accel::with_preset(&scene, None, BuildPreset::default());
+    assert_eq!(
+        Accel::new(&scene).stats().blas_nodes,
+        medium.stats().blas_nodes
+    );
 }
 
 #[test]
 fn merged_static_instances_match_brute_force_and_move() {
-    let mut rng = Rng::new(8);
-    let mut scene = random_scene(&mut rng);
-    // Instances 1 and 4 separate, the other four baked into one tree.
-    let mut accel = Accel::with_movable(&scene, &[1, 4].map(InstanceId::from_index));
-    assert_eq!(accel.stats().instances, 3);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+    for preset in BuildPreset::ALL {
+        let mut rng = Rng::new(8);
+        let mut scene = random_scene(&mut rng);
+        // Instances 1 and 4 separate, the other five baked into one tree.
+        let movable = [1, 4].map(InstanceId::from_index);
+        let mut accel = Accel::with_preset(&scene, Some(&movable), preset);
+        assert_eq!(accel.stats().instances, 3);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
 
-    // Moving a movable instance rebuilds the top level only.
-    let nodes = accel.stats().blas_nodes;
-    scene.instances[4].transform =
-        Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
-    accel.update_instances(&scene);
-    assert_eq!(accel.stats().blas_nodes, nodes);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+        // Moving a movable instance rebuilds the top level only.
+        let nodes = accel.stats().blas_nodes;
+        scene.instances[4].transform =
+            Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
+        accel.update_instances(&scene);
+        assert_eq!(accel.stats().blas_nodes, nodes);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
 
-    // Moving a baked one is still traced right (by a full rebuild).
-    scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
-    accel.update_instances(&scene);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+        // Moving a baked one is still traced right (by a full rebuild, with the same
+        // preset).
+        scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
+        accel.update_instances(&scene);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
+    }
 }
 
 fn quad_scene(corners: [Vec3; 4], transform: Mat4) -> Scene {
@@ -589,10 +644,12 @@ fn r19_boxes_shared_by_many_triangles_match_brute_force() {
         id,
         Mat4::from_translation(Vec3::new(0.5, 0.0, 0.0)),
     );
-    let accel = Accel::new(&scene);
-    check_against_brute_force(&accel, &scene, &mut rng, 4000);
-    let merged = Accel::with_movable(&scene, &[]);
-    check_against_brute_force(&merged, &scene, &mut rng, 2000);
+    for preset in BuildPreset::ALL {
+        let accel = Accel::with_preset(&scene, None, preset);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 4000);
+        let merged = Accel::with_preset(&scene, Some(&[]), preset);
+        check_against_brute_force(&merged, preset, &scene, &mut rng, 2000);
+    }
 
     let mut copies = Mesh::default();
     for t in 0..200u32 {
@@ -606,13 +663,18 @@ fn r19_boxes_shared_by_many_triangles_match_brute_force() {
     }
     let id = scene.add_mesh(copies);
     scene.add_instance("copies", id, Mat4::IDENTITY);
-    let accel = Accel::new(&scene);
-    assert_eq!(accel.stats().triangles, 1 + 40 + 300 + 64 + 200);
-    let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
-    let hit = accel.intersect(&ray).unwrap();
-    assert_eq!(
-        hit.instance,
-        InstanceId::from_index(scene.instances.len() - 1)
-    );
-    assert!((hit.t - 3.0).abs() < 1e-6, "{}", hit.t);
+    for preset in BuildPreset::ALL {
+        let accel = Accel::with_preset(&scene, None, preset);
+        if !splits(preset) {
+            assert_eq!(accel.stats().triangles, 1 + 40 + 300 + 108 + 64 + 200);
+        }
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
+        let hit = accel.intersect(&ray).unwrap();
+        assert_eq!(
+            hit.instance,
+            InstanceId::from_index(scene.instances.len() - 1),
+            "{preset:?}"
+        );
+        assert!((hit.t - 3.0).abs() < 1e-6, "{preset:?}: {}", hit.t);
+    }
 }

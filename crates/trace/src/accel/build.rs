@@ -3,7 +3,7 @@
 //! build takes.
 
 use super::traverse::avx2_available;
-use super::tree::build_cwbvh;
+use super::tree::{BuildPreset, build_cwbvh, build_triangle_cwbvh};
 use super::{Accel, AccelStats, Blas, MERGED, Placed, TlasItem};
 use crate::holes::{HOLE_THICKNESS, HoleVolume};
 use crate::triangle::Tri;
@@ -19,7 +19,7 @@ use std::time::Instant;
 impl Accel {
     /// Builds a BVH per mesh and the top level over the instances.
     pub fn new(scene: &Scene) -> Accel {
-        Accel::build(scene, None)
+        Accel::with_preset(scene, None, BuildPreset::default())
     }
 
     /// Like [`Accel::new`], but only the instances in `movable` get their own entry in
@@ -38,7 +38,20 @@ impl Accel {
     /// every instance stays instanced instead, as with [`Accel::new`], so that the scene
     /// fits in memory.
     pub fn with_movable(scene: &Scene, movable: &[InstanceId]) -> Accel {
-        Accel::build(scene, Some(movable.to_vec()))
+        Accel::with_preset(scene, Some(movable), BuildPreset::default())
+    }
+
+    /// [`Accel::new`] (`movable` is `None`) or [`Accel::with_movable`] (`Some`) with the
+    /// builder's effort chosen: both levels, and every rebuild by
+    /// [`Accel::update_instances`], are built with `preset`, where the other constructors
+    /// take [`BuildPreset::default`]. Traversal gives the same hits whatever the preset;
+    /// only its speed and the build's time and memory differ.
+    pub fn with_preset(
+        scene: &Scene,
+        movable: Option<&[InstanceId]>,
+        preset: BuildPreset,
+    ) -> Accel {
+        Accel::build(scene, movable.map(<[InstanceId]>::to_vec), preset)
     }
 
     /// Refuses, with the figure, a scene whose build would take more than `limit` bytes
@@ -91,7 +104,7 @@ impl Accel {
 
     /// Builds the bottom level (a BVH per mesh used by a separate instance, plus the
     /// merged BVH when `movable` is given), then the top level.
-    fn build(scene: &Scene, movable: Option<Vec<InstanceId>>) -> Accel {
+    fn build(scene: &Scene, movable: Option<Vec<InstanceId>>, preset: BuildPreset) -> Accel {
         let start = Instant::now();
         let hole_material: Vec<bool> = scene.materials.iter().map(|m| m.hole).collect();
         let n = scene.instances.len();
@@ -119,7 +132,7 @@ impl Accel {
             let (tris, holes) = mesh_triangles(m, &hole_material);
             hole_bounds.push(holes);
             blas.push(if needed {
-                build_blas(tris, Vec::new())
+                build_blas(tris, Vec::new(), preset)
             } else {
                 Blas::default()
             });
@@ -149,7 +162,7 @@ impl Accel {
                     }
                 }
             }
-            blas.push(build_blas(tris, owners));
+            blas.push(build_blas(tris, owners, preset));
         }
         let stats = AccelStats {
             meshes: blas.iter().filter(|b| !b.nodes.is_empty()).count(),
@@ -173,6 +186,7 @@ impl Accel {
             items: Vec::new(),
             holes: Vec::new(),
             stats,
+            preset,
             avx2: avx2_available(),
         };
         accel.place_instances(scene);
@@ -195,7 +209,7 @@ impl Accel {
             || scene.instances.len() != self.baked.len()
             || moved_baked
         {
-            *self = Accel::build(scene, self.movable.take());
+            *self = Accel::build(scene, self.movable.take(), self.preset);
             return;
         }
         self.place_instances(scene);
@@ -265,7 +279,7 @@ impl Accel {
         let tlas = if boxes.is_empty() {
             CwBvh::default()
         } else {
-            build_cwbvh(&boxes)
+            build_cwbvh(&boxes, self.preset)
         };
         self.items = tlas
             .primitive_indices
@@ -407,9 +421,10 @@ fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<
     (tris, hole_bounds)
 }
 
-/// The BVH over `tris`, with `owners[i]` the instance of `tris[i]` for a merged BVH
-/// (empty otherwise); the triangles are stored in the BVH's leaf order.
-fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>) -> Blas {
+/// The BVH over `tris` built with `preset`, with `owners[i]` the instance of `tris[i]`
+/// for a merged BVH (empty otherwise); the triangles are stored in the BVH's leaf order,
+/// a pre-split triangle once in each leaf that holds it.
+fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) -> Blas {
     if tris.is_empty() {
         return Blas::default();
     }
@@ -421,7 +436,7 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>) -> Blas {
             v2: v[2].into(),
         })
         .collect();
-    let bvh = build_cwbvh(&prims);
+    let bvh = build_triangle_cwbvh(&prims, preset);
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);
     for (v, _) in &tris {

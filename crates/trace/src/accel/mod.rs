@@ -20,6 +20,7 @@ mod traverse;
 mod tree;
 
 pub use build::{BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
+pub use tree::BuildPreset;
 
 use crate::holes::HoleVolume;
 use crate::triangle::Tri;
@@ -38,7 +39,9 @@ pub struct AccelStats {
     pub instances: usize,
     /// Hole volumes.
     pub holes: usize,
-    /// Triangles over all bottom-level BVHs (each mesh once, however often instanced).
+    /// Triangles over all bottom-level BVHs (each mesh once, however often instanced);
+    /// with a preset that pre-splits ([`BuildPreset::Slow`]), a triangle counts once per
+    /// leaf that holds it.
     pub triangles: usize,
     /// Bottom-level nodes (80 bytes each).
     pub blas_nodes: usize,
@@ -115,6 +118,8 @@ pub struct Accel {
     items: Vec<TlasItem>,
     holes: Vec<HoleVolume>,
     stats: AccelStats,
+    /// How both levels are built, now and at every rebuild.
+    preset: BuildPreset,
     /// Whether the CPU runs the AVX2 traversal.
     avx2: bool,
 }

@@ -209,10 +209,12 @@ pub(super) fn avx2_available() -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::BuildPreset;
     use invlight_scene::{Mat4, Material, Mesh, Quat, Scene};
 
-    /// The AVX2 and portable node tests must agree hit for hit (the public functions
-    /// take the AVX2 path wherever the CPU allows, so the portable one is checked here).
+    /// The AVX2 and portable node tests must agree hit for hit, on the tree of every
+    /// build preset (the public functions take the AVX2 path wherever the CPU allows, so
+    /// the portable one is checked here).
     #[test]
     fn portable_and_avx2_traversals_agree() {
         let mut scene = Scene::default();
@@ -237,17 +239,20 @@ mod tests {
         scene.add_instance("a", id, Mat4::IDENTITY);
         let rot = Mat4::from_rotation_translation(Quat::from_rotation_z(0.7), Vec3::X);
         scene.add_instance("b", id, rot);
-        let accel = Accel::new(&scene);
-        let mut hits = 0;
-        for _ in 0..5000 {
-            let origin = Vec3::new(next(), next(), next()) * 5.0;
-            let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
-            let ray = Ray::new(origin, dir);
-            let portable = accel.closest::<wide::Portable>(&ray);
-            assert_eq!(accel.intersect(&ray), portable);
-            assert_eq!(accel.occluded(&ray), accel.any::<wide::Portable>(&ray));
-            hits += portable.is_some() as usize;
+        for preset in BuildPreset::ALL {
+            let accel = Accel::with_preset(&scene, None, preset);
+            let mut hits = 0;
+            for _ in 0..5000 {
+                let origin = Vec3::new(next(), next(), next()) * 5.0;
+                let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
+                let ray = Ray::new(origin, dir);
+                let portable = accel.closest::<wide::Portable>(&ray);
+                assert_eq!(accel.intersect(&ray), portable, "{preset:?}");
+                let any = accel.any::<wide::Portable>(&ray);
+                assert_eq!(accel.occluded(&ray), any, "{preset:?}");
+                hits += portable.is_some() as usize;
+            }
+            assert!(hits > 500, "{preset:?}: {hits} hits");
         }
-        assert!(hits > 500, "{hits} hits");
     }
 }

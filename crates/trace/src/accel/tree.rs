@@ -8,21 +8,97 @@ use obvhs::bvh2::node::Bvh2Node;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::cwbvh::{CwBvh, bvh2_to_cwbvh::bvh2_to_cwbvh};
 use obvhs::ploc::PlocBuilder;
+use obvhs::splits::split_aabbs_preset;
+use obvhs::triangle::Triangle;
 use obvhs::{Boundable, BvhBuildParams};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hash, Hasher};
 
-/// The build quality of both levels: obvhs's "medium" preset (PLOC with search radius
-/// and reinsertion, up to 3 triangles per leaf). Its "fast", "slow" (spatial pre-splits)
-/// and "very slow" presets traced Sponza within ±10 % of it, inside the noise, while
-/// "slow" took twice and "very slow" six times as long to build (BENCHMARKS.md, "Ray casting").
-fn build_params() -> BvhBuildParams {
-    BvhBuildParams::medium_build()
+/// How hard the builder works on both levels: one of obvhs's presets
+/// (`BvhBuildParams::fastest_build` … `very_slow_build`), for [`Accel::with_preset`].
+///
+/// The default, [`BuildPreset::Medium`], is what every other constructor builds: the
+/// fast, slow and very slow presets traced Sponza within ±10 % of it, inside the noise,
+/// while slow took twice and very slow six times as long to build (BENCHMARKS.md, "Ray
+/// casting"). The others are there to check that traversal does not depend on the tree's
+/// shape (the brute-force tests run over [`BuildPreset::ALL`]) and to measure them again.
+///
+/// [`Accel::with_preset`]: super::Accel::with_preset
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum BuildPreset {
+    /// PLOC pairing each node with its nearest neighbours only (search radius 1), no
+    /// reinsertion, one primitive per leaf.
+    Fastest,
+    /// Search radius 1, 1 % of the nodes reinserted, up to 3 primitives per leaf (the
+    /// 8-wide tree's limit, as for every preset below).
+    VeryFast,
+    /// Search radius 6, 2 % reinserted.
+    Fast,
+    /// Search radius 14, 5 % reinserted.
+    #[default]
+    Medium,
+    /// Spatial pre-splits (a large triangle gets several tight boxes, so it may sit in
+    /// several leaves), search radius 24, 20 % reinserted, 128-bit Morton codes.
+    Slow,
+    /// Pre-splits, search radius 14, every node considered for reinsertion once.
+    VerySlow,
 }
 
-/// obvhs's `build_cwbvh` (PLOC, reinsertion, conversion to 8-wide) without the validation
-/// it runs in debug builds, which asserts a depth below 32 levels: the conference room's
-/// tree reaches that (our traversal stack holds 64), and validating is slow.
+impl BuildPreset {
+    /// Every preset, the fastest to build first, as obvhs's tests list them
+    /// (`BUILD_PARAM_SET`).
+    pub const ALL: [BuildPreset; 6] = [
+        BuildPreset::Fastest,
+        BuildPreset::VeryFast,
+        BuildPreset::Fast,
+        BuildPreset::Medium,
+        BuildPreset::Slow,
+        BuildPreset::VerySlow,
+    ];
+
+    /// obvhs's parameters of the preset.
+    fn params(self) -> BvhBuildParams {
+        match self {
+            BuildPreset::Fastest => BvhBuildParams::fastest_build(),
+            BuildPreset::VeryFast => BvhBuildParams::very_fast_build(),
+            BuildPreset::Fast => BvhBuildParams::fast_build(),
+            BuildPreset::Medium => BvhBuildParams::medium_build(),
+            BuildPreset::Slow => BvhBuildParams::slow_build(),
+            BuildPreset::VerySlow => BvhBuildParams::very_slow_build(),
+        }
+    }
+}
+
+/// The BVH over the boxes of `prims` (the top level's instances), built with `preset`;
+/// its leaves name the primitives by index. Pre-splits need triangles
+/// ([`build_triangle_cwbvh`]), so boxes are never split.
+pub(super) fn build_cwbvh<T: Boundable>(prims: &[T], preset: BuildPreset) -> CwBvh {
+    let boxes: Vec<Aabb> = prims.iter().map(|t| t.aabb()).collect();
+    build(&boxes, None, &preset.params())
+}
+
+/// The BVH over `tris` (a bottom level), built with `preset`; its leaves name the
+/// triangles by index. With a preset that pre-splits, large triangles are cut into
+/// several tight boxes (obvhs's `split_aabbs_preset`, as its `build_cwbvh_from_tris`
+/// does), and such a triangle is named by every leaf one of its boxes went to.
+pub(super) fn build_triangle_cwbvh(tris: &[Triangle], preset: BuildPreset) -> CwBvh {
+    let p = preset.params();
+    let mut boxes: Vec<Aabb> = tris.iter().map(|t| t.aabb()).collect();
+    if !p.pre_split || tris.is_empty() {
+        return build(&boxes, None, &p);
+    }
+    let largest = boxes.iter().map(Aabb::half_area).fold(0.0, f32::max);
+    let mean = boxes.iter().map(Aabb::half_area).sum::<f32>() / boxes.len() as f32;
+    let mut owner: Vec<u32> = (0..tris.len() as u32).collect();
+    split_aabbs_preset(&mut boxes, &mut owner, tris, mean, largest);
+    build(&boxes, Some(&owner), &p)
+}
+
+/// obvhs's `build_cwbvh` (PLOC, reinsertion, conversion to 8-wide) with the parameters
+/// `p`, without the validation it runs in debug builds, which asserts a depth below 32
+/// levels: the conference room's tree reaches that (our traversal stack holds 64), and
+/// validating is slow. `owner[i]` is the primitive box `i` bounds (several boxes of one
+/// primitive after pre-splits); `None` when box `i` is primitive `i`.
 ///
 /// Primitives sharing one bounding box, when [`COINCIDENT_GROUP`] or more do, are built
 /// apart ([`coincident_groups`]): PLOC pairs a node with its cheapest neighbour, and
@@ -32,8 +108,7 @@ fn build_params() -> BvhBuildParams {
 /// 0.28 s; BENCHMARKS.md, "Hostile inputs"). PLOC now sees one box per such group, and
 /// each group's leaf is replaced by a balanced tree over its members
 /// ([`expand_groups`]). Boxes without such groups are built by PLOC alone.
-pub(super) fn build_cwbvh<T: Boundable>(prims: &[T]) -> CwBvh {
-    let p = build_params();
+fn build(boxes: &[Aabb], owner: Option<&[u32]>, p: &BvhBuildParams) -> CwBvh {
     let ploc = |boxes: &[Aabb]| {
         PlocBuilder::with_capacity(boxes.len()).build(
             p.ploc_search_distance,
@@ -43,15 +118,19 @@ pub(super) fn build_cwbvh<T: Boundable>(prims: &[T]) -> CwBvh {
             p.search_depth_threshold,
         )
     };
-    let boxes: Vec<Aabb> = prims.iter().map(|t| t.aabb()).collect();
-    let mut bvh2 = match coincident_groups(&boxes) {
-        None => ploc(&boxes),
+    let mut bvh2 = match coincident_groups(boxes) {
+        None => ploc(boxes),
         Some(groups) => {
             let firsts: Vec<Aabb> = groups.iter().map(|g| boxes[g[0] as usize]).collect();
             expand_groups(&ploc(&firsts), &groups)
         }
     };
     ReinsertionOptimizer::default().run(&mut bvh2, p.reinsertion_batch_ratio, None);
+    if let Some(owner) = owner {
+        for i in &mut bvh2.primitive_indices {
+            *i = owner[*i as usize];
+        }
+    }
     bvh2_to_cwbvh(&bvh2, p.max_prims_per_leaf.clamp(1, 3), true, false)
 }
 
