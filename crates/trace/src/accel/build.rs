@@ -85,6 +85,8 @@ impl Accel {
     /// [`BUILD_BYTES_PER_TRIANGLE`] and the instances at [`BYTES_PER_INSTANCE`]. A program
     /// can compare it with the memory it may use before building ([`Accel::check_memory`]).
     /// The scene's own meshes are not counted: interactions read them where they are.
+    /// [`Accel::with_preset`] with a slow preset may take more: its pre-splits add
+    /// boxes.
     pub fn estimated_bytes(scene: &Scene) -> u64 {
         let unique: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
         let all_static = vec![false; scene.instances.len()];
@@ -335,7 +337,7 @@ pub const BUILD_BYTES_PER_TRIANGLE: u64 = 400;
 
 /// Bytes per instance: its transforms, its top-level entry and box, and the top level's
 /// share of PLOC. Measured: 200 000 instances of a 10-triangle mesh built by
-/// [`Accel::new`] peaked at 622 bytes each (`hostile_bench memory 10 200000`); rounded
+/// [`Accel::new`] peaked at 618 bytes each (`hostile_bench memory 10 200000`); rounded
 /// up.
 pub const BYTES_PER_INSTANCE: u64 = 700;
 
