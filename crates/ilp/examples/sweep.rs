@@ -110,9 +110,9 @@ fn parse_args() -> Result<Args, String> {
 /// The world positions of a surface's vertices.
 fn vertices(scene: &Scene, s: SurfaceId) -> Vec<DVec3> {
     let mut out = Vec::new();
-    for &i in &scene.surfaces[s as usize].instances {
-        let inst = &scene.instances[i as usize];
-        for &p in &scene.meshes[inst.mesh as usize].positions {
+    for &i in &scene.surfaces[s].instances {
+        let inst = &scene.instances[i];
+        for &p in &scene.meshes[inst.mesh].positions {
             out.push(inst.transform.transform_point3(p).as_dvec3());
         }
     }

@@ -60,7 +60,7 @@ fn cornell_problems_bind_to_cornell_dae() {
             "{example}: anchor − P = {off}"
         );
         assert!(b.leaves_scene(&b.initial).is_none(), "authored inside");
-        assert_eq!(scene.surfaces[b.reading.surfaces[0] as usize].name, "Cone");
+        assert_eq!(scene.surfaces[b.reading.surfaces[0]].name, "Cone");
     }
 }
 

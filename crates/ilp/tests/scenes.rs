@@ -13,7 +13,7 @@ use invlight_ilp::{
     Binding, Configuration, Isoc, Member, ObjectiveInfo, Observer, Output, PhotonEvaluator,
     Problem, Record, Search, Solutions, Standing, Start, VariableValue,
 };
-use invlight_scene::{Light, LightKind, Material, Mesh, Placement, Scene};
+use invlight_scene::{Light, LightKind, Material, MaterialId, Mesh, Placement, Scene};
 use std::path::Path;
 
 struct Quiet;
@@ -24,14 +24,22 @@ impl Observer for Quiet {
 }
 
 /// Adds a quad surface.
-fn quad(s: &mut Scene, name: &str, corners: [Vec3; 4], material: u32) {
+fn quad(s: &mut Scene, name: &str, corners: [Vec3; 4], material: MaterialId) {
     let m = s.add_mesh(Mesh::quad(corners, material));
     s.add_instance(name, m, Mat4::IDENTITY);
 }
 
 /// A closed box room [0, w] × [0, h] × [0, d] (Y up): Floor, Ceiling, WallW (x = 0),
 /// WallE (x = w), WallS (z = 0), WallN (z = d).
-fn room(s: &mut Scene, w: f32, h: f32, d: f32, floor: u32, ceiling: u32, walls: u32) {
+fn room(
+    s: &mut Scene,
+    w: f32,
+    h: f32,
+    d: f32,
+    floor: MaterialId,
+    ceiling: MaterialId,
+    walls: MaterialId,
+) {
     let p = Vec3::new;
     quad(
         s,

@@ -13,7 +13,7 @@
 //! a surface's light arrives from behind.
 
 use crate::emit::{Emitters, SourceOrigin};
-use invlight_scene::{InstanceId, Scene};
+use invlight_scene::{InstanceId, LightId, Scene};
 use invlight_stats::ChannelSums;
 
 /// Which side of a surface counts.
@@ -88,13 +88,13 @@ impl Components {
         self.count
     }
 
-    /// Puts light `light` (an index of `scene.lights`) in component `k`.
+    /// Puts light `light` in component `k`.
     ///
     /// # Panics
     /// If `k` is not below [`Components::count`] or the light is not the scene's.
-    pub fn set_light(&mut self, light: usize, k: usize) {
+    pub fn set_light(&mut self, light: LightId, k: usize) {
         assert!(k < self.count, "component {k} of {}", self.count);
-        self.of_light[light] = k as u32;
+        self.of_light[light.index()] = k as u32;
     }
 
     /// Puts the emissive triangles of instance `instance` in component `k`.
@@ -103,15 +103,15 @@ impl Components {
     /// If `k` is not below [`Components::count`] or the instance is not the scene's.
     pub fn set_instance(&mut self, instance: InstanceId, k: usize) {
         assert!(k < self.count, "component {k} of {}", self.count);
-        self.of_instance[instance as usize] = k as u32;
+        self.of_instance[instance.index()] = k as u32;
     }
 
     /// The component of every source of `emitters`, by source index.
     pub fn of_sources(&self, emitters: &Emitters) -> Vec<u32> {
         (0..emitters.len() as u32)
             .map(|s| match emitters.origin(s) {
-                SourceOrigin::Light(l) => self.of_light.get(l as usize).copied().unwrap_or(0),
-                SourceOrigin::Instance(i) => self.of_instance.get(i as usize).copied().unwrap_or(0),
+                SourceOrigin::Light(l) => self.of_light.get(l.index()).copied().unwrap_or(0),
+                SourceOrigin::Instance(i) => self.of_instance.get(i.index()).copied().unwrap_or(0),
             })
             .collect()
     }

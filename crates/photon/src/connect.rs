@@ -233,15 +233,13 @@ impl Targets {
             .map(|&s| {
                 let mut shape = Shape::default();
                 let mut areas = Vec::new();
-                shape.instances = scene.surfaces[s as usize].instances.clone();
+                shape.instances = scene.surfaces[s].instances.clone();
                 shape.instances.sort_unstable();
                 shape.instances.dedup();
-                for &i in &scene.surfaces[s as usize].instances {
+                for &i in &scene.surfaces[s].instances {
                     for t in scene.world_triangles(i) {
                         let area = t.area();
-                        if scene.materials[t.material as usize].hole
-                            || !(area > 0.0 && area.is_finite())
-                        {
+                        if scene.materials[t.material].hole || !(area > 0.0 && area.is_finite()) {
                             continue;
                         }
                         let [a, b, c] = t.corners;

@@ -14,7 +14,7 @@ use crate::connect::Lobe;
 use crate::sampler::Sampler;
 use crate::sampling;
 use glam::{Mat3, Vec3};
-use invlight_scene::{InstanceId, LightKind, Opening, Photometry, Rgb, Scene, luminance};
+use invlight_scene::{InstanceId, LightId, LightKind, Opening, Photometry, Rgb, Scene, luminance};
 use invlight_stats::Distribution1D;
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -45,7 +45,7 @@ pub struct EmitSample<'a> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SourceOrigin {
     /// `scene.lights[i]`.
-    Light(u32),
+    Light(LightId),
     /// An emissive triangle of this instance.
     Instance(InstanceId),
 }
@@ -77,7 +77,7 @@ fn emissive_triangles_of(
     scene: &Scene,
 ) -> impl Iterator<Item = (InstanceId, EmissiveTriangle)> + '_ {
     scene.all_world_triangles().filter_map(move |(i, t)| {
-        let emission = scene.materials[t.material as usize].emission;
+        let emission = scene.materials[t.material].emission;
         let area = t.area();
         (emission.max_element() > 0.0 && area > 0.0).then(|| {
             (
@@ -161,7 +161,7 @@ impl Emitters {
         };
         let mut origins = Vec::new();
         for (l, light) in scene.lights.iter().enumerate() {
-            origins.push(SourceOrigin::Light(l as u32));
+            origins.push(SourceOrigin::Light(LightId::from_index(l)));
             let flux = light.kind.flux();
             match light.kind {
                 LightKind::Point { position, .. } => sources.push(Source::Point {

@@ -105,12 +105,12 @@ struct Plane {
 
 fn plane_of(scene: &Scene, surface: SurfaceId) -> Result<Plane, GridError> {
     let mut tris: Vec<[Vec3; 3]> = Vec::new();
-    for &i in &scene.surfaces[surface as usize].instances {
+    for &i in &scene.surfaces[surface].instances {
         // Holes are left out: photons pass through them, so they hold no light.
         tris.extend(
             scene
                 .world_triangles(i)
-                .filter(|t| !scene.materials[t.material as usize].hole)
+                .filter(|t| !scene.materials[t.material].hole)
                 .map(|t| t.corners),
         );
     }

@@ -17,7 +17,7 @@ use crate::grid::SurfaceGrid;
 use crate::path::PathVisitor;
 use crate::sampler::Sampler;
 use glam::Vec3;
-use invlight_scene::{Rgb, Scene, SurfaceId, luminance};
+use invlight_scene::{InstanceId, Rgb, Scene, SurfaceId, luminance};
 use invlight_stats::{ChannelSums, Confidence, Estimate};
 use invlight_trace::{Accel, Interaction};
 use serde::{Deserialize, Serialize};
@@ -150,8 +150,8 @@ impl TargetMap {
     fn new(scene: &Scene, targets: &[SurfaceId]) -> TargetMap {
         let mut per_instance: Vec<Vec<u32>> = vec![Vec::new(); scene.instances.len()];
         for (t, &s) in targets.iter().enumerate() {
-            for &i in &scene.surfaces[s as usize].instances {
-                per_instance[i as usize].push(t as u32);
+            for &i in &scene.surfaces[s].instances {
+                per_instance[i.index()].push(t as u32);
             }
         }
         let mut offsets = vec![0u32];
@@ -167,8 +167,8 @@ impl TargetMap {
     }
 
     #[inline]
-    fn of(&self, instance: u32) -> &[u32] {
-        let i = instance as usize;
+    fn of(&self, instance: InstanceId) -> &[u32] {
+        let i = instance.index();
         &self.targets[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
 }

@@ -87,7 +87,7 @@ pub fn trace_photon(
             visitor.escape(power);
             break;
         };
-        let at = accel.interaction(&ray, &hit);
+        let at = accel.interaction(scene, &ray, &hit);
         visitor.arrive(&at, ray.dir, power, bounce, &from);
         if bounce == max_bounces {
             break;
@@ -128,7 +128,7 @@ pub fn trace_photon(
                 power *= f;
                 from = specular(at.point, power, source);
                 let entering = at.normal.dot(ray.dir) < 0.0;
-                let ior = scene.materials[at.material as usize].ior;
+                let ior = scene.materials[at.material].ior;
                 let eta = if entering { 1.0 / ior } else { ior };
                 let cos_i = -ray.dir.dot(n);
                 match refract(ray.dir, n, eta) {
@@ -170,10 +170,10 @@ impl Roulette {
     /// luminance (nothing left to reflect).
     #[inline]
     fn new(scene: &Scene, at: &Interaction, power: Rgb) -> Option<Roulette> {
-        let m = &scene.materials[at.material as usize];
+        let m = &scene.materials[at.material];
         let mut kd = m.diffuse;
         if let Some(t) = m.texture {
-            kd *= scene.textures[t as usize].sample(at.uv);
+            kd *= scene.textures[t].sample(at.uv);
         }
         let y = luminance(power);
         if y <= 0.0 {

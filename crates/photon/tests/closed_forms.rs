@@ -8,10 +8,13 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Estimator, TraceSettings, measure};
-use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec3};
+use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, SurfaceId, Vec3};
 use invlight_stats::{Confidence, Estimate};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
+
+/// The surface a test measures: the first its scene adds (the room, the box).
+const FIRST: SurfaceId = SurfaceId::from_index(0);
 
 /// The two estimators, in the order [`measure_both`] returns them.
 const ESTIMATORS: [Estimator; 2] = [Estimator::ArrivalsOnly, Estimator::Connected];
@@ -28,7 +31,7 @@ fn settings(photons: u64) -> TraceSettings {
 /// estimate from arrivals alone and the one with connections.
 fn measure_both(scene: &Scene, names: &[&str], photons: u64) -> Vec<[Estimate; 2]> {
     let accel = Accel::new(scene);
-    let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
+    let ids: Vec<SurfaceId> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
     let runs = ESTIMATORS.map(|e| measure(scene, &accel, &ids, &settings(photons), e, None));
     (0..ids.len())
         .map(|i| runs.each_ref().map(|r| r.estimate(i)))
@@ -182,7 +185,7 @@ fn thesis_bounce_cap_under_counts_a_bright_room() {
             max_bounces: 4,
             ..settings(200_000)
         };
-        measure(&scene, &accel, &[0], &s, estimator, None).estimate(0)
+        measure(&scene, &accel, &[FIRST], &s, estimator, None).estimate(0)
     });
     let exact = 4.0 * PI * 100.0 * (1.0 - (rho as f64).powi(5)) / (area * (1.0 - rho as f64));
     assert_close(&both, exact, "capped room");
@@ -308,7 +311,7 @@ fn energy_is_conserved() {
 
 /// Checks absorbed + escaped = emitted in the open box of `energy_is_conserved`.
 fn energy_balance(scene: &Scene, accel: &Accel, rho: f64, estimator: Estimator) {
-    let r = measure(scene, accel, &[0], &settings(400_000), estimator, None);
+    let r = measure(scene, accel, &[FIRST], &settings(400_000), estimator, None);
     let area = r.areas[0];
     let e = r.estimate(0);
     let absorbed = (1.0 - rho) * e.mean * area;
@@ -342,7 +345,7 @@ fn same_bits_on_one_and_two_threads() {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| measure(&scene, &accel, &[0], &s, estimator, None))
+                .install(|| measure(&scene, &accel, &[FIRST], &s, estimator, None))
         };
         assert_eq!(run(1), run(2));
         assert_eq!(run(2), run(3));
@@ -356,7 +359,7 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     // the hard case for a normal interval.
     let rho = 0.6f32;
     let scene = closed_room(Vec3::splat(rho));
-    let area = scene.surface_area(0) as f64;
+    let area = scene.surface_area(FIRST) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
     for estimator in ESTIMATORS {
         assert_intervals_cover(&scene, exact, 4096, estimator);
@@ -376,7 +379,7 @@ fn assert_intervals_cover(scene: &Scene, exact: f64, photons: u64, estimator: Es
                 seed,
                 ..settings(photons)
             };
-            measure(scene, &accel, &[0], &s, estimator, None)
+            measure(scene, &accel, &[FIRST], &s, estimator, None)
                 .estimate(0)
                 .interval(z)
                 .contains(exact)

@@ -20,7 +20,9 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Emitters, Estimator, GroupKeys, Lobe, Sampler, TraceSettings, measure};
-use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Texture, Vec3, luminance};
+use invlight_scene::{
+    Light, LightKind, Mat4, Material, Mesh, Scene, SurfaceId, Texture, Vec3, luminance,
+};
 use invlight_stats::{Confidence, Estimate};
 use invlight_trace::Accel;
 use std::f64::consts::PI;
@@ -36,7 +38,7 @@ fn settings(photons: u64, seed: u64) -> TraceSettings {
 /// The connected estimates of the named surfaces of `scene`.
 fn connected(scene: &Scene, names: &[&str], photons: u64) -> Vec<Estimate> {
     let accel = Accel::new(scene);
-    let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
+    let ids: Vec<SurfaceId> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
     let m = measure(
         scene,
         &accel,
@@ -238,8 +240,7 @@ fn enclosure(floor: Material, texture: Option<Texture>, bottom: bool) -> Scene {
     let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
     let mut floor = floor;
     if let Some(t) = texture {
-        scene.textures.push(t);
-        floor.texture = Some(0);
+        floor.texture = Some(scene.add_texture(t));
     }
     let f = scene.add_material(floor);
     let z0 = if bottom { -1.0 } else { 0.0 };
@@ -273,7 +274,7 @@ fn assert_enclosure(scene: &Scene, floor_out: f64, what: &str) {
     let direct = CANDELA * seen_from_lamp(-1.0, 1.0, -1.0, 1.0);
     let lamp = 4.0 * PI * CANDELA;
     let e = connected(scene, &["Box", "Floor"], 262_144);
-    let box_area = scene.surface_area(0) as f64;
+    let box_area = scene.surface_area(scene.surface("Box").unwrap()) as f64;
     assert_close(
         &e[0],
         (lamp - direct + floor_out) / box_area,

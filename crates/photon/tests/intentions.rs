@@ -150,7 +150,7 @@ fn components_give_every_dimming_from_one_trace() {
     let accel = Accel::new(&scene);
     let floor = scene.surface("Floor").unwrap();
     let mut components = Components::new(&scene, 2);
-    components.set_light(1, 1);
+    components.set_light(invlight_scene::LightId::from_index(1), 1);
     let request = Request {
         surfaces: &[floor],
         grids: Vec::new(),

@@ -24,8 +24,8 @@ mod common;
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
 use invlight_photon::{Emitters, Estimator, GroupKeys, Sampler, TraceSettings};
 use invlight_scene::{
-    Light, LightKind, Mat3, Mat4, Material, Opening, PhotometricSystem, Photometry, Scene, Vec3,
-    aimed_frame, read_photometry,
+    Light, LightKind, Mat3, Mat4, Material, Opening, PhotometricSystem, Photometry, Scene,
+    SurfaceId, Vec3, aimed_frame, read_photometry,
 };
 use invlight_stats::Estimate;
 use invlight_trace::Accel;
@@ -69,7 +69,7 @@ fn black_patches(patches: &[(&str, [f32; 4])], light: Light) -> Scene {
 /// Both estimators' estimates of the named surfaces, `[arrivals, connected]`.
 fn measure(scene: &Scene, names: &[&str], photons: u64, seed: u64) -> Vec<[Estimate; 2]> {
     let accel = Accel::new(scene);
-    let ids: Vec<u32> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
+    let ids: Vec<SurfaceId> = names.iter().map(|n| scene.surface(n).unwrap()).collect();
     let settings = TraceSettings {
         photons,
         seed,

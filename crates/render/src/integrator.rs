@@ -191,11 +191,11 @@ impl<'a> Integrator<'a> {
             let Some(hit) = self.accel.intersect(&ray) else {
                 continue;
             };
-            let y = self.accel.interaction(&ray, &hit);
-            let m = &self.scene.materials[y.material as usize];
+            let y = self.accel.interaction(self.scene, &ray, &hit);
+            let m = &self.scene.materials[y.material];
             let mut kd = m.diffuse;
             if let Some(t) = m.texture {
-                kd *= self.scene.textures[t as usize].sample(y.uv);
+                kd *= self.scene.textures[t].sample(y.uv);
             }
             if kd.max_element() > 0.0 {
                 let ny = if y.normal.dot(dir) < 0.0 {
@@ -326,14 +326,14 @@ impl<'a> Integrator<'a> {
         let Some(hit) = self.accel.intersect(ray) else {
             return Vec3::ZERO;
         };
-        let at = self.accel.interaction(ray, &hit);
-        let m = &self.scene.materials[at.material as usize];
+        let at = self.accel.interaction(self.scene, ray, &hit);
+        let m = &self.scene.materials[at.material];
         let front = at.normal.dot(ray.dir) < 0.0;
         let n = if front { at.normal } else { -at.normal };
         let mut l = if front { m.emission } else { Vec3::ZERO };
         let mut kd = m.diffuse;
         if let Some(t) = m.texture {
-            kd *= self.scene.textures[t as usize].sample(at.uv);
+            kd *= self.scene.textures[t].sample(at.uv);
         }
         if kd.max_element() > 0.0 {
             l += kd / PI * self.irradiance(&at, n, rng);
@@ -371,7 +371,7 @@ impl<'a> Integrator<'a> {
     /// Illuminance (lx) and |cos| of the first surface along `ray`, if any.
     pub fn illuminance(&self, ray: &Ray, rng: &mut Pcg32) -> Option<(f32, f32)> {
         let hit = self.accel.intersect(ray)?;
-        let at = self.accel.interaction(ray, &hit);
+        let at = self.accel.interaction(self.scene, ray, &hit);
         let cos = at.normal.dot(ray.dir);
         let n = if cos < 0.0 { at.normal } else { -at.normal };
         Some((luminance(self.irradiance(&at, n, rng)), cos.abs()))

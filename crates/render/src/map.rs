@@ -145,9 +145,9 @@ struct Plane {
 
 fn plane_of(scene: &Scene, surface: SurfaceId) -> Result<Plane, MapError> {
     let mut tris: Vec<[Vec3; 3]> = Vec::new();
-    for &i in &scene.surfaces[surface as usize].instances {
-        let inst = &scene.instances[i as usize];
-        let mesh = &scene.meshes[inst.mesh as usize];
+    for &i in &scene.surfaces[surface].instances {
+        let inst = &scene.instances[i];
+        let mesh = &scene.meshes[inst.mesh];
         for t in 0..mesh.triangles.len() {
             tris.push(mesh.triangle(t).map(|p| inst.transform.transform_point3(p)));
         }
@@ -289,7 +289,7 @@ impl PathVisitor for CellTally<'_> {
 
     #[inline]
     fn arrive(&mut self, at: &Interaction, _dir: Vec3, power: Rgb, _bounce: u32, from: &Departure) {
-        if !self.grid.on_surface[at.instance as usize] {
+        if !self.grid.on_surface[at.instance.index()] {
             return;
         }
         let w = match self.connect {
@@ -350,8 +350,8 @@ pub fn illuminance_map(
         }
     }
     let mut on_surface = vec![false; scene.instances.len()];
-    for &i in &scene.surfaces[surface as usize].instances {
-        on_surface[i as usize] = true;
+    for &i in &scene.surfaces[surface].instances {
+        on_surface[i.index()] = true;
     }
     let grid = Grid {
         on_surface: &on_surface,

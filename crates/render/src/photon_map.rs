@@ -134,7 +134,7 @@ impl PathVisitor for Collector<'_> {
             Paths::All => true,
             Paths::Caustic => bounce > 0 && self.specular_only,
         };
-        let m = &self.scene.materials[at.material as usize];
+        let m = &self.scene.materials[at.material];
         // The path leaves this surface diffusely if it has a diffuse part (for a mixed
         // material the event is not reported; calling it diffuse errs toward the global
         // map, which the gather reaches anyway).
@@ -163,9 +163,9 @@ impl PathVisitor for Collector<'_> {
 fn storing_area(scene: &Scene, store: Store) -> f64 {
     let mut area = 0.0f64;
     for inst in &scene.instances {
-        let mesh = &scene.meshes[inst.mesh as usize];
+        let mesh = &scene.meshes[inst.mesh];
         for (t, &m) in mesh.materials.iter().enumerate() {
-            let m = &scene.materials[m as usize];
+            let m = &scene.materials[m];
             if m.hole || (store == Store::Diffuse && m.diffuse.max_element() <= 0.0) {
                 continue;
             }

@@ -10,7 +10,8 @@ use invlight_render::{
     render, render_illuminance,
 };
 use invlight_scene::{
-    Camera, Light, LightKind, Material, Mesh, PhotometricSystem, Photometry, Scene, aimed_frame,
+    Camera, Light, LightKind, Material, MaterialId, Mesh, PhotometricSystem, Photometry, Scene,
+    aimed_frame,
 };
 use invlight_stats::Pcg32;
 use invlight_trace::Accel;
@@ -193,7 +194,7 @@ fn plane_radiance_is_proportional_to_closed_form_illuminance() {
 
 /// The inside of a sphere of radius `r` as `stacks` × `slices` quads, counter-clockwise
 /// seen from inside (so it emits inwards).
-fn inward_sphere(r: f32, stacks: u32, slices: u32, material: u32) -> Mesh {
+fn inward_sphere(r: f32, stacks: u32, slices: u32, material: MaterialId) -> Mesh {
     let mut positions = Vec::new();
     for i in 0..=stacks {
         let theta = PI * i as f32 / stacks as f32;
@@ -468,7 +469,8 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
             },
             estimator,
         };
-        let map = illuminance_map(&scene, &accel, 0, &settings, None).unwrap();
+        let floor = scene.surface("Floor").unwrap();
+        let map = illuminance_map(&scene, &accel, floor, &settings, None).unwrap();
         assert_eq!((map.columns, map.rows), (4, 4));
         let mut total = 0.0;
         let mut relative = 0.0;
@@ -532,7 +534,13 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
         estimator: Estimator::Connected,
     };
     assert!(matches!(
-        illuminance_map(&scene, &accel, 0, &settings, None),
+        illuminance_map(
+            &scene,
+            &accel,
+            scene.surface("Box").unwrap(),
+            &settings,
+            None
+        ),
         Err(MapError::NotPlanar { .. })
     ));
     let room = small_room();

@@ -23,7 +23,7 @@ fn main() -> std::process::ExitCode {
                     let triangles: usize = scene
                         .instances
                         .iter()
-                        .map(|i| scene.meshes[i.mesh as usize].triangles.len())
+                        .map(|i| scene.meshes[i.mesh].triangles.len())
                         .sum();
                     summary = format!(
                         "{triangles} triangles, {} surfaces, {} materials",

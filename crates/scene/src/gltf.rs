@@ -25,7 +25,7 @@ mod nodes;
 
 use crate::error::LoadError;
 use crate::files::Files;
-use crate::model::{MaterialId, MeshId, Scene};
+use crate::model::{MaterialId, MeshId, Scene, TextureId};
 use gltf_json as json;
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -146,7 +146,7 @@ struct Builder<'a> {
     /// glTF's default material, made when a primitive has none.
     default_material: Option<MaterialId>,
     /// glTF image → scene texture.
-    images: HashMap<usize, u32>,
+    images: HashMap<usize, TextureId>,
     /// `EXT_lights_ies` profile → its table, shared by the nodes that place it.
     profiles: HashMap<usize, std::sync::Arc<crate::photometry::Photometry>>,
 }

@@ -6,6 +6,10 @@
 //! - [`Scene`]: everything that is traced: [`Mesh`]es in object space placed by
 //!   [`Instance`]s, [`Material`]s, punctual and directional [`Light`]s, [`Camera`]s, the
 //!   named [`Surface`]s a user addresses, and the [`Placement`] rectangles of problem files.
+//! - [`MeshId`], [`MaterialId`], [`TextureId`], [`InstanceId`], [`SurfaceId`],
+//!   [`LightId`]: how the scene's lists refer to one another. Each indexes its own list
+//!   and no other (`scene.meshes[scene.instances[id].mesh]`), so an id handed to the
+//!   wrong list does not compile; each is a `u32` underneath.
 //! - [`load`]: reads a scene file, choosing the format from its extension.
 //! - [`daylight`]: sites and their compass, dates and times, the sun's position (NREL
 //!   SPA) and clear-sky illuminance, and CIE skies with their sampling distributions
@@ -62,8 +66,8 @@ pub use lookup::known_names;
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
 pub use model::{
-    Instance, InstanceId, MaterialId, MeshId, PLACEMENT_SUFFIX, Placement, Scene, Surface,
-    SurfaceId, is_placement_name, placement_name,
+    Instance, InstanceId, LightId, MaterialId, MeshId, PLACEMENT_SUFFIX, Placement, Scene, Surface,
+    SurfaceId, TextureId, is_placement_name, placement_name,
 };
 pub use photometry::{
     DirectionSample, Opening, PhotometricSystem, Photometry, PhotometryFormat, Tilt, parse_ies,

@@ -94,7 +94,7 @@ impl Scene {
         let lit = self.lights.iter().any(|l| luminance(l.kind.flux()) > 0.0)
             || self
                 .all_world_triangles()
-                .any(|(_, t)| self.materials[t.material as usize].is_emissive() && t.area() > 0.0);
+                .any(|(_, t)| self.materials[t.material].is_emissive() && t.area() > 0.0);
         if lit {
             return Ok(());
         }
@@ -128,7 +128,7 @@ mod tests {
         s.add_instance("Floor", quad, Mat4::IDENTITY);
         s.add_instance("Desk", quad, Mat4::IDENTITY);
         let p = Path::new("room.gltf");
-        assert_eq!(s.find_surface(p, "Desk"), Ok(1));
+        assert_eq!(s.find_surface(p, "Desk"), Ok(SurfaceId::from_index(1)));
         let e = s.find_surface(p, "floor").unwrap_err();
         assert!(
             e.hint.as_ref().unwrap().contains("did you mean 'Floor'"),

@@ -1,6 +1,7 @@
 //! Materials as photon tracing sees them (thesis Algorithm 2.2): a diffuse part K_d, a
 //! perfect mirror part K_s, a refracting part with an index of refraction, and emission.
 
+use crate::model::TextureId;
 use glam::{Vec2, Vec3};
 
 /// Linear RGB. Photometric when it carries light: its [`crate::luminance`] is the
@@ -18,8 +19,8 @@ pub struct Material {
     pub name: String,
     /// Lambertian reflectance K_d (base colour), multiplied by the texture when present.
     pub diffuse: Rgb,
-    /// Base-colour texture (index into [`crate::Scene::textures`]), modulating `diffuse`.
-    pub texture: Option<u32>,
+    /// Base-colour texture, modulating `diffuse`.
+    pub texture: Option<TextureId>,
     /// Perfect mirror reflectance K_s.
     pub specular: Rgb,
     /// Fraction of light that enters a dielectric (glass), split by Fresnel at the surface.

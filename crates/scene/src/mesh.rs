@@ -93,7 +93,7 @@ mod tests {
 
     #[test]
     fn cuboid_faces_point_outward() {
-        let m = Mesh::cuboid(Vec3::ZERO, Vec3::ONE, 0);
+        let m = Mesh::cuboid(Vec3::ZERO, Vec3::ONE, MaterialId::from_index(0));
         let centre = Vec3::splat(0.5);
         for t in 0..m.triangles.len() {
             let [a, b, c] = m.triangle(t);

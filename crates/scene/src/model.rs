@@ -1,5 +1,38 @@
 //! The scene: meshes placed by instances, named surfaces over instances, lights, cameras
 //! and the placement rectangles of problem files.
+//!
+//! # Ids
+//!
+//! The scene's lists refer to one another by typed ids: an [`Instance`] names its
+//! [`MeshId`], a triangle its [`MaterialId`], a [`Surface`] its [`InstanceId`]s, a
+//! [`crate::Material`] its [`TextureId`]; [`Scene::surface`] and [`Scene::light`] answer
+//! with a [`SurfaceId`] and a [`LightId`]. Each id indexes its own list and no other,
+//! and an index handed to the wrong list is a compile error:
+//!
+//! ```
+//! use invlight_scene::{Mat4, Mesh, Scene};
+//! let mut scene = Scene::default();
+//! let mesh = scene.add_mesh(Mesh::default());
+//! let instance = scene.add_instance("Box", mesh, Mat4::IDENTITY);
+//! let placed = &scene.meshes[scene.instances[instance].mesh];
+//! ```
+//!
+//! ```compile_fail
+//! # use invlight_scene::{Mat4, Mesh, Scene};
+//! # let mut scene = Scene::default();
+//! # let mesh = scene.add_mesh(Mesh::default());
+//! let instance = scene.add_instance("Box", mesh, Mat4::IDENTITY);
+//! let placed = &scene.meshes[instance];
+//! ```
+//!
+//! The lists stay plain `Vec`s, which loaders and tests fill and read as such: each id
+//! implements `Index` and `IndexMut` on the `Vec` and the slice of what it names, and
+//! on nothing else (a side table such as a `Vec<bool>` per material takes
+//! [`MaterialId::index`]). An id is a `u32` (`#[repr(transparent)]`): a mesh stores one
+//! [`MaterialId`] per triangle and the tracer one [`InstanceId`] per baked triangle, 4
+//! bytes each, and `list[id]` compiles to the same bounds-checked load as
+//! `list[id.index()]`. [`InstanceId::from_index`] makes an id of a position (as
+//! `enumerate` gives it); [`InstanceId::index`] gives the position back.
 
 use crate::error::PhotometryError;
 use crate::light::{Camera, Light, LightKind, aimed_frame, tilt_factor};
@@ -8,16 +41,100 @@ use crate::mesh::Mesh;
 use crate::photometry::Photometry;
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
+use std::ops::{Index, IndexMut};
 use std::sync::Arc;
 
-/// Index into [`Scene::meshes`].
-pub type MeshId = u32;
-/// Index into [`Scene::materials`].
-pub type MaterialId = u32;
-/// Index into [`Scene::instances`].
-pub type InstanceId = u32;
-/// Index into [`Scene::surfaces`].
-pub type SurfaceId = u32;
+/// Declares an id type indexing `Vec<$item>` and `[$item]`.
+macro_rules! id {
+    ($(#[$doc:meta])* $id:ident => $item:ty) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        #[repr(transparent)]
+        pub struct $id(u32);
+
+        impl $id {
+            /// The id of the element at `index` of its list.
+            ///
+            /// # Panics
+            ///
+            /// When `index` does not fit in 32 bits: ids are 4 bytes because meshes store
+            /// one per triangle, and a list of 2³² elements would not fit in memory anyway.
+            #[inline]
+            pub const fn from_index(index: usize) -> Self {
+                assert!(index <= u32::MAX as usize, "more than 2³² elements in a scene list");
+                $id(index as u32)
+            }
+
+            /// The position of the element in its list.
+            #[inline(always)]
+            pub const fn index(self) -> usize {
+                self.0 as usize
+            }
+        }
+
+        /// The bare index, as messages name the element ("mesh 3").
+        impl std::fmt::Display for $id {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                self.0.fmt(f)
+            }
+        }
+
+        impl Index<$id> for [$item] {
+            type Output = $item;
+            #[inline(always)]
+            fn index(&self, id: $id) -> &$item {
+                &self[id.index()]
+            }
+        }
+
+        impl IndexMut<$id> for [$item] {
+            #[inline(always)]
+            fn index_mut(&mut self, id: $id) -> &mut $item {
+                &mut self[id.index()]
+            }
+        }
+
+        impl Index<$id> for Vec<$item> {
+            type Output = $item;
+            #[inline(always)]
+            fn index(&self, id: $id) -> &$item {
+                &self.as_slice()[id]
+            }
+        }
+
+        impl IndexMut<$id> for Vec<$item> {
+            #[inline(always)]
+            fn index_mut(&mut self, id: $id) -> &mut $item {
+                &mut self.as_mut_slice()[id]
+            }
+        }
+    };
+}
+
+id! {
+    /// A mesh: index into [`Scene::meshes`].
+    MeshId => Mesh
+}
+id! {
+    /// A material: index into [`Scene::materials`].
+    MaterialId => Material
+}
+id! {
+    /// A texture: index into [`Scene::textures`].
+    TextureId => Texture
+}
+id! {
+    /// A placed mesh: index into [`Scene::instances`].
+    InstanceId => Instance
+}
+id! {
+    /// A named surface: index into [`Scene::surfaces`].
+    SurfaceId => Surface
+}
+id! {
+    /// A point, spot, directional or goniometric light: index into [`Scene::lights`].
+    LightId => Light
+}
 
 /// A mesh placed in the world. Moving an object changes only its instances' transforms,
 /// so the acceleration structure rebuilds only its top level (DESIGN.md §7).
@@ -145,13 +262,19 @@ impl Scene {
     /// Adds a material and returns its id.
     pub fn add_material(&mut self, material: Material) -> MaterialId {
         self.materials.push(material);
-        (self.materials.len() - 1) as MaterialId
+        MaterialId::from_index(self.materials.len() - 1)
+    }
+
+    /// Adds a texture and returns its id.
+    pub fn add_texture(&mut self, texture: Texture) -> TextureId {
+        self.textures.push(texture);
+        TextureId::from_index(self.textures.len() - 1)
     }
 
     /// Adds a mesh and returns its id.
     pub fn add_mesh(&mut self, mesh: Mesh) -> MeshId {
         self.meshes.push(mesh);
-        (self.meshes.len() - 1) as MeshId
+        MeshId::from_index(self.meshes.len() - 1)
     }
 
     /// Places `mesh` with `transform` under the surface `name` (created when new).
@@ -161,7 +284,7 @@ impl Scene {
             transform,
             name: name.to_string(),
         });
-        let id = (self.instances.len() - 1) as InstanceId;
+        let id = InstanceId::from_index(self.instances.len() - 1);
         self.add_to_surface(name, id);
         id
     }
@@ -176,14 +299,15 @@ impl Scene {
         if self.names.0.len() != self.surfaces.len() {
             self.reindex();
         }
-        let found = self.names.0.get(name).copied().filter(|&i| {
-            self.surfaces
-                .get(i as usize)
-                .is_some_and(|s| s.name == name)
-        });
+        let found = self
+            .names
+            .0
+            .get(name)
+            .copied()
+            .filter(|&i| self.surfaces.get(i.index()).is_some_and(|s| s.name == name));
         match found {
             Some(i) => {
-                let list = &mut self.surfaces[i as usize].instances;
+                let list = &mut self.surfaces[i].instances;
                 match list.last() {
                     Some(&last) if last >= instance => {
                         if !list.contains(&instance) {
@@ -198,7 +322,7 @@ impl Scene {
                     name: name.to_string(),
                     instances: vec![instance],
                 });
-                let id = (self.surfaces.len() - 1) as SurfaceId;
+                let id = SurfaceId::from_index(self.surfaces.len() - 1);
                 self.names.0.insert(name.to_string(), id);
             }
         }
@@ -209,7 +333,10 @@ impl Scene {
     fn reindex(&mut self) {
         self.names.0.clear();
         for (i, s) in self.surfaces.iter().enumerate() {
-            self.names.0.entry(s.name.clone()).or_insert(i as SurfaceId);
+            self.names
+                .0
+                .entry(s.name.clone())
+                .or_insert(SurfaceId::from_index(i));
         }
     }
 
@@ -217,27 +344,23 @@ impl Scene {
     pub fn surface(&self, name: &str) -> Option<SurfaceId> {
         let indexed = self.names.0.len() == self.surfaces.len();
         match self.names.0.get(name) {
-            Some(&i)
-                if self
-                    .surfaces
-                    .get(i as usize)
-                    .is_some_and(|s| s.name == name) =>
-            {
-                Some(i)
-            }
+            Some(&i) if self.surfaces.get(i.index()).is_some_and(|s| s.name == name) => Some(i),
             None if indexed => None,
             // Stale: `surfaces` was changed without the index.
             _ => self
                 .surfaces
                 .iter()
                 .position(|s| s.name == name)
-                .map(|i| i as SurfaceId),
+                .map(SurfaceId::from_index),
         }
     }
 
     /// The light called `name`.
-    pub fn light(&self, name: &str) -> Option<usize> {
-        self.lights.iter().position(|l| l.name == name)
+    pub fn light(&self, name: &str) -> Option<LightId> {
+        self.lights
+            .iter()
+            .position(|l| l.name == name)
+            .map(LightId::from_index)
     }
 
     /// Makes the point or spot light `name` the luminaire `photometry` describes, with
@@ -295,7 +418,7 @@ impl Scene {
 
     /// World-space area of a surface, m².
     pub fn surface_area(&self, surface: SurfaceId) -> f32 {
-        self.surfaces[surface as usize]
+        self.surfaces[surface]
             .instances
             .iter()
             .map(|&i| self.instance_area(i) as f64)
@@ -304,20 +427,16 @@ impl Scene {
 
     /// World-space area of an instance, m².
     pub fn instance_area(&self, instance: InstanceId) -> f32 {
-        let inst = &self.instances[instance as usize];
-        self.meshes[inst.mesh as usize].area(&inst.transform)
+        let inst = &self.instances[instance];
+        self.meshes[inst.mesh].area(&inst.transform)
     }
 
     /// Number of triangles of a surface.
     pub fn surface_triangles(&self, surface: SurfaceId) -> usize {
-        self.surfaces[surface as usize]
+        self.surfaces[surface]
             .instances
             .iter()
-            .map(|&i| {
-                self.meshes[self.instances[i as usize].mesh as usize]
-                    .triangles
-                    .len()
-            })
+            .map(|&i| self.meshes[self.instances[i].mesh].triangles.len())
             .sum()
     }
 
@@ -327,7 +446,7 @@ impl Scene {
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         for inst in &self.instances {
-            for &p in &self.meshes[inst.mesh as usize].positions {
+            for &p in &self.meshes[inst.mesh].positions {
                 let w = inst.transform.transform_point3(p);
                 lo = lo.min(w);
                 hi = hi.max(w);
@@ -365,28 +484,32 @@ mod tests {
         }
         assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
         assert_eq!(scene.surfaces.len(), n + 1);
-        assert_eq!(scene.surface("part 77777"), Some(77_778));
-        let building = scene.surface("Building").unwrap() as usize;
+        assert_eq!(
+            scene.surface("part 77777"),
+            Some(SurfaceId::from_index(77_778))
+        );
+        let building = scene.surface("Building").unwrap();
         assert_eq!(scene.surfaces[building].instances.len(), n);
         // An older instance added again is not duplicated.
-        scene.add_to_surface("Building", 5);
+        scene.add_to_surface("Building", InstanceId::from_index(5));
         assert_eq!(scene.surfaces[building].instances.len(), n);
     }
 
     /// A surface list changed directly is still searched correctly.
     #[test]
     fn a_list_changed_directly_is_still_searched() {
+        let instance = InstanceId::from_index;
         let mut scene = Scene::default();
-        scene.add_to_surface("A", 0);
+        scene.add_to_surface("A", instance(0));
         scene.surfaces.push(Surface {
             name: "B".into(),
-            instances: vec![1],
+            instances: vec![instance(1)],
         });
-        assert_eq!(scene.surface("B"), Some(1));
+        assert_eq!(scene.surface("B"), Some(SurfaceId::from_index(1)));
         assert_eq!(scene.surface("C"), None);
-        scene.add_to_surface("B", 2);
+        scene.add_to_surface("B", instance(2));
         assert_eq!(scene.surfaces.len(), 2);
-        assert_eq!(scene.surfaces[1].instances, [1, 2]);
+        assert_eq!(scene.surfaces[1].instances, [instance(1), instance(2)]);
         scene.surfaces.clear();
         assert_eq!(scene.surface("A"), None);
     }

@@ -4,7 +4,7 @@
 //! suggest. One [`SceneSummary`] is both the table's data and the JSON's schema.
 
 use crate::light::{LightKind, luminance};
-use crate::model::Scene;
+use crate::model::{Scene, SurfaceId};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
@@ -92,7 +92,7 @@ impl Scene {
     /// What the scene holds.
     pub fn summary(&self) -> SceneSummary {
         let mut surfaces: Vec<SurfaceSummary> = (0..self.surfaces.len())
-            .map(|i| self.surface_summary(i))
+            .map(|i| self.surface_summary(SurfaceId::from_index(i)))
             .collect();
         for p in &self.placements {
             surfaces.push(SurfaceSummary {
@@ -133,7 +133,7 @@ impl Scene {
             let (mut flux, mut area) = (0.0f64, 0.0f32);
             let (mut centroid, mut facing) = (Vec3::ZERO, Vec3::ZERO);
             for t in self.world_triangles(s.instances[0]) {
-                let m = &self.materials[t.material as usize];
+                let m = &self.materials[t.material];
                 let a = t.area();
                 if !m.is_emissive() || a <= 0.0 || a.is_nan() {
                     continue;
@@ -193,14 +193,14 @@ impl Scene {
         }
     }
 
-    fn surface_summary(&self, i: usize) -> SurfaceSummary {
+    fn surface_summary(&self, i: SurfaceId) -> SurfaceSummary {
         let mut names = BTreeSet::new();
         let mut kinds = BTreeSet::new();
         let mut emissive = false;
         for &inst in &self.surfaces[i].instances {
-            let mesh = &self.meshes[self.instances[inst as usize].mesh as usize];
+            let mesh = &self.meshes[self.instances[inst].mesh];
             for &m in &mesh.materials {
-                let m = &self.materials[m as usize];
+                let m = &self.materials[m];
                 emissive |= m.is_emissive();
                 names.insert(m.name.as_str());
                 kinds.insert(m.kind_name());
@@ -212,8 +212,8 @@ impl Scene {
         }
         SurfaceSummary {
             name: self.surfaces[i].name.clone(),
-            triangles: self.surface_triangles(i as u32),
-            area: self.surface_area(i as u32),
+            triangles: self.surface_triangles(i),
+            area: self.surface_area(i),
             material,
             kind: kinds.into_iter().collect::<Vec<_>>().join(", "),
             emissive,

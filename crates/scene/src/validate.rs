@@ -13,7 +13,7 @@
 
 use crate::light::{LightKind, luminance};
 use crate::material::Rgb;
-use crate::model::Scene;
+use crate::model::{MaterialId, MeshId, Scene};
 use glam::{Mat4, Vec3};
 use std::f64::consts::PI;
 use std::fmt;
@@ -275,7 +275,7 @@ impl Scene {
             for &p in &mesh.positions {
                 if !in_range(p) {
                     return Err(SceneError::Coordinate {
-                        place: self.mesh_user(m as u32),
+                        place: self.mesh_user(MeshId::from_index(m)),
                         space: "in the mesh's own space",
                         position: p,
                     });
@@ -288,7 +288,7 @@ impl Scene {
     }
 
     /// A name for mesh `m` in messages: the first surface that places it.
-    fn mesh_user(&self, m: u32) -> String {
+    fn mesh_user(&self, m: MeshId) -> String {
         match self.instances.iter().find(|i| i.mesh == m) {
             Some(i) => format!("surface '{}'", i.name),
             None => format!("mesh {m}"),
@@ -301,14 +301,14 @@ impl Scene {
             if !inst.transform.is_finite() {
                 return Err(SceneError::Transform { place: place() });
             }
-            let Some(&Some((lo, hi))) = mesh_bounds.get(inst.mesh as usize) else {
+            let Some(&Some((lo, hi))) = mesh_bounds.get(inst.mesh.index()) else {
                 continue;
             };
             // The world image of the box holds the world image of every vertex.
             if box_corners(lo, hi, &inst.transform).all(in_range) {
                 continue;
             }
-            let mesh = &self.meshes[inst.mesh as usize];
+            let mesh = &self.meshes[inst.mesh];
             if let Some(w) = mesh
                 .positions
                 .iter()
@@ -450,24 +450,24 @@ impl Scene {
         let mesh_emits: Vec<bool> = self
             .meshes
             .iter()
-            .map(|m| m.materials.iter().any(|&i| emissive[i as usize]))
+            .map(|m| m.materials.iter().any(|&i| emissive[i.index()]))
             .collect();
         for inst in &self.instances {
-            if !mesh_emits[inst.mesh as usize] {
+            if !mesh_emits[inst.mesh.index()] {
                 continue;
             }
-            let mesh = &self.meshes[inst.mesh as usize];
+            let mesh = &self.meshes[inst.mesh];
             let mut flux = 0.0f64;
-            let mut brightest = (0.0f64, 0);
+            let mut brightest = (0.0f64, MaterialId::from_index(0));
             for (t, &m) in mesh.materials.iter().enumerate() {
-                if !emissive[m as usize] {
+                if !emissive[m.index()] {
                     continue;
                 }
                 let [a, b, c] = mesh
                     .triangle(t)
                     .map(|p| inst.transform.transform_point3(p).as_dvec3());
                 let area = 0.5 * (b - a).cross(c - a).length();
-                let f = PI * luminance64(self.materials[m as usize].emission) * area;
+                let f = PI * luminance64(self.materials[m].emission) * area;
                 flux += f;
                 emitters += 1;
                 if f > brightest.0 {
@@ -478,7 +478,7 @@ impl Scene {
                 return Err(SceneError::Flux {
                     place: format!(
                         "surface '{}' (material '{}')",
-                        inst.name, self.materials[brightest.1 as usize].name
+                        inst.name, self.materials[brightest.1].name
                     ),
                     flux,
                 });
@@ -500,7 +500,7 @@ impl Scene {
     fn validate_indices(&self) -> Result<(), SceneError> {
         let dangling = |place: String, message: String| Err(SceneError::Index { place, message });
         for (m, mesh) in self.meshes.iter().enumerate() {
-            let place = || self.mesh_user(m as u32);
+            let place = || self.mesh_user(MeshId::from_index(m));
             if mesh.materials.len() != mesh.triangles.len() {
                 return dangling(
                     place(),
@@ -533,7 +533,7 @@ impl Scene {
                 );
             }
             let k = self.materials.len();
-            if let Some(t) = mesh.materials.iter().position(|&i| i as usize >= k) {
+            if let Some(t) = mesh.materials.iter().position(|&i| i.index() >= k) {
                 return dangling(
                     place(),
                     format!("triangle {t} names a material past the {k} the scene has"),
@@ -541,7 +541,7 @@ impl Scene {
             }
         }
         for inst in &self.instances {
-            if inst.mesh as usize >= self.meshes.len() {
+            if inst.mesh.index() >= self.meshes.len() {
                 return dangling(
                     format!("surface '{}'", inst.name),
                     format!(
@@ -556,7 +556,7 @@ impl Scene {
             if let Some(&i) = s
                 .instances
                 .iter()
-                .find(|&&i| i as usize >= self.instances.len())
+                .find(|&&i| i.index() >= self.instances.len())
             {
                 return dangling(
                     format!("surface '{}'", s.name),
@@ -569,7 +569,7 @@ impl Scene {
         }
         for m in &self.materials {
             if let Some(t) = m.texture
-                && t as usize >= self.textures.len()
+                && t.index() >= self.textures.len()
             {
                 return dangling(
                     format!("material '{}'", m.name),

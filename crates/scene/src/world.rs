@@ -37,8 +37,8 @@ impl Scene {
         &self,
         instance: InstanceId,
     ) -> impl Iterator<Item = WorldTriangle> + '_ {
-        let inst = &self.instances[instance as usize];
-        let mesh = &self.meshes[inst.mesh as usize];
+        let inst = &self.instances[instance];
+        let mesh = &self.meshes[inst.mesh];
         mesh.materials
             .iter()
             .enumerate()
@@ -55,7 +55,8 @@ impl Scene {
 
     /// Every instance's triangles in world space, instance by instance in scene order.
     pub fn all_world_triangles(&self) -> impl Iterator<Item = (InstanceId, WorldTriangle)> + '_ {
-        (0..self.instances.len() as InstanceId)
+        (0..self.instances.len())
+            .map(InstanceId::from_index)
             .flat_map(move |i| self.world_triangles(i).map(move |t| (i, t)))
     }
 }

@@ -42,7 +42,7 @@ fn ilpsolver_cornell_box() {
     let triangles: usize = s
         .instances
         .iter()
-        .map(|i| s.meshes[i.mesh as usize].triangles.len())
+        .map(|i| s.meshes[i.mesh].triangles.len())
         .sum();
     assert_eq!(triangles, 2 + 6 * 12 + 8064 + 62 + 4 + 6 + 2);
 
@@ -53,16 +53,13 @@ fn ilpsolver_cornell_box() {
     assert_eq!(emissive[0].name, "emitter_001");
     assert_eq!(emissive[0].emission, Vec3::splat(16.0));
     for inst in &s.instances {
-        let mesh = &s.meshes[inst.mesh as usize];
-        let emits = mesh
-            .materials
-            .iter()
-            .any(|&m| s.materials[m as usize].is_emissive());
+        let mesh = &s.meshes[inst.mesh];
+        let emits = mesh.materials.iter().any(|&m| s.materials[m].is_emissive());
         assert_eq!(emits, inst.name == "Light", "{}", inst.name);
     }
     // A 2 × 2 plane scaled by 0.6223754, emitting downward (its front face is −Z).
     let light = instance(&s, "Light");
-    let mesh = &s.meshes[light.mesh as usize];
+    let mesh = &s.meshes[light.mesh];
     assert!(close(
         mesh.area(&light.transform),
         (2.0f32 * 0.6223754).powi(2),
@@ -79,25 +76,25 @@ fn ilpsolver_cornell_box() {
     for name in ["Cone", "Cube-Ceiling", "Light", "Sphere_001"] {
         assert!(s.surface(name).is_some(), "{name}");
     }
-    let cube = &s.surfaces[s.surface("Cube").unwrap() as usize];
+    let cube = &s.surfaces[s.surface("Cube").unwrap()];
     let mut covered: Vec<&str> = cube
         .instances
         .iter()
-        .map(|&i| s.instances[i as usize].name.as_str())
+        .map(|&i| s.instances[i].name.as_str())
         .collect();
     covered.sort();
     assert_eq!(covered, ["Cube-1", "Cube-2", "Cube-Ceiling"]);
     // Two primitive lists in one geometry keep their own bound materials.
-    let walls = &s.meshes[instance(&s, "Cube-1").mesh as usize];
+    let walls = &s.meshes[instance(&s, "Cube-1").mesh];
     let mut wall_materials: Vec<&str> = walls
         .materials
         .iter()
-        .map(|&m| s.materials[m as usize].name.as_str())
+        .map(|&m| s.materials[m].name.as_str())
         .collect();
     wall_materials.dedup();
     assert_eq!(wall_materials, ["red_001", "green_001"]);
-    let ceiling = &s.meshes[instance(&s, "Cube-Ceiling").mesh as usize];
-    assert_eq!(s.materials[ceiling.materials[0] as usize].name, "white_001");
+    let ceiling = &s.meshes[instance(&s, "Cube-Ceiling").mesh];
+    assert_eq!(s.materials[ceiling.materials[0]].name, "white_001");
     let cone = instance(&s, "Cone");
     assert!(close3(
         cone.transform.transform_point3(Vec3::ZERO),
@@ -133,7 +130,7 @@ fn ilpsolver_cornell_box() {
 
     // The mirror sphere: Blender's <reflective> 1 0.970 0.983 with reflectivity 1.
     let sphere = instance(&s, "Sphere_001");
-    let mirror = &s.materials[s.meshes[sphere.mesh as usize].materials[0] as usize];
+    let mirror = &s.materials[s.meshes[sphere.mesh].materials[0]];
     assert_eq!(mirror.kind_name(), "mirror");
     assert_eq!(mirror.specular, Vec3::new(1.0, 0.9701858, 0.983386));
     assert_eq!(mirror.diffuse, Vec3::ZERO);
@@ -223,40 +220,40 @@ fn units_transforms_textures_glass_holes_and_instanced_nodes() {
         Vec3::new(1.0, 0.01, 0.0),
         REL
     ));
-    let mesh = &s.meshes[tile.mesh as usize];
+    let mesh = &s.meshes[tile.mesh];
     assert_eq!(mesh.triangles.len(), 3, "a pentagon is a fan of 3");
     assert!(close(mesh.area(&tile.transform), 1.25e-4, REL));
-    let group = &s.surfaces[s.surface("Group").unwrap() as usize];
+    let group = &s.surfaces[s.surface("Group").unwrap()];
     assert_eq!(group.instances.len(), 1);
 
     // sampler2D → surface → image, with a %20 in the file name; v flipped to the
     // top-row-first texture convention: uv (0.25, 0.75) is the top-left red texel.
-    let checker = &s.materials[mesh.materials[0] as usize];
+    let checker = &s.materials[mesh.materials[0]];
     assert_eq!((checker.name.as_str(), checker.hole), ("Checker", false));
-    let texture = &s.textures[checker.texture.expect("texture") as usize];
+    let texture = &s.textures[checker.texture.expect("texture")];
     assert_eq!((texture.width, texture.height), (2, 2));
     assert_eq!(texture.sample(mesh.uvs[0]), Vec3::new(1.0, 0.0, 0.0));
     assert_eq!(texture.sample(mesh.uvs[1]), Vec3::ONE);
 
     // instance_node from library_nodes, under an unnamed node addressed by its id.
     let lamp = instance(&s, "Lamp");
-    let lamp_mesh = &s.meshes[lamp.mesh as usize];
+    let lamp_mesh = &s.meshes[lamp.mesh];
     assert!(close(lamp_mesh.area(&lamp.transform), 4e-4, REL));
     assert_eq!(
-        s.materials[lamp_mesh.materials[0] as usize].emission,
+        s.materials[lamp_mesh.materials[0]].emission,
         Vec3::new(2.0, 3.0, 4.0)
     );
-    let fixture = &s.surfaces[s.surface("Fixture").unwrap() as usize];
+    let fixture = &s.surfaces[s.surface("Fixture").unwrap()];
     assert_eq!(fixture.instances.len(), 1);
 
     // Index of refraction > 1: glass, transmission 1 − opacity (transparency 0.1 is the
     // A_ONE opacity), diffuse scaled to leave room for it.
-    let pane = &s.materials[s.meshes[instance(&s, "Pane").mesh as usize].materials[0] as usize];
+    let pane = &s.materials[s.meshes[instance(&s, "Pane").mesh].materials[0]];
     assert_eq!((pane.kind_name(), pane.ior), ("glass", 1.5));
     assert!(close(pane.transmission, 0.9, REL));
     assert!(close(pane.diffuse.x, 0.1, REL));
     // Index of refraction < 1: ILPSolver's hole.
-    let window = &s.materials[s.meshes[instance(&s, "Window").mesh as usize].materials[0] as usize];
+    let window = &s.materials[s.meshes[instance(&s, "Window").mesh].materials[0]];
     assert!(window.hole);
 
     // A placement from a triangle strip, 50 cm up.

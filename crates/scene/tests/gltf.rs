@@ -32,7 +32,7 @@ fn close(a: Vec3, b: Vec3) -> bool {
 /// World positions of an instance's vertices.
 fn world(s: &Scene, name: &str) -> Vec<Vec3> {
     let inst = s.instances.iter().find(|i| i.name == name).expect(name);
-    s.meshes[inst.mesh as usize]
+    s.meshes[inst.mesh]
         .positions
         .iter()
         .map(|&p| inst.transform.transform_point3(p))
@@ -41,10 +41,10 @@ fn world(s: &Scene, name: &str) -> Vec<Vec3> {
 
 fn surface_names(s: &Scene, name: &str) -> Vec<String> {
     let id = s.surface(name).expect(name);
-    s.surfaces[id as usize]
+    s.surfaces[id]
         .instances
         .iter()
-        .map(|&i| s.instances[i as usize].name.clone())
+        .map(|&i| s.instances[i].name.clone())
         .collect()
 }
 
@@ -92,8 +92,8 @@ fn strips_fans_lines_and_unindexed_primitives() {
         // The unit quad as two triangles; the strip's LINES primitive is skipped.
         assert_eq!(s.surface_triangles(id), 2, "{name}");
         assert!((s.surface_area(id) - 1.0).abs() < EPS, "{name}");
-        let inst = &s.instances[s.surfaces[id as usize].instances[0] as usize];
-        let mesh = &s.meshes[inst.mesh as usize];
+        let inst = &s.instances[s.surfaces[id].instances[0]];
+        let mesh = &s.meshes[inst.mesh];
         for t in 0..mesh.triangles.len() {
             let [a, b, c] = mesh.triangle(t);
             assert!(
@@ -112,7 +112,7 @@ fn mirrored_node_keeps_its_front_face() {
     // the quad mirrored in x still faces +Z; the scene mesh is rewound to say so.
     for name in ["Mirrored", "Strip"] {
         let inst = s.instances.iter().find(|i| i.name == name).unwrap();
-        let mesh = &s.meshes[inst.mesh as usize];
+        let mesh = &s.meshes[inst.mesh];
         for t in 0..mesh.triangles.len() {
             let [a, b, c] = mesh.triangle(t).map(|p| inst.transform.transform_point3(p));
             assert!((b - a).cross(c - a).z > 0.0, "{name} triangle {t}");
@@ -206,7 +206,7 @@ fn materials_map_to_photon_tracing() {
             .iter()
             .find(|i| i.name == n)
             .unwrap_or_else(|| panic!("{n}"));
-        &s.materials[s.meshes[inst.mesh as usize].materials[0] as usize]
+        &s.materials[s.meshes[inst.mesh].materials[0]]
     };
     let lamp = m("Lamp");
     // emissiveFactor (1, 0.5, 0.25) × emissiveStrength 10, cd/m².
@@ -247,10 +247,10 @@ fn materials_map_to_photon_tracing() {
 fn texture_is_decoded_to_linear() {
     let s = scene("materials.gltf");
     let inst = s.instances.iter().find(|i| i.name == "Checker").unwrap();
-    let mesh = &s.meshes[inst.mesh as usize];
-    let mat = &s.materials[mesh.materials[0] as usize];
+    let mesh = &s.meshes[inst.mesh];
+    let mat = &s.materials[mesh.materials[0]];
     assert_eq!(mat.diffuse, Vec3::new(1.0, 0.5, 1.0));
-    let tex = &s.textures[mat.texture.expect("texture") as usize];
+    let tex = &s.textures[mat.texture.expect("texture")];
     assert_eq!((tex.width, tex.height), (2, 2));
     // sRGB 128 → ((128/255 + 0.055)/1.055)^2.4 (IEC 61966-2-1).
     let grey = ((128.0f32 / 255.0 + 0.055) / 1.055).powf(2.4);
@@ -268,9 +268,9 @@ fn texture_is_decoded_to_linear() {
         .iter()
         .find(|i| i.name == "CheckerSet1")
         .unwrap();
-    let set1 = &s.meshes[set1.mesh as usize];
+    let set1 = &s.meshes[set1.mesh];
     assert_eq!(set1.uvs, mesh.uvs);
-    assert_eq!(s.materials[set1.materials[0] as usize].texture, mat.texture);
+    assert_eq!(s.materials[set1.materials[0]].texture, mat.texture);
     assert_eq!(s.textures.len(), 1);
 }
 
@@ -279,8 +279,8 @@ fn room_from_peers() {
     let s = scene("room_area.gltf");
     let floor = s.surface("Floor").unwrap();
     assert!((s.surface_area(floor) - 6.0).abs() < EPS);
-    let lamp = &s.instances[s.surfaces[s.surface("Lamp").unwrap() as usize].instances[0] as usize];
-    let mat = &s.materials[s.meshes[lamp.mesh as usize].materials[0] as usize];
+    let lamp = &s.instances[s.surfaces[s.surface("Lamp").unwrap()].instances[0]];
+    let mat = &s.materials[s.meshes[lamp.mesh].materials[0]];
     assert_eq!(mat.emission, Vec3::splat(127.324));
 }
 

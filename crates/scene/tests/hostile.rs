@@ -3,7 +3,7 @@
 //! must now be refused with an error naming the file, the place and what was expected,
 //! or load correctly.
 
-use invlight_scene::{Light, Mat4};
+use invlight_scene::{Light, Mat4, MeshId};
 use invlight_scene::{
     LightKind, LoadError, LoadOptions, MAX_COORDINATE, MAX_FLUX, Material, Mesh, Scene, SceneError,
     Vec3, load,
@@ -173,7 +173,7 @@ fn dangling_indices_are_refused() {
     assert_eq!(e.place(), "surface 'Broken'");
     assert!(e.to_string().contains("triangle 1"), "{e}");
     let mut scene = Scene::default();
-    scene.add_instance("Nothing", 3, Mat4::IDENTITY);
+    scene.add_instance("Nothing", MeshId::from_index(3), Mat4::IDENTITY);
     assert!(matches!(scene.validate(), Err(SceneError::Index { .. })));
 }
 

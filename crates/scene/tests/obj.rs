@@ -18,7 +18,7 @@ fn scene(path: &Path) -> Scene {
 fn triangles(s: &Scene) -> usize {
     s.instances
         .iter()
-        .map(|i| s.meshes[i.mesh as usize].triangles.len())
+        .map(|i| s.meshes[i.mesh].triangles.len())
         .sum()
 }
 
@@ -65,8 +65,8 @@ fn mcguire_cornell_box_light_from_ke() {
     assert_eq!(emitters[0].emission, Vec3::new(17.0, 12.0, 4.0));
     let light = s.surface("light").unwrap();
     assert!((s.surface_area(light) - 0.47 * 0.38).abs() <= 1e-6);
-    let inst = &s.instances[s.surfaces[light as usize].instances[0] as usize];
-    let mesh = &s.meshes[inst.mesh as usize];
+    let inst = &s.instances[s.surfaces[light].instances[0]];
+    let mesh = &s.meshes[inst.mesh];
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.triangle(t);
         assert_eq!((b - a).cross(c - a).normalize(), Vec3::NEG_Y);
@@ -119,8 +119,8 @@ fn names_index_forms_and_materials() {
         [4, 3, 4, 1, 3]
     );
     let kind = |inst: usize, t: usize| {
-        let mesh = &s.meshes[s.instances[inst].mesh as usize];
-        &s.materials[mesh.materials[t] as usize]
+        let mesh = &s.meshes[s.instances[inst].mesh];
+        &s.materials[mesh.materials[t]]
     };
     // illum 3: Ks is a mirror; the later `usemtl Unknown` gets grey.
     assert_eq!(kind(0, 0).kind_name(), "mirror");
@@ -135,7 +135,7 @@ fn names_index_forms_and_materials() {
         (glass.kind_name(), glass.ior, glass.transmission),
         ("glass", 1.45, 1.0)
     );
-    let leg = &s.meshes[s.instances[1].mesh as usize];
+    let leg = &s.meshes[s.instances[1].mesh];
     assert_eq!(
         leg.triangle(0),
         [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0)]
@@ -143,13 +143,13 @@ fn names_index_forms_and_materials() {
     // Ke makes the lamp an emitter; map_Kd after its options, with a space in the name.
     let lamp = kind(2, 0);
     assert_eq!(lamp.emission, Vec3::splat(10.0));
-    let texture = &s.textures[lamp.texture.expect("texture") as usize];
+    let texture = &s.textures[lamp.texture.expect("texture")];
     assert_eq!((texture.width, texture.height), (2, 2));
     // The quad's texture coordinates, v flipped: vt 0.25 0.25 is in the bottom-left
     // (blue) texel.
-    let top = &s.meshes[s.instances[0].mesh as usize];
+    let top = &s.meshes[s.instances[0].mesh];
     assert_eq!(texture.sample(top.uvs[0]), Vec3::new(0.0, 0.0, 1.0));
-    assert!(s.meshes[s.instances[2].mesh as usize].uvs.is_empty());
+    assert!(s.meshes[s.instances[2].mesh].uvs.is_empty());
 }
 
 #[test]

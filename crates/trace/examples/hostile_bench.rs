@@ -140,7 +140,7 @@ fn parts() {
         let triangles: usize = scene
             .instances
             .iter()
-            .map(|i| scene.meshes[i.mesh as usize].triangles.len())
+            .map(|i| scene.meshes[i.mesh].triangles.len())
             .sum();
         println!(
             "{},{load_s:.3},{new_s:.3},{movable_s:.3},{triangles},{}",

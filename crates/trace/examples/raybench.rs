@@ -18,7 +18,7 @@ mod common;
 
 use common::Rng;
 use glam::{Mat4, Vec3, Vec3A};
-use invlight_scene::{Material, Mesh, Scene};
+use invlight_scene::{Material, MaterialId, Mesh, Scene};
 use invlight_trace::{Accel, Ray};
 use obvhs::{
     BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris, ray::RayHit, triangle::Triangle,
@@ -72,7 +72,8 @@ fn read_obj(path: &str) -> Result<Vec<(String, Mesh)>, String> {
                 let mesh = &mut groups.last_mut().expect("a default group").1;
                 for k in 1..idx.len().saturating_sub(1) {
                     mesh.triangles.push([idx[0], idx[k], idx[k + 1]]);
-                    mesh.materials.push(0);
+                    // The one material `scene_of` adds.
+                    mesh.materials.push(MaterialId::from_index(0));
                 }
             }
             _ => {}
@@ -114,15 +115,15 @@ fn scene_of(groups: Vec<(String, Mesh)>) -> Scene {
 /// Every traced (non-hole) triangle of `scene` in world space, as one mesh and instance.
 fn flatten(scene: &Scene) -> Scene {
     let mut flat = Scene::default();
-    flat.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let grey = flat.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
     let mut all = Mesh::default();
     for inst in &scene.instances {
-        let mesh = &scene.meshes[inst.mesh as usize];
+        let mesh = &scene.meshes[inst.mesh];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let hole = mesh
                 .materials
                 .get(t)
-                .and_then(|&m| scene.materials.get(m as usize))
+                .and_then(|&m| scene.materials.get(m.index()))
                 .is_some_and(|m| m.hole);
             if hole {
                 continue;
@@ -133,7 +134,7 @@ fn flatten(scene: &Scene) -> Scene {
                     .push(inst.transform.transform_point3(mesh.positions[i as usize]));
             }
             all.triangles.push([base, base + 1, base + 2]);
-            all.materials.push(0);
+            all.materials.push(grey);
         }
     }
     let id = flat.add_mesh(all);

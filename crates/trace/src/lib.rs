@@ -10,6 +10,11 @@
 //! - [`Accel::with_movable`] bakes every instance the caller will not move into one
 //!   world-space BVH and keeps only the movable ones as instances: many overlapping
 //!   static instances otherwise cost a third of the ray rate (BENCHMARKS.md, "Ray casting").
+//! - [`Accel::with_preset`] chooses the builder's effort among obvhs's presets
+//!   ([`BuildPreset`]); the others build obvhs's medium preset, and traversal gives the
+//!   same hits on every tree.
+//! - [`Accel::interaction`] reads the hit surface from the scene's own meshes, which the
+//!   structure does not copy.
 //! - Every triangle blocks from both sides; [`Interaction::normal`] still tells the front
 //!   (counter-clockwise) side, which emitters emit from.
 //! - Holes (thesis §4.1, fig. 4.2): instances of hole materials are not traced; each
@@ -32,7 +37,7 @@
 //! let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::NEG_Z);
 //! let hit = accel.intersect(&ray).unwrap();
 //! assert!((hit.t - 3.0).abs() < 1e-6);
-//! let surface = accel.interaction(&ray, &hit);
+//! let surface = accel.interaction(&scene, &ray, &hit);
 //! assert_eq!(surface.normal, Vec3::Z);
 //! assert!(!accel.occluded(&surface.spawn(Vec3::Z)));
 //! ```
@@ -44,6 +49,6 @@ mod ray;
 mod triangle;
 mod wide;
 
-pub use accel::{Accel, AccelStats, BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
+pub use accel::{Accel, AccelStats, BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE, BuildPreset};
 pub use holes::HOLE_THICKNESS;
 pub use ray::{Hit, Interaction, OFFSET_SCALE, Ray, SHADOW_EPSILON, offset_point};

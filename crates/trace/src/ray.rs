@@ -154,9 +154,9 @@ mod tests {
         let it = Interaction {
             point: Vec3::ZERO,
             normal: Vec3::Z,
-            material: 0,
+            material: MaterialId::from_index(0),
             uv: Vec2::ZERO,
-            instance: 0,
+            instance: InstanceId::from_index(0),
             triangle: 0,
         };
         let r = it.spawn_to(Vec3::new(0.0, 0.0, -2.0));

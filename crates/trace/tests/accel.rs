@@ -1,15 +1,19 @@
-//! The acceleration structure against brute force, and the geometric promises: TLAS
-//! updates, holes, watertight shared edges, self-intersection-free spawned rays.
+//! The acceleration structure against brute force, on the trees of every build preset
+//! (as obvhs's own tests run over its `BUILD_PARAM_SET`), and the geometric promises:
+//! TLAS updates, holes, watertight shared edges, self-intersection-free spawned rays.
 
 mod common;
 
 use common::Rng;
 use glam::{Mat4, Quat, Vec2, Vec3};
-use invlight_scene::{Material, Mesh, Scene};
-use invlight_trace::{Accel, Ray};
+use invlight_scene::{InstanceId, Material, MaterialId, Mesh, MeshId, Scene};
+use invlight_trace::{Accel, BuildPreset, Ray};
 
-/// A scene of random triangles: 3 meshes, each placed twice with random rotations,
-/// non-uniform scales (one mirrored) and translations.
+/// A scene of random triangles: 3 meshes of small ones, each placed twice with random
+/// rotations, non-uniform scales (one mirrored) and translations, and a mesh placed as
+/// it is of 100 small ones and 8 slivers across the whole scene (what the slow presets'
+/// pre-splits cut into several boxes: they split triangles much larger than their
+/// tree's mean).
 fn random_scene(rng: &mut Rng) -> Scene {
     let mut scene = Scene::default();
     let mat = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
@@ -43,17 +47,33 @@ fn random_scene(rng: &mut Rng) -> Scene {
             scene.add_instance(&format!("m{m}i{k}"), id, t);
         }
     }
+    let mut mixed = Mesh::default();
+    for t in 0..108u32 {
+        let c = rng.in_box(Vec3::splat(-2.0), Vec3::splat(2.0));
+        let corners = if t < 100 {
+            [(); 3].map(|_| c + 0.3 * rng.in_box(Vec3::splat(-1.0), Vec3::splat(1.0)))
+        } else {
+            // A sliver 5 m long, whose box is mostly empty.
+            let d = 2.5 * rng.direction();
+            [c - d, c + d, c + 0.2 * rng.direction()]
+        };
+        mixed.positions.extend(corners);
+        mixed.triangles.push([3 * t, 3 * t + 1, 3 * t + 2]);
+        mixed.materials.push(mat);
+    }
+    let id = scene.add_mesh(mixed);
+    scene.add_instance("mixed", id, Mat4::IDENTITY);
     scene
 }
 
 /// All world-space hits of `ray`, in f64 (Möller–Trumbore): (t, instance, triangle,
 /// smallest barycentric), sorted by t.
-fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, u32, u32, f64)> {
+fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, InstanceId, u32, f64)> {
     let o = ray.origin.as_dvec3();
     let d = ray.dir.as_dvec3();
     let mut hits = Vec::new();
     for (i, inst) in scene.instances.iter().enumerate() {
-        let mesh = &scene.meshes[inst.mesh as usize];
+        let mesh = &scene.meshes[inst.mesh];
         let m = inst.transform.as_dmat4();
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|k| m.transform_point3(mesh.positions[k as usize].as_dvec3()));
@@ -70,7 +90,7 @@ fn brute_force(scene: &Scene, ray: &Ray) -> Vec<(f64, u32, u32, f64)> {
             let dist = e2.dot(q) / det;
             let margin = u.min(v).min(1.0 - u - v);
             if margin >= -1e-9 && dist > 0.0 && dist < ray.t_max as f64 {
-                hits.push((dist, i as u32, t as u32, margin));
+                hits.push((dist, InstanceId::from_index(i), t as u32, margin));
             }
         }
     }
@@ -93,8 +113,22 @@ fn random_ray(rng: &mut Rng, bounded: bool) -> Ray {
     r
 }
 
-/// Compares `accel` with brute force on `n` random rays (half of them bounded).
-fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usize) {
+/// Whether `preset` cuts large triangles' boxes, so that a triangle may sit in several
+/// leaves and count more than once in [`invlight_trace::AccelStats::triangles`].
+fn splits(preset: BuildPreset) -> bool {
+    matches!(preset, BuildPreset::Slow | BuildPreset::VerySlow)
+}
+
+/// Compares `accel` (built with `preset`) with brute force on `n` random rays (half of
+/// them bounded): the closest hit's instance, triangle and distance, the point its
+/// barycentrics give, and the any-hit answer.
+fn check_against_brute_force(
+    accel: &Accel,
+    preset: BuildPreset,
+    scene: &Scene,
+    rng: &mut Rng,
+    n: usize,
+) {
     let (mut compared, mut hits) = (0, 0);
     for i in 0..n {
         let ray = random_ray(rng, i % 2 == 1);
@@ -117,66 +151,87 @@ fn check_against_brute_force(accel: &Accel, scene: &Scene, rng: &mut Rng, n: usi
         assert_eq!(
             accel.occluded(&ray),
             !reference.is_empty(),
-            "ray {i}: {ray:?}"
+            "{preset:?}, ray {i}: {ray:?}"
         );
         match (got, reference.first()) {
             (None, None) => {}
             (Some(h), Some(&(t, inst, tri, _))) => {
                 hits += 1;
-                assert_eq!((h.instance, h.triangle), (inst, tri), "ray {i}");
+                assert_eq!((h.instance, h.triangle), (inst, tri), "{preset:?}, ray {i}");
                 assert!(
                     (h.t as f64 - t).abs() <= T_TOL * t.max(1.0),
-                    "ray {i}: {} vs {t}",
+                    "{preset:?}, ray {i}: {} vs {t}",
                     h.t
                 );
                 // The barycentrics reproduce the hit point.
-                let it = accel.interaction(&ray, &h);
+                let it = accel.interaction(scene, &ray, &h);
                 let p = ray.at(h.t);
                 assert!(
                     (it.point - p).length() < 1e-4,
-                    "ray {i}: {:?} vs {p:?}",
+                    "{preset:?}, ray {i}: {:?} vs {p:?}",
                     it.point
                 );
             }
-            (g, r) => panic!("ray {i}: accel {g:?}, brute force {r:?}"),
+            (g, r) => panic!("{preset:?}, ray {i}: accel {g:?}, brute force {r:?}"),
         }
     }
     // Ambiguous rays are rare (~1 %), and about an eighth of the rays hit.
-    assert!(compared * 100 > n * 97, "{compared} rays compared");
-    assert!(hits * 10 > n, "{hits} hits compared");
+    assert!(
+        compared * 100 > n * 97,
+        "{preset:?}: {compared} rays compared"
+    );
+    assert!(hits * 10 > n, "{preset:?}: {hits} hits compared");
 }
 
 #[test]
 fn closest_and_any_hit_match_brute_force() {
-    let mut rng = Rng::new(7);
-    let scene = random_scene(&mut rng);
-    let accel = Accel::new(&scene);
-    assert_eq!(accel.stats().instances, 6);
-    assert_eq!(accel.stats().triangles, 341);
-    check_against_brute_force(&accel, &scene, &mut rng, 3000);
+    for preset in BuildPreset::ALL {
+        let mut rng = Rng::new(7);
+        let scene = random_scene(&mut rng);
+        let accel = Accel::with_preset(&scene, None, preset);
+        assert_eq!(accel.stats().instances, 7);
+        let triangles = accel.stats().triangles;
+        if splits(preset) {
+            assert!(triangles > 449, "{preset:?} split no triangle: {triangles}");
+        } else {
+            assert_eq!(triangles, 449, "{preset:?}");
+        }
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 3000);
+    }
+    // The default constructor builds the default preset's tree.
+    let scene = random_scene(&mut Rng::new(7));
+    let medium = Accel::with_preset(&scene, None, BuildPreset::default());
+    assert_eq!(
+        Accel::new(&scene).stats().blas_nodes,
+        medium.stats().blas_nodes
+    );
 }
 
 #[test]
 fn merged_static_instances_match_brute_force_and_move() {
-    let mut rng = Rng::new(8);
-    let mut scene = random_scene(&mut rng);
-    // Instances 1 and 4 separate, the other four baked into one tree.
-    let mut accel = Accel::with_movable(&scene, &[1, 4]);
-    assert_eq!(accel.stats().instances, 3);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+    for preset in BuildPreset::ALL {
+        let mut rng = Rng::new(8);
+        let mut scene = random_scene(&mut rng);
+        // Instances 1 and 4 separate, the other five baked into one tree.
+        let movable = [1, 4].map(InstanceId::from_index);
+        let mut accel = Accel::with_preset(&scene, Some(&movable), preset);
+        assert_eq!(accel.stats().instances, 3);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
 
-    // Moving a movable instance rebuilds the top level only.
-    let nodes = accel.stats().blas_nodes;
-    scene.instances[4].transform =
-        Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
-    accel.update_instances(&scene);
-    assert_eq!(accel.stats().blas_nodes, nodes);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+        // Moving a movable instance rebuilds the top level only.
+        let nodes = accel.stats().blas_nodes;
+        scene.instances[4].transform =
+            Mat4::from_translation(Vec3::new(0.3, -0.2, 0.5)) * scene.instances[4].transform;
+        accel.update_instances(&scene);
+        assert_eq!(accel.stats().blas_nodes, nodes);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
 
-    // Moving a baked one is still traced right (by a full rebuild).
-    scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
-    accel.update_instances(&scene);
-    check_against_brute_force(&accel, &scene, &mut rng, 1000);
+        // Moving a baked one is still traced right (by a full rebuild, with the same
+        // preset).
+        scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
+        accel.update_instances(&scene);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
+    }
 }
 
 fn quad_scene(corners: [Vec3; 4], transform: Mat4) -> Scene {
@@ -401,7 +456,7 @@ fn spawned_rays_never_hit_their_own_surface() {
             surface = None;
             continue;
         };
-        let it = accel.interaction(&ray, &hit);
+        let it = accel.interaction(&scene, &ray, &hit);
         if let Some(prev) = surface {
             // Another face: the normals differ (faces of a box are not coplanar).
             assert!(it.normal.dot(prev.normal) < 0.99, "self-hit at {i}");
@@ -431,7 +486,7 @@ fn interaction_reports_front_normal_material_and_uv() {
     // Hit from behind: the normal still names the front.
     let ray = Ray::new(Vec3::new(0.0, 0.25, -0.75), Vec3::X);
     let hit = accel.intersect(&ray).unwrap();
-    let it = accel.interaction(&ray, &hit);
+    let it = accel.interaction(&scene, &ray, &hit);
     assert!((it.normal - Vec3::X).length() < 1e-6, "{:?}", it.normal);
     assert_eq!(it.material, red);
     let object = t.inverse().transform_point3(it.point);
@@ -455,7 +510,7 @@ fn degenerate_input_does_not_panic() {
         Mat4::ZERO,
     );
     scene.meshes[0].triangles.push([0, 1, 99]);
-    scene.meshes[0].materials.push(0);
+    scene.meshes[0].materials.push(MaterialId::from_index(0));
     let accel = Accel::new(&scene);
     assert_eq!(accel.stats().instances, 0, "a zero transform is not traced");
     let nan = Ray::new(Vec3::NAN, Vec3::X);
@@ -496,10 +551,13 @@ fn closest_hit_is_the_nearer_of_stacked_planes() {
     let accel = Accel::new(&scene);
     let up = Ray::new(Vec3::new(0.3, 0.6, 2.5), Vec3::Z);
     let h = accel.intersect(&up).unwrap();
-    assert_eq!(h.instance, 3);
+    assert_eq!(h.instance, InstanceId::from_index(3));
     assert!((h.t - 0.5).abs() < 1e-6);
     let down = Ray::new(Vec3::new(0.3, 0.6, 2.5), Vec3::NEG_Z);
-    assert_eq!(accel.intersect(&down).unwrap().instance, 2);
+    assert_eq!(
+        accel.intersect(&down).unwrap().instance,
+        InstanceId::from_index(2)
+    );
     let short = Ray { t_max: 0.4, ..up };
     assert!(!accel.occluded(&short) && accel.intersect(&short).is_none());
 }
@@ -513,7 +571,11 @@ fn zero_direction_components_of_either_sign() {
         [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
         Mat4::IDENTITY,
     );
-    scene.add_instance("Copy", 0, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)));
+    scene.add_instance(
+        "Copy",
+        MeshId::from_index(0),
+        Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)),
+    );
     let accel = Accel::new(&scene);
     for (sx, sy) in [(0.0f32, 0.0f32), (-0.0, 0.0), (0.0, -0.0), (-0.0, -0.0)] {
         for (x, y) in [(0.5, 0.5), (0.1, 0.9), (3.5, 0.25), (3.99, 0.01)] {
@@ -550,7 +612,7 @@ fn mirrored_instance_front_is_the_world_winding() {
     for accel in [Accel::new(&scene), Accel::with_movable(&scene, &[])] {
         let ray = Ray::new(Vec3::new(-0.3, 0.4, 2.0), -Vec3::Z);
         let hit = accel.intersect(&ray).expect("the quad is below");
-        let at = accel.interaction(&ray, &hit);
+        let at = accel.interaction(&scene, &ray, &hit);
         assert!(
             (at.normal - front).length() < 1e-6,
             "{} vs {front}",
@@ -567,7 +629,7 @@ fn mirrored_instance_front_is_the_world_winding() {
 fn r19_boxes_shared_by_many_triangles_match_brute_force() {
     let mut rng = Rng::new(19);
     let mut scene = random_scene(&mut rng);
-    let mat = scene.materials.len() as u32 - 1;
+    let mat = MaterialId::from_index(scene.materials.len() - 1);
     let mut mesh = Mesh::default();
     for t in 0..64u32 {
         let inner = rng.in_box(Vec3::splat(-0.5), Vec3::splat(0.5));
@@ -582,10 +644,12 @@ fn r19_boxes_shared_by_many_triangles_match_brute_force() {
         id,
         Mat4::from_translation(Vec3::new(0.5, 0.0, 0.0)),
     );
-    let accel = Accel::new(&scene);
-    check_against_brute_force(&accel, &scene, &mut rng, 4000);
-    let merged = Accel::with_movable(&scene, &[]);
-    check_against_brute_force(&merged, &scene, &mut rng, 2000);
+    for preset in BuildPreset::ALL {
+        let accel = Accel::with_preset(&scene, None, preset);
+        check_against_brute_force(&accel, preset, &scene, &mut rng, 4000);
+        let merged = Accel::with_preset(&scene, Some(&[]), preset);
+        check_against_brute_force(&merged, preset, &scene, &mut rng, 2000);
+    }
 
     let mut copies = Mesh::default();
     for t in 0..200u32 {
@@ -599,10 +663,18 @@ fn r19_boxes_shared_by_many_triangles_match_brute_force() {
     }
     let id = scene.add_mesh(copies);
     scene.add_instance("copies", id, Mat4::IDENTITY);
-    let accel = Accel::new(&scene);
-    assert_eq!(accel.stats().triangles, 1 + 40 + 300 + 64 + 200);
-    let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
-    let hit = accel.intersect(&ray).unwrap();
-    assert_eq!(hit.instance, scene.instances.len() as u32 - 1);
-    assert!((hit.t - 3.0).abs() < 1e-6, "{}", hit.t);
+    for preset in BuildPreset::ALL {
+        let accel = Accel::with_preset(&scene, None, preset);
+        if !splits(preset) {
+            assert_eq!(accel.stats().triangles, 1 + 40 + 300 + 108 + 64 + 200);
+        }
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
+        let hit = accel.intersect(&ray).unwrap();
+        assert_eq!(
+            hit.instance,
+            InstanceId::from_index(scene.instances.len() - 1),
+            "{preset:?}"
+        );
+        assert!((hit.t - 3.0).abs() < 1e-6, "{preset:?}: {}", hit.t);
+    }
 }

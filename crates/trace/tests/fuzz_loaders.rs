@@ -74,7 +74,7 @@ fn load_and_trace(path: &Path) -> bool {
                 (hi - origin + glam::Vec3::splat(t)).normalize_or(glam::Vec3::X),
             );
             if let Some(hit) = accel.intersect(&ray) {
-                let it = accel.interaction(&ray, &hit);
+                let it = accel.interaction(&scene, &ray, &hit);
                 assert!(it.point.is_finite() && it.normal.is_finite(), "{it:?}");
             }
             accel.occluded(&ray);

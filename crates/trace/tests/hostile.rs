@@ -3,7 +3,7 @@
 //! their number, and keeps instances instanced where flattening them would not fit.
 
 use glam::{Mat4, Vec3};
-use invlight_scene::{MAX_COORDINATE, Material, Mesh, Scene};
+use invlight_scene::{InstanceId, MAX_COORDINATE, Material, Mesh, Scene};
 use invlight_trace::{Accel, Ray};
 use std::time::Instant;
 
@@ -59,6 +59,7 @@ fn r19_huge_coordinates_do_not_panic() {
             assert!(accel.intersect(&down_at(0.2, 0.2)).is_some());
         }
     }
+    let first = InstanceId::from_index(0);
     for m in [
         Mat4::from_translation(Vec3::new(3e38, 0.0, 0.0)),
         Mat4::from_scale(Vec3::splat(3.4e38)),
@@ -67,9 +68,12 @@ fn r19_huge_coordinates_do_not_panic() {
         let scene = scene_of(&[floor_triangle()], &[Mat4::IDENTITY, m]);
         assert!(scene.validate().is_err());
         let accel = Accel::new(&scene);
-        assert_eq!(accel.intersect(&down_at(0.2, 0.2)).unwrap().instance, 0);
+        assert_eq!(accel.intersect(&down_at(0.2, 0.2)).unwrap().instance, first);
         let merged = Accel::with_movable(&scene, &[]);
-        assert_eq!(merged.intersect(&down_at(0.2, 0.2)).unwrap().instance, 0);
+        assert_eq!(
+            merged.intersect(&down_at(0.2, 0.2)).unwrap().instance,
+            first
+        );
     }
     // Just inside the range builds and traces.
     let m = MAX_COORDINATE;
@@ -139,7 +143,7 @@ fn r19_many_instances_stay_instanced() {
     let hit = accel
         .intersect(&down_at(2.0 * 7.0 + 0.1, 2.0 * 3.0 + 0.01))
         .unwrap();
-    assert_eq!(hit.instance, 3 * 250 + 7);
+    assert_eq!(hit.instance, InstanceId::from_index(3 * 250 + 7));
     // Few instances: baked, one entry.
     let scene = scene_of(&tris, &places[..10]);
     let baked = Accel::with_movable(&scene, &[]);

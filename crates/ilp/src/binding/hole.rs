@@ -48,12 +48,12 @@ pub fn check_size(
 /// Gives a surface's instances a copy of their mesh whose every triangle is a hole.
 pub fn make_hole(scene: &mut Scene, s: SurfaceId, id: &str) {
     let mut hole = None;
-    for i in scene.surfaces[s as usize].instances.clone() {
-        let mesh = scene.instances[i as usize].mesh as usize;
+    for i in scene.surfaces[s].instances.clone() {
+        let mesh = scene.instances[i].mesh;
         if scene.meshes[mesh]
             .materials
             .iter()
-            .all(|&m| scene.materials[m as usize].hole)
+            .all(|&m| scene.materials[m].hole)
         {
             continue;
         }
@@ -61,6 +61,6 @@ pub fn make_hole(scene: &mut Scene, s: SurfaceId, id: &str) {
             .get_or_insert_with(|| scene.add_material(Material::hole(&format!("{id} (hole)"))));
         let mut copy = scene.meshes[mesh].clone();
         copy.materials.iter_mut().for_each(|m| *m = h);
-        scene.instances[i as usize].mesh = scene.add_mesh(copy);
+        scene.instances[i].mesh = scene.add_mesh(copy);
     }
 }

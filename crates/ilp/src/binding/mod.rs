@@ -18,7 +18,7 @@ use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat4, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
 use invlight_scene::{
-    Diagnostic, InstanceId, LightKind, MaterialId, Scene, SurfaceId, known_names,
+    Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
 use placement::{find_parallelogram, instance_bounds, onto_plane};
 use power::Dimmed;
@@ -52,7 +52,7 @@ pub enum VariableValue {
 #[derive(Debug, Clone)]
 struct Moved {
     instances: Vec<(InstanceId, Mat4)>,
-    lights: Vec<(usize, Vec3)>,
+    lights: Vec<(LightId, Vec3)>,
     /// The point P stands for as authored: vertex A (ILPSolver's rule) or the anchor.
     reference: DVec3,
     /// The anchor as authored.
@@ -67,7 +67,7 @@ enum Target {
     /// Instances and point/spot lights translated by P − reference.
     Move(Moved),
     /// A directional light's direction.
-    Sun { light: usize },
+    Sun { light: LightId },
     /// Materials' K_d.
     Colour {
         materials: Vec<MaterialId>,
@@ -147,7 +147,7 @@ impl Binding {
                         })?;
                         if !surface_materials(scene, s)
                             .iter()
-                            .any(|&m| scene.materials[m as usize].is_emissive())
+                            .any(|&m| scene.materials[m].is_emissive())
                         {
                             warnings.push(err(format!(
                                 "'{}' emits no light; moving it only moves its shadow",
@@ -209,7 +209,7 @@ impl Binding {
                     // base-colour texture would multiply it into another one, and the
                     // variable would no longer be the colour the file names.
                     for &m in &materials {
-                        let material = &mut scene.materials[m as usize];
+                        let material = &mut scene.materials[m];
                         if material.texture.take().is_some() {
                             warnings.push(err(format!(
                                 "material '{}' has a base-colour texture; the colour variable '{}' replaces it by the uniform colour HSV({hue}°, {saturation}, V)",
@@ -310,7 +310,7 @@ impl Binding {
         for (s, &k) in of.iter().enumerate() {
             let s = s as u32;
             let daylight = match emitters.origin(s) {
-                SourceOrigin::Light(l) => power::is_daylight(&scene.lights[l as usize].kind),
+                SourceOrigin::Light(l) => power::is_daylight(&scene.lights[l].kind),
                 SourceOrigin::Instance(_) => false,
             };
             if !daylight {
@@ -551,7 +551,7 @@ impl Binding {
                     let shift = Mat4::from_translation(delta);
                     for &(inst, original) in &m.instances {
                         let t = shift * original;
-                        let slot = &mut scene.instances[inst as usize].transform;
+                        let slot = &mut scene.instances[inst].transform;
                         if *slot != t {
                             *slot = t;
                             moved = true;
@@ -571,7 +571,7 @@ impl Binding {
                 }
                 (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
                     for &m in materials {
-                        scene.materials[m as usize].diffuse =
+                        scene.materials[m].diffuse =
                             Vec3::new(rgb[0] as f32, rgb[1] as f32, rgb[2] as f32);
                     }
                 }
@@ -606,8 +606,8 @@ fn find_surface(
 /// The distinct materials of a surface's triangles, in order.
 fn surface_materials(scene: &Scene, s: SurfaceId) -> Vec<MaterialId> {
     let mut out = Vec::new();
-    for &i in &scene.surfaces[s as usize].instances {
-        for &m in &scene.meshes[scene.instances[i as usize].mesh as usize].materials {
+    for &i in &scene.surfaces[s].instances {
+        for &m in &scene.meshes[scene.instances[i].mesh].materials {
             if !out.contains(&m) {
                 out.push(m);
             }
@@ -624,7 +624,7 @@ fn colour_materials(scene: &Scene, id: &str) -> Option<Vec<MaterialId>> {
         .iter()
         .enumerate()
         .filter(|(_, m)| m.name == id)
-        .map(|(i, _)| i as MaterialId)
+        .map(|(i, _)| MaterialId::from_index(i))
         .collect();
     if materials.is_empty() {
         materials = scene
@@ -643,21 +643,21 @@ fn placed(
     spec: &VariableSpec,
     p: &PlacementSpec,
     surface: Option<SurfaceId>,
-    light: Option<usize>,
+    light: Option<LightId>,
     err: &dyn Fn(String) -> Diagnostic,
     warnings: &mut Vec<Diagnostic>,
 ) -> Result<(Domain, Target), Diagnostic> {
     let rect = find_parallelogram(scene, &p.surface, p.vertices, err)?;
     let instances: Vec<(InstanceId, Mat4)> = surface
         .map(|s| {
-            scene.surfaces[s as usize]
+            scene.surfaces[s]
                 .instances
                 .iter()
-                .map(|&i| (i, scene.instances[i as usize].transform))
+                .map(|&i| (i, scene.instances[i].transform))
                 .collect()
         })
         .unwrap_or_default();
-    let lights: Vec<(usize, Vec3)> = light
+    let lights: Vec<(LightId, Vec3)> = light
         .and_then(|l| scene.lights[l].kind.position().map(|p| (l, p)))
         .into_iter()
         .collect();
@@ -723,13 +723,16 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         if let Target::Move(m) = t {
             m.instances
                 .iter()
-                .for_each(|&(i, _)| moved_instances[i as usize] = true);
-            m.lights.iter().for_each(|&(l, _)| moved_lights[l] = true);
+                .for_each(|&(i, _)| moved_instances[i.index()] = true);
+            m.lights
+                .iter()
+                .for_each(|&(l, _)| moved_lights[l.index()] = true);
             add(m.bounds);
         }
     }
-    let fixed: Vec<InstanceId> = (0..scene.instances.len() as InstanceId)
-        .filter(|&i| !moved_instances[i as usize])
+    let fixed: Vec<InstanceId> = (0..scene.instances.len())
+        .map(InstanceId::from_index)
+        .filter(|&i| !moved_instances[i.index()])
         .collect();
     if let Some(b) = instance_bounds(scene, &fixed) {
         add(b);
@@ -761,7 +764,7 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
         (Domain::Segment { min, max }, Target::Colour { materials, .. }) => {
             let v = materials
                 .first()
-                .map(|&m| scene.materials[m as usize].diffuse.max_element() as f64)
+                .map(|&m| scene.materials[m].diffuse.max_element() as f64)
                 .unwrap_or(*max);
             vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
         }
@@ -785,7 +788,7 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
 /// the search takes such configurations as one ([`Space::with_exchangeable`]). Each
 /// group is a list of members, each member its variables' indices.
 fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Vec<Vec<Vec<usize>>> {
-    let power_of = |light: usize| {
+    let power_of = |light: LightId| {
         targets.iter().position(|t| {
             matches!(t, Target::Power { dimmed: Dimmed::Light { light: l, .. }, .. } if *l == light)
         })

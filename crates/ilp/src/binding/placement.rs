@@ -58,8 +58,8 @@ impl Bounds {
 pub fn instance_bounds(scene: &Scene, instances: &[InstanceId]) -> Option<Bounds> {
     let mut out: Option<Bounds> = None;
     for &i in instances {
-        let inst = &scene.instances[i as usize];
-        for &p in &scene.meshes[inst.mesh as usize].positions {
+        let inst = &scene.instances[i];
+        for &p in &scene.meshes[inst.mesh].positions {
             let b = Bounds::point(inst.transform.transform_point3(p).as_dvec3());
             out = Some(out.map_or(b, |o| o.union(b)));
         }
@@ -86,9 +86,9 @@ pub fn find_parallelogram(
         p.vertices.clone()
     } else if let Some(s) = scene.surface(name) {
         let mut v: Vec<Vec3> = Vec::new();
-        for &i in &scene.surfaces[s as usize].instances {
-            let inst = &scene.instances[i as usize];
-            for &p in &scene.meshes[inst.mesh as usize].positions {
+        for &i in &scene.surfaces[s].instances {
+            let inst = &scene.instances[i];
+            for &p in &scene.meshes[inst.mesh].positions {
                 let w = inst.transform.transform_point3(p);
                 if !v.contains(&w) {
                     v.push(w);

@@ -6,7 +6,7 @@
 //! dimmed.
 
 use invlight_scene::{
-    Diagnostic, InstanceId, LightKind, MaterialId, Rgb, Scene, SurfaceId, known_names,
+    Diagnostic, InstanceId, LightId, LightKind, MaterialId, Rgb, Scene, SurfaceId, known_names,
 };
 
 /// What a `lightPower` variable dims, with its authored output.
@@ -15,8 +15,8 @@ pub enum Dimmed {
     /// `scene.lights[light]`, of authored strength `authored`
     /// ([`LightKind::strength_mut`]).
     Light {
-        /// Index of the light.
-        light: usize,
+        /// The light.
+        light: LightId,
         /// Its authored strength.
         authored: Rgb,
     },
@@ -63,26 +63,26 @@ pub fn bind(
             "lights",
         ))
     })?;
-    let instances = scene.surfaces[surface as usize].instances.clone();
+    let instances = scene.surfaces[surface].instances.clone();
     let mut copies: Vec<(MaterialId, MaterialId)> = Vec::new();
     for &i in &instances {
-        let mesh = scene.instances[i as usize].mesh as usize;
+        let mesh = scene.instances[i].mesh;
         if !scene.meshes[mesh]
             .materials
             .iter()
-            .any(|&m| scene.materials[m as usize].is_emissive())
+            .any(|&m| scene.materials[m].is_emissive())
         {
             continue;
         }
         let mut copy = scene.meshes[mesh].clone();
         for m in copy.materials.iter_mut() {
-            if !scene.materials[*m as usize].is_emissive() {
+            if !scene.materials[*m].is_emissive() {
                 continue;
             }
             let own = match copies.iter().find(|(from, _)| from == m) {
                 Some(&(_, to)) => to,
                 None => {
-                    let mut material = scene.materials[*m as usize].clone();
+                    let mut material = scene.materials[*m].clone();
                     material.name = format!("{} ({id})", material.name);
                     let to = scene.add_material(material);
                     copies.push((*m, to));
@@ -91,7 +91,7 @@ pub fn bind(
             };
             *m = own;
         }
-        scene.instances[i as usize].mesh = scene.add_mesh(copy);
+        scene.instances[i].mesh = scene.add_mesh(copy);
     }
     if copies.is_empty() {
         return Err(err(format!(
@@ -100,7 +100,7 @@ pub fn bind(
     }
     let materials = copies
         .into_iter()
-        .map(|(_, m)| (m, scene.materials[m as usize].emission))
+        .map(|(_, m)| (m, scene.materials[m].emission))
         .collect();
     Ok(Dimmed::Emissive {
         instances,
@@ -117,7 +117,7 @@ pub fn apply(scene: &mut Scene, dimmed: &Dimmed, level: f64) {
         }
         Dimmed::Emissive { materials, .. } => {
             for &(m, emission) in materials {
-                scene.materials[m as usize].emission = emission * level;
+                scene.materials[m].emission = emission * level;
             }
         }
     }

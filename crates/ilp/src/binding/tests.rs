@@ -95,7 +95,7 @@ fn object_moves_by_p_minus_a() {
     let t = s.instances[1].transform.w_axis.truncate();
     assert!((t - Vec3::new(2.5, 1.5, 0.0)).length() < 1e-6);
     assert!(!b.apply(&mut s, &config), "nothing moves twice");
-    assert_eq!(b.movable_instances(), vec![1]);
+    assert_eq!(b.movable_instances(), vec![InstanceId::from_index(1)]);
     assert_eq!(
         s.instances[2].transform.w_axis.truncate(),
         Vec3::new(0.0, 0.0, 2.0)
@@ -155,14 +155,9 @@ fn light_hole_sun_and_colour() {
         ]
     );
     // The window's mesh became a hole; the chair sharing the cube mesh did not.
-    let win = s.instances[2].mesh as usize;
-    assert!(
-        s.meshes[win]
-            .materials
-            .iter()
-            .all(|&m| s.materials[m as usize].hole)
-    );
-    assert!(!s.materials[s.meshes[s.instances[1].mesh as usize].materials[0] as usize].hole);
+    let win = s.instances[2].mesh;
+    assert!(s.meshes[win].materials.iter().all(|&m| s.materials[m].hole));
+    assert!(!s.materials[s.meshes[s.instances[1].mesh].materials[0]].hole);
     // Initial sun coordinates reproduce its direction; initial V is Paint's 0.6.
     let init = b.values(&b.initial);
     match init[2] {
@@ -192,13 +187,13 @@ fn a_colour_variable_replaces_a_texture() {
     let mut s = scene();
     let colour = problem("<color id=\"Paint\" hue=\"120\" saturation=\"0.5\"/>");
     assert!(Binding::new(&colour, &mut s).unwrap().warnings.is_empty());
-    s.textures.push(invlight_scene::Texture {
+    let green = s.add_texture(invlight_scene::Texture {
         width: 1,
         height: 1,
         pixels: vec![Vec3::new(0.1, 0.9, 0.1)],
     });
     let paint = s.materials.iter().position(|m| m.name == "Paint").unwrap();
-    s.materials[paint].texture = Some(0);
+    s.materials[paint].texture = Some(green);
     let b = Binding::new(&colour, &mut s).unwrap();
     assert_eq!(s.materials[paint].texture, None);
     assert_eq!(b.warnings.len(), 1);

@@ -1,7 +1,7 @@
 //! Scene pieces and closed forms shared by the photon tests (`closed_forms.rs`,
 //! `connections.rs`).
 
-use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, Vec2, Vec3};
+use invlight_scene::{Light, LightKind, Mat4, Material, MaterialId, Mesh, Scene, Vec2, Vec3};
 use invlight_stats::Estimate;
 
 /// Standard errors an estimate may miss its exact value by: a 4 σ miss has probability
@@ -39,7 +39,7 @@ pub fn point(name: &str, position: Vec3, cd: f32) -> Light {
 
 /// A horizontal rectangle [x0,x1]×[y0,y1] at height z, counter-clockwise seen from +z,
 /// with texture coordinates (0,0)..(1,1) from corner (x0,y0) to (x1,y1).
-pub fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: u32) -> Mesh {
+pub fn rect(x0: f32, x1: f32, y0: f32, y1: f32, z: f32, m: MaterialId) -> Mesh {
     let mut q = Mesh::quad(
         [
             Vec3::new(x0, y0, z),

@@ -31,6 +31,7 @@ use crate::error::LoadError;
 use crate::image_file::{TextureError, read_texture};
 use crate::light::luminance;
 use crate::material::{Material, Texture};
+use crate::model::TextureId;
 use crate::obj::energy_conserving;
 use glam::{Vec3, Vec4};
 use roxmltree::Node;
@@ -41,7 +42,7 @@ use std::path::{Path, PathBuf};
 pub(super) const DEFAULT_REFLECTANCE: f32 = 0.8;
 
 /// Decoded texture images by file, `None` for those that failed (warned once).
-pub(super) type TextureCache = HashMap<PathBuf, Option<u32>>;
+pub(super) type TextureCache = HashMap<PathBuf, Option<TextureId>>;
 
 /// A `<color>`, or a `<texture>` resolved to an image file (with the location of the
 /// `<init_from>` naming it).
@@ -313,14 +314,14 @@ fn texture(
     material: &str,
     textures: &mut Vec<Texture>,
     cache: &mut TextureCache,
-) -> Result<Option<u32>, LoadError> {
+) -> Result<Option<TextureId>, LoadError> {
     if let Some(&t) = cache.get(file) {
         return Ok(t);
     }
     let t = match read_texture(file, ctx.path, loc, ctx.files) {
         Ok(t) => {
             textures.push(t);
-            Some((textures.len() - 1) as u32)
+            Some(TextureId::from_index(textures.len() - 1))
         }
         Err(TextureError::Refused(e)) => return Err(e),
         Err(TextureError::Unreadable(e)) => {

@@ -4,7 +4,7 @@
 use super::Builder;
 use crate::error::LoadError;
 use crate::material::Material;
-use crate::model::MaterialId;
+use crate::model::{MaterialId, TextureId};
 use glam::Vec3;
 use gltf_json as json;
 
@@ -113,7 +113,11 @@ impl Builder<'_> {
 
     /// The scene texture of glTF `textures[index]`; images shared by several textures are
     /// decoded once.
-    fn texture(&mut self, index: json::Index<json::Texture>, loc: &str) -> Result<u32, LoadError> {
+    fn texture(
+        &mut self,
+        index: json::Index<json::Texture>,
+        loc: &str,
+    ) -> Result<TextureId, LoadError> {
         let i = index.value();
         let texture = self.root.textures.get(i).ok_or_else(|| {
             self.err(
@@ -129,8 +133,7 @@ impl Builder<'_> {
             return Ok(id);
         }
         let decoded = self.image(image, &format!("textures[{i}].source"))?;
-        self.scene.textures.push(decoded);
-        let id = (self.scene.textures.len() - 1) as u32;
+        let id = self.scene.add_texture(decoded);
         self.images.insert(image.value(), id);
         Ok(id)
     }

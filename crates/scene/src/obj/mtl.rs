@@ -21,6 +21,7 @@ use crate::error::LoadError;
 use crate::files::Files;
 use crate::image_file::{TextureError, read_texture};
 use crate::material::{Material, Rgb, Texture};
+use crate::model::TextureId;
 use glam::Vec3;
 use std::collections::HashMap;
 use std::path::Path;
@@ -110,7 +111,7 @@ pub(super) fn parse(
         )
         .with_hint("bake the texture's mean into Ke, or remove Ke if the surface should not emit"));
     }
-    let mut decoded: HashMap<String, Option<u32>> = HashMap::new();
+    let mut decoded: HashMap<String, Option<TextureId>> = HashMap::new();
     let mut materials = Vec::with_capacity(records.len());
     for r in records {
         let mut texture = None;
@@ -124,7 +125,7 @@ pub(super) fn parse(
                     let t = match read_texture(&resolved, path, &loc, files) {
                         Ok(t) => {
                             textures.push(t);
-                            Some((textures.len() - 1) as u32)
+                            Some(TextureId::from_index(textures.len() - 1))
                         }
                         Err(TextureError::Refused(e)) => return Err(e),
                         Err(TextureError::Unreadable(e)) => {
@@ -143,7 +144,7 @@ pub(super) fn parse(
 }
 
 /// The tracer's material for one record.
-fn material(r: Record, texture: Option<u32>) -> Material {
+fn material(r: Record, texture: Option<TextureId>) -> Material {
     let mirror = matches!(r.illum, 3 | 5 | 8);
     let glass = matches!(r.illum, 4 | 6 | 7 | 9);
     let dissolve = r.d.map(|d| (1.0 - d).clamp(0.0, 1.0));

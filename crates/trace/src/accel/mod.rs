@@ -1,0 +1,132 @@
+//! The two-level acceleration structure: one BVH per mesh in object space (bottom level)
+//! and one over the instances' world bounds (top level). Moving instances rebuilds only
+//! the top level, as OptiX transform nodes did for ILPSolver (DESIGN.md §7).
+//!
+//! - `build`: the bottom level (a BVH per mesh, and the merged BVH of the static
+//!   instances [`Accel::with_movable`] bakes), the top level and the hole volumes, and
+//!   what a build costs in memory.
+//! - `tree`: one compressed 8-wide BVH over a list of boxes: obvhs's builder, and the
+//!   groups of coincident boxes built apart from it.
+//! - `traverse`: closest hit and any hit, through the top level's loop over instances
+//!   into each bottom level, with AVX2 where the CPU has it.
+//! - `interaction`: the surface at a hit, read from the scene's mesh.
+//!
+//! The hole volumes are `crate::holes`, the node test and the loop over a tree
+//! `crate::wide`, the triangle test `crate::triangle`.
+
+mod build;
+mod interaction;
+mod traverse;
+mod tree;
+
+pub use build::{BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
+pub use tree::BuildPreset;
+
+use crate::holes::HoleVolume;
+use crate::triangle::Tri;
+use glam::{Affine3A, Mat4, Vec3};
+use invlight_scene::{InstanceId, MeshId};
+use obvhs::cwbvh::node::CwBvhNode;
+
+/// Counts and timings of a build, for logs and benchmarks.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AccelStats {
+    /// Bottom-level BVHs: one per mesh a separate instance uses, plus the merged one of
+    /// [`Accel::with_movable`].
+    pub meshes: usize,
+    /// Entries of the top level: separate instances (holes and empty meshes are not)
+    /// and the merged BVH.
+    pub instances: usize,
+    /// Hole volumes.
+    pub holes: usize,
+    /// Triangles over all bottom-level BVHs (each mesh once, however often instanced);
+    /// with a preset that pre-splits ([`BuildPreset::Slow`]), a triangle counts once per
+    /// leaf that holds it.
+    pub triangles: usize,
+    /// Bottom-level nodes (80 bytes each).
+    pub blas_nodes: usize,
+    /// Top-level nodes.
+    pub tlas_nodes: usize,
+    /// Deepest bottom-level tree, in nodes.
+    pub max_depth: u32,
+    /// Bytes of nodes and triangles traversal touches.
+    pub bytes: usize,
+    /// Seconds spent building the bottom level.
+    pub blas_seconds: f64,
+    /// Seconds spent building the top level (the last time it was built).
+    pub tlas_seconds: f64,
+}
+
+/// A mesh's bottom-level BVH and its triangles laid out in the BVH's leaf order, so a
+/// leaf's triangles are read from one place without an index indirection.
+#[derive(Debug, Clone, Default)]
+struct Blas {
+    nodes: Vec<CwBvhNode>,
+    tris: Vec<Tri>,
+    /// Bounds of the traced triangles, or `None` when there are none.
+    bounds: Option<(Vec3, Vec3)>,
+    /// For the merged BVH of static instances ([`Accel::with_movable`]): the instance of
+    /// each slot's triangle. Empty for a mesh's own BVH.
+    instances: Vec<InstanceId>,
+}
+
+/// An instance as the top level stores it.
+#[derive(Debug, Clone, Copy)]
+struct TlasItem {
+    object_from_world: Affine3A,
+    /// The transform is the identity: the world ray's constants serve as they are.
+    identity: bool,
+    blas: u32,
+    /// The instance hit; [`MERGED`] for the merged BVH, whose hits take theirs from
+    /// [`Blas::instances`].
+    instance: InstanceId,
+}
+
+/// The top-level entry of the merged BVH of static instances stands for no one instance.
+const MERGED: InstanceId = InstanceId::from_index(u32::MAX as usize);
+
+/// Each scene instance's transforms.
+#[derive(Debug, Clone, Copy)]
+struct Placed {
+    world_from_object: Affine3A,
+    object_from_world: Affine3A,
+    mesh: MeshId,
+    /// −1 when the transform mirrors (negative determinant), else 1. The front face is
+    /// the counter-clockwise side *in world space*, as emission (`photon::Emitters`) and
+    /// the loaders (glTF re-winds mirrored meshes) take it; the inverse transpose alone
+    /// would give the opposite side for a mirrored instance.
+    front_sign: f32,
+}
+
+/// Ray casting against a [`Scene`](invlight_scene::Scene): closest hit, any hit (shadow
+/// rays) and surface interactions. Build with [`Accel::new`]; after moving instances (or
+/// holes) call [`Accel::update_instances`]. Shared by reference across threads.
+#[derive(Debug, Clone)]
+pub struct Accel {
+    /// A BVH per mesh (empty for meshes no separate instance uses), then the merged BVH
+    /// of static instances.
+    blas: Vec<Blas>,
+    /// Object-space bounds of each mesh's hole triangles: one entry per mesh of the
+    /// scene built from.
+    hole_bounds: Vec<Option<(Vec3, Vec3)>>,
+    /// With [`Accel::with_movable`]: the instances kept separate, and the transform each
+    /// merged instance was baked with (`None` for separate ones).
+    movable: Option<Vec<InstanceId>>,
+    baked: Vec<Option<Mat4>>,
+    placed: Vec<Placed>,
+    tlas: Vec<CwBvhNode>,
+    items: Vec<TlasItem>,
+    holes: Vec<HoleVolume>,
+    stats: AccelStats,
+    /// How both levels are built, now and at every rebuild.
+    preset: BuildPreset,
+    /// Whether the CPU runs the AVX2 traversal.
+    avx2: bool,
+}
+
+impl Accel {
+    /// Counts and build times.
+    pub fn stats(&self) -> AccelStats {
+        self.stats
+    }
+}

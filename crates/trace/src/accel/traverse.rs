@@ -1,0 +1,258 @@
+//! Closest hit and any hit: one traversal core walks the top level and, for each
+//! instance a ray enters, that instance's bottom level; the two queries differ only in
+//! what they do with a hit.
+
+use super::Accel;
+use crate::ray::{Hit, Ray};
+use crate::triangle::TriRay;
+use crate::wide::{self, NodeRay, NodeTest};
+use glam::{Vec3, Vec3A};
+
+impl Accel {
+    /// The closest hit with `0 < t < ray.t_max`, skipping surfaces inside holes.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU reports AVX2 and FMA.
+            return unsafe { self.intersect_avx2(ray) };
+        }
+        self.closest::<wide::Portable>(ray)
+    }
+
+    /// Whether anything outside the holes blocks the ray before `ray.t_max`.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `intersect`.
+            return unsafe { self.occluded_avx2(ray) };
+        }
+        self.any::<wide::Portable>(ray)
+    }
+
+    /// Whether `p` lies in a hole's volume, where surfaces are cut away: no ray stops
+    /// there, so nothing arrives there either.
+    pub fn in_hole(&self, p: Vec3) -> bool {
+        let p = Vec3A::from(p);
+        self.holes.iter().any(|v| v.contains(p))
+    }
+
+    /// `intersect` compiled for AVX2 (8 child boxes per instruction), chosen at run time
+    /// so one binary runs everywhere and is fast where it can be.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn intersect_avx2(&self, ray: &Ray) -> Option<Hit> {
+        self.closest::<wide::Avx2>(ray)
+    }
+
+    /// `occluded` compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
+        self.any::<wide::Avx2>(ray)
+    }
+
+    #[inline(always)]
+    fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
+        let mut best = None;
+        self.trace::<T, _>(
+            ray,
+            #[inline(always)]
+            |hit| {
+                best = Some(hit);
+                false
+            },
+        );
+        best
+    }
+
+    #[inline(always)]
+    fn any<T: NodeTest>(&self, ray: &Ray) -> bool {
+        let mut blocked = false;
+        self.trace::<T, _>(
+            ray,
+            #[inline(always)]
+            |_| {
+                blocked = true;
+                true
+            },
+        );
+        blocked
+    }
+
+    /// Walks both levels; `accept` receives each hit nearer than every earlier accepted
+    /// one (the ray is shortened to it) and returns `true` to stop.
+    ///
+    /// Every closure on this path is `#[inline(always)]`: a closure does not inherit the
+    /// target features of the function it is inlined into, so one left out of line
+    /// would be compiled without AVX2 and call the node test out of line for every node
+    /// (it did: 1.6 M rays per second in the photon loop instead of BENCHMARKS.md's figure).
+    #[inline(always)]
+    fn trace<T: NodeTest, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
+        let world = WorldRay::new(ray);
+        let mut t_max = ray.t_max;
+        if self.items.len() == 1 {
+            // A single entry (one instance, or everything baked): its own root test
+            // suffices.
+            self.trace_instance::<T, F>(0, &world, &mut t_max, &mut accept);
+        } else {
+            wide::traverse::<T, _, _>(
+                &self.tlas,
+                &self.items,
+                &world.node,
+                &mut t_max,
+                #[inline(always)]
+                |slot, t_max| self.trace_instance::<T, F>(slot, &world, t_max, &mut accept),
+            );
+        }
+    }
+
+    /// Walks the bottom level of the top level's entry `slot`; returns `true` when
+    /// `accept` asked to stop.
+    #[inline(always)]
+    fn trace_instance<T: NodeTest, F: FnMut(Hit) -> bool>(
+        &self,
+        slot: u32,
+        world: &WorldRay,
+        t_max: &mut f32,
+        accept: &mut F,
+    ) -> bool {
+        let item = &self.items[slot as usize];
+        let blas = &self.blas[item.blas as usize];
+        let holes = &self.holes[..];
+        let (origin, dir) = (world.origin, world.dir);
+        // The triangle constants only once a leaf is reached: many instances a ray
+        // enters are left at their root.
+        let (node_ray, mut tri_ray, o, d) = if item.identity {
+            (world.node, Some(world.tri), origin, dir)
+        } else {
+            let o = item.object_from_world.transform_point3a(origin);
+            let d = item.object_from_world.transform_vector3a(dir);
+            (NodeRay::new(o, d), None, o, d)
+        };
+        let mut stop = false;
+        wide::traverse::<T, _, _>(
+            &blas.nodes,
+            &blas.tris,
+            &node_ray,
+            t_max,
+            #[inline(always)]
+            |slot, t_max| {
+                let tri = &blas.tris[slot as usize];
+                let tri_ray = tri_ray.get_or_insert_with(|| TriRay::new(o, d));
+                let Some(h) = tri_ray.intersect(tri, *t_max) else {
+                    return false;
+                };
+                if !holes.is_empty() {
+                    let p = origin + dir * h.t;
+                    if holes.iter().any(|v| v.contains(p)) {
+                        return false;
+                    }
+                }
+                *t_max = h.t;
+                stop = accept(Hit {
+                    t: h.t,
+                    instance: if blas.instances.is_empty() {
+                        item.instance
+                    } else {
+                        blas.instances[slot as usize]
+                    },
+                    triangle: tri.index,
+                    u: h.u,
+                    v: h.v,
+                });
+                stop
+            },
+        );
+        stop
+    }
+}
+
+/// A world-space ray's constants for both the node and the triangle test, computed once
+/// per ray and shared by every identity-transformed instance it enters.
+#[derive(Clone, Copy)]
+struct WorldRay {
+    origin: Vec3A,
+    dir: Vec3A,
+    node: NodeRay,
+    tri: TriRay,
+}
+
+impl WorldRay {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let origin = Vec3A::from(ray.origin);
+        let dir = Vec3A::from(ray.dir);
+        WorldRay {
+            origin,
+            dir,
+            node: NodeRay::new(origin, dir),
+            tri: TriRay::new(origin, dir),
+        }
+    }
+}
+
+/// Whether the AVX2 traversal may run on this CPU.
+pub(super) fn avx2_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        is_x86_feature_detected!("avx2")
+            && is_x86_feature_detected!("fma")
+            && is_x86_feature_detected!("bmi1")
+            && is_x86_feature_detected!("bmi2")
+            && is_x86_feature_detected!("lzcnt")
+            && is_x86_feature_detected!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::BuildPreset;
+    use invlight_scene::{Mat4, Material, Mesh, Quat, Scene};
+
+    /// The AVX2 and portable node tests must agree hit for hit, on the tree of every
+    /// build preset (the public functions take the AVX2 path wherever the CPU allows, so
+    /// the portable one is checked here).
+    #[test]
+    fn portable_and_avx2_traversals_agree() {
+        let mut scene = Scene::default();
+        let mat = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+        let mut state = 1u32;
+        let mut next = || {
+            // Park–Miller minimal standard generator, fixed seed.
+            state = ((state as u64 * 48_271) % 0x7fff_ffff) as u32;
+            state as f32 / 0x7fff_ffff as f32 * 2.0 - 1.0
+        };
+        let mut mesh = Mesh::default();
+        for t in 0..500u32 {
+            let c = Vec3::new(next(), next(), next()) * 3.0;
+            for _ in 0..3 {
+                mesh.positions
+                    .push(c + Vec3::new(next(), next(), next()) * 0.4);
+            }
+            mesh.triangles.push([3 * t, 3 * t + 1, 3 * t + 2]);
+            mesh.materials.push(mat);
+        }
+        let id = scene.add_mesh(mesh);
+        scene.add_instance("a", id, Mat4::IDENTITY);
+        let rot = Mat4::from_rotation_translation(Quat::from_rotation_z(0.7), Vec3::X);
+        scene.add_instance("b", id, rot);
+        for preset in BuildPreset::ALL {
+            let accel = Accel::with_preset(&scene, None, preset);
+            let mut hits = 0;
+            for _ in 0..5000 {
+                let origin = Vec3::new(next(), next(), next()) * 5.0;
+                let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
+                let ray = Ray::new(origin, dir);
+                let portable = accel.closest::<wide::Portable>(&ray);
+                assert_eq!(accel.intersect(&ray), portable, "{preset:?}");
+                let any = accel.any::<wide::Portable>(&ray);
+                assert_eq!(accel.occluded(&ray), any, "{preset:?}");
+                hits += portable.is_some() as usize;
+            }
+            assert!(hits > 500, "{preset:?}: {hits} hits");
+        }
+    }
+}
