@@ -6,7 +6,8 @@
 Python 3 standard library only. Reads the original models from their zips
 (DIR/sponza/sponza.zip, DIR/conference/conference.zip; DIR defaults to ../shared/scenes
 beside the repository) and writes glTF 2.0 scenes (`scene.gltf` + `scene.bin`) into
-examples/atrium-skylight, examples/atrium-colour and examples/conference-sun. The output
+examples/atrium-skylight, examples/atrium-colour, examples/conference-sun and
+examples/office-target (built from nothing, no source geometry). The output
 is byte-for-byte the same on every run, so a reader can redo it and diff.
 
 What is added to the original geometry (a roof, a hole, a jar, lamps, the sun, ceiling
@@ -196,6 +197,17 @@ class Gltf:
         self.lights.append({"name": name, "type": "point", "color": [1.0, 1.0, 1.0],
                             "intensity": candela})
         return self.node(name, parent, translation=position, light=len(self.lights) - 1)
+
+    def spot_light(self, name, position, direction, candela, inner_deg, outer_deg, parent=None):
+        """A spot of `candela` on its axis, full inside `inner_deg`, fading to nothing at
+        `outer_deg` (half-angles), shining along `direction`."""
+        self.use("KHR_lights_punctual")
+        self.lights.append({"name": name, "type": "spot", "color": [1.0, 1.0, 1.0],
+                            "intensity": candela, "spot": {
+                                "innerConeAngle": round(math.radians(inner_deg), 6),
+                                "outerConeAngle": round(math.radians(outer_deg), 6)}})
+        return self.node(name, parent, translation=position, rotation=look_rotation(direction),
+                         light=len(self.lights) - 1)
 
     def sun(self, name, direction, lux, parent=None):
         """A directional light travelling along `direction`."""
@@ -514,12 +526,90 @@ def conference(scenes_dir, out):
           % (len(inside), all(t in window_wall for t in inside)))
 
 
+# --------------------------------------------------------------------------- office
+
+# A 5 m x 4 m x 2.8 m office (Y up, x east-west, z north-south), a desk with a screen,
+# two identical downlights to place and dim: "500 lx on the desk, U0 >= 0.6, <= 300 lx
+# on the screen, least power". Built from nothing: no source geometry.
+OFFICE = (5.0, 2.8, 4.0)
+OFFICE_REFLECTANCE = {"Floor": 0.2, "Walls": 0.5, "Ceiling": 0.7}
+DESK_TOP = 0.75  # m
+DESK_X = (1.7, 3.3)  # 1.6 m wide
+DESK_Z = (1.6, 2.4)  # 0.8 m deep; the user sits at z < 1.6, facing +z
+DESK_KD = 0.35  # light oak
+SCREEN_X = (2.2, 2.8)  # 0.6 m x 0.35 m display, facing the user (-z)
+SCREEN_Y = (0.85, 1.2)
+SCREEN_Z = 2.25
+SCREEN_KD = 0.05  # a dark display
+LAMP_CD = 2000.0  # on the axis: about 3 200 lm with these cones
+LAMP_CONES = (30.0, 60.0)  # inner, outer half-angles, degrees
+LAMP_Y = OFFICE[1] - 0.01
+LAMP_ZONE = ((1.0, 0.5), (4.0, 3.5))  # (x, z) corners of the ceiling zone lamps may take
+LAMPS = ((1.5, 1.0), (3.5, 3.0))  # as authored: not where a designer would put them
+
+
+def office(_scenes_dir, out):
+    w, h, d = OFFICE
+    gl = Gltf("invlight tools/build_examples.py: office-target")
+    room = gl.node("Room")
+    # Every room surface faces into the room.
+    faces = {
+        "Floor": [quad((0, 0, 0), (0, 0, d), (w, 0, d), (w, 0, 0))],
+        "Ceiling": [quad((0, h, 0), (w, h, 0), (w, h, d), (0, h, d))],
+        "Walls": [
+            quad((0, 0, 0), (w, 0, 0), (w, h, 0), (0, h, 0)),  # south, z = 0
+            quad((0, 0, d), (0, h, d), (w, h, d), (w, 0, d)),  # north
+            quad((0, 0, 0), (0, h, 0), (0, h, d), (0, 0, d)),  # west, x = 0
+            quad((w, 0, 0), (w, 0, d), (w, h, d), (w, h, 0)),  # east
+        ],
+    }
+    for name, quads in faces.items():
+        pos, tris = [], []
+        for qp, qt in quads:
+            tris += [tuple(i + len(pos) for i in t) for t in qt]
+            pos += qp
+        kd = OFFICE_REFLECTANCE[name]
+        gl.node(name, room, mesh=gl.mesh(name, pos, tris, gl.material(name, (kd, kd, kd))))
+    oak = gl.material("Oak", (DESK_KD, DESK_KD * 0.9, DESK_KD * 0.75))
+    (x0, x1), (z0, z1) = DESK_X, DESK_Z
+    top = quad((x0, DESK_TOP, z0), (x0, DESK_TOP, z1), (x1, DESK_TOP, z1), (x1, DESK_TOP, z0))
+    gl.node("Desk", mesh=gl.mesh("Desk", *top, oak))
+    # The desk's body, 1 mm under its top, and four legs.
+    body = box(((x1 - x0) / 2, 0.0145, (z1 - z0) / 2))
+    gl.node("DeskBody", mesh=gl.mesh("DeskBody", *body, oak),
+            translation=((x0 + x1) / 2, DESK_TOP - 0.0155, (z0 + z1) / 2))
+    leg = gl.mesh("Leg", *box((0.025, (DESK_TOP - 0.03) / 2, 0.025)), oak)
+    for k, (x, z) in enumerate([(x0 + 0.05, z0 + 0.05), (x1 - 0.05, z0 + 0.05),
+                                (x0 + 0.05, z1 - 0.05), (x1 - 0.05, z1 - 0.05)]):
+        gl.node("Leg%d" % (k + 1), mesh=leg, translation=(x, (DESK_TOP - 0.03) / 2, z))
+    # The screen: its display faces -z, toward the user; a 3 cm body behind it.
+    (sx0, sx1), (sy0, sy1) = SCREEN_X, SCREEN_Y
+    z = SCREEN_Z
+    display = quad((sx1, sy0, z), (sx0, sy0, z), (sx0, sy1, z), (sx1, sy1, z))
+    gl.node("Screen", mesh=gl.mesh("Screen", *display, gl.material("Display", (SCREEN_KD,) * 3)))
+    casing = gl.material("Casing", (0.1, 0.1, 0.1))
+    gl.node("ScreenBody", mesh=gl.mesh("ScreenBody", *box(((sx1 - sx0) / 2, (sy1 - sy0) / 2, 0.0145)),
+                                       casing), translation=((sx0 + sx1) / 2, (sy0 + sy1) / 2, z + 0.0155))
+    gl.node("Stand", mesh=gl.mesh("Stand", *box((0.03, (sy0 - DESK_TOP) / 2, 0.02)), casing),
+            translation=((sx0 + sx1) / 2, (sy0 + DESK_TOP) / 2, z + 0.05))
+    # The zone the lamps may take, 1 cm under the ceiling, facing down.
+    (ax, az), (bx, bz) = LAMP_ZONE
+    zone = quad((ax, LAMP_Y, az), (bx, LAMP_Y, az), (bx, LAMP_Y, bz), (ax, LAMP_Y, bz))
+    gl.node("LampZone__Geometry", mesh=gl.mesh("LampZone__Geometry", *zone,
+                                                  gl.material("Zone", (0.7, 0.7, 0.7))))
+    for k, (x, z) in enumerate(LAMPS):
+        gl.spot_light("Lamp%d" % (k + 1), (x, LAMP_Y, z), (0.0, -1.0, 0.0), LAMP_CD, *LAMP_CONES)
+    gl.camera("Camera", (0.6, 1.6, 0.4), (2.5, 0.8, 2.1), 60.0)
+    gl.write(out)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=os.path.join(os.path.dirname(REPO), "shared", "scenes"),
                     help="folder holding sponza/sponza.zip and conference/conference.zip")
     ap.add_argument("--out", default=os.path.join(REPO, "examples"), help="examples folder")
-    ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun"])
+    ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun",
+                                       "office-target"])
     ap.add_argument("--wall-value", type=float,
                     help="write only atrium-colour, with this inner-wall HSV value, into --out")
     args = ap.parse_args()
@@ -527,7 +617,7 @@ def main():
         atrium_colour(args.scenes, args.out, args.wall_value)
         return
     builders = {"atrium-skylight": atrium_skylight, "atrium-colour": atrium_colour,
-                "conference-sun": conference}
+                "conference-sun": conference, "office-target": office}
     for name, build in builders.items():
         if args.only in (None, name):
             build(args.scenes, os.path.join(args.out, name))
