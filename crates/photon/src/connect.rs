@@ -16,7 +16,8 @@
 //! this lobe, f its directional density), the connection counts p_a/(p_a + p_b) and the
 //! arrival p_b/(p_a + p_b). The weights add up to one for every y, so the sum stays
 //! unbiased, and each is bounded: a departure next to its target (a lamp touching it, a
-//! wall's corner with the floor) no longer gives the connection its 1/r² tail.
+//! wall's corner with the floor) does not give the connection its 1/r² tail, as it
+//! would alone.
 //! Arrivals after a mirror or glass (a delta lobe no connection can sample) count fully.
 //!
 //! A goniometric light (a photometric file) draws its photons from a piecewise-constant
@@ -313,7 +314,7 @@ impl Targets {
         // when its first hit is the target at y. A ray from y back to the departure
         // would pass surfaces lying on the target or within the offset of it (a decal on
         // a floor, a box standing on a table), which the photons' own rays stop at: the
-        // two estimators would then measure different things (found in review).
+        // two estimators would then measure different things.
         let origin = match from.lobe {
             Lobe::Parallel { direction, area } => y - direction * (2.02 * (area / PI).sqrt()),
             Lobe::Cosine { normal } => offset_point(from.point, normal),

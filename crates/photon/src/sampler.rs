@@ -12,11 +12,11 @@
 //! first few dimensions (a point on the lamp and a direction). Stratifying them spreads
 //! each group's photons evenly over the lamp and its beam instead of letting them clump,
 //! which takes away much of the variance of "did this photon reach the target". The
-//! photons of one group are no longer independent of one another, but groups are: the
+//! photons of one group are not independent of one another, but groups are: the
 //! group, not the photon, is the independent sample whose variance the standard error is
 //! computed from (`Estimate::from_groups`), so reported intervals stay honest.
 //!
-//! Numbers are keyed by (seed, photon index) as before: photon i draws the same numbers
+//! Numbers are keyed by (seed, photon index): photon i draws the same numbers
 //! whatever thread traces it, and two configurations traced with the same seed share
 //! them (common random numbers).
 

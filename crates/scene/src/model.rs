@@ -230,7 +230,7 @@ pub struct Scene {
 
 /// Surface name → index into [`Scene::surfaces`]: a cache of that list, so that
 /// loading a file of 100 000 named parts does not search the names linearly for each
-/// (issue 19: 83 334 OBJ objects took 17 s to load). It is derived from `surfaces` and
+/// (for 83 334 OBJ objects, 17 s). It is derived from `surfaces` and
 /// checked against it on use, so it takes no part in comparing scenes.
 #[derive(Debug, Clone, Default)]
 struct SurfaceIndex(HashMap<String, SurfaceId>);
@@ -468,8 +468,8 @@ mod tests {
     use crate::material::Material;
 
     /// 100 000 named parts under one common ancestor: every name found, the ancestor
-    /// covering every part once. With linear name search and `contains` on the
-    /// ancestor's list this took tens of seconds (issue 19); indexed, milliseconds.
+    /// covering every part once, in milliseconds (a linear name search and `contains`
+    /// on the ancestor's list take tens of seconds).
     #[test]
     fn r19_many_names_are_indexed() {
         let mut scene = Scene::default();

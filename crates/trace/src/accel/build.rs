@@ -323,7 +323,7 @@ impl Accel {
 
 /// Whether a position lies where the BVH builder can take it: finite and within the
 /// range [`Scene::validate`] accepts. obvhs indexes out of bounds on boxes whose areas
-/// overflow (issue 19: a triangle 1e20 m wide, a node translated by 3e38 m), so what a
+/// overflow (a triangle 1e20 m wide, a node translated by 3e38 m), so what a
 /// scene that skipped validation holds beyond it is not traced rather than built.
 fn traceable(p: Vec3) -> bool {
     p.is_finite() && p.abs().max_element() <= MAX_COORDINATE
@@ -345,8 +345,8 @@ pub const BYTES_PER_INSTANCE: u64 = 700;
 /// multiplies them (static instances sharing meshes): 2²² triangles, about
 /// [`BUILD_BYTES_PER_TRIANGLE`] × 4.2 M ≈ 1 GB while it is built. Past that, and past
 /// twice the triangles of the meshes themselves, the instances stay instanced: 50 000
-/// nodes placing one 2 108-triangle mesh are 105 M triangles baked (which aborted on
-/// an allocation, issue 19) but 2 108 triangles and 50 000 top-level entries instanced.
+/// nodes placing one 2 108-triangle mesh are 105 M triangles baked (an allocation that
+/// fails) but 2 108 triangles and 50 000 top-level entries instanced.
 const MAX_BAKED_TRIANGLES: usize = 1 << 22;
 
 /// Whether [`Accel::with_movable`] bakes the instances not marked `separate`: when the
