@@ -191,6 +191,25 @@ fn the_least_dimming_that_meets_min_lux_traces_once() {
     assert_eq!(m.evaluation.goal.std_error, 0.0);
 }
 
+/// A black 2 m × 1 m floor on y = 0, two 100 cd lamps at 1 m over its middle line at the
+/// given x, and a rail along that line at 1 m.
+fn floor_and_rail(lamps: [(&str, f32); 2]) -> Scene {
+    let mut s = Scene::default();
+    patch(&mut s, "Floor", (0.0, 2.0), (0.0, 1.0));
+    for (name, x) in lamps {
+        lamp(&mut s, name, Vec3::new(x, 1.0, 0.5), 100.0);
+    }
+    let p = Vec3::new;
+    rectangle(
+        &mut s,
+        "Rail",
+        p(0., 1., 0.49),
+        p(2., 1., 0.49),
+        p(0., 1., 0.51),
+    );
+    s
+}
+
 /// The grid cells' true illuminance on the 2 m × 1 m floor of `uniformity_scene` with
 /// the second lamp at x, by the closed form on each 0.25 m cell.
 fn floor_cells(x: f64) -> Vec<f64> {
@@ -216,18 +235,7 @@ fn u0(cells: &[f64]) -> f64 {
 /// where the mean peaks.
 #[test]
 fn maximize_uniformity_places_the_second_lamp_where_u0_peaks() {
-    let mut s = Scene::default();
-    patch(&mut s, "Floor", (0.0, 2.0), (0.0, 1.0));
-    lamp(&mut s, "Fixed", Vec3::new(0.3, 1.0, 0.5), 100.0);
-    lamp(&mut s, "Lamp", Vec3::new(1.0, 1.0, 0.5), 100.0);
-    let p = Vec3::new;
-    rectangle(
-        &mut s,
-        "Rail",
-        p(0., 1., 0.49),
-        p(2., 1., 0.49),
-        p(0., 1., 0.51),
-    );
+    let s = floor_and_rail([("Fixed", 0.3), ("Lamp", 1.0)]);
     let pb = problem(
         "meshSize=\"20x1\"><lightInSurface id=\"Lamp\" surface=\"Rail\" anchor=\"centre\"/>",
         "maxIterations=\"200\" photons=\"40000\" seed=\"6\"",
@@ -385,18 +393,7 @@ fn an_infeasible_problem_reports_the_least_violating_configuration() {
 /// ISOC never holds both.
 #[test]
 fn swapping_identical_lamps_is_one_member() {
-    let mut s = Scene::default();
-    patch(&mut s, "Floor", (0.0, 2.0), (0.0, 1.0));
-    lamp(&mut s, "A", Vec3::new(0.5, 1.0, 0.5), 100.0);
-    lamp(&mut s, "B", Vec3::new(1.5, 1.0, 0.5), 100.0);
-    let p = Vec3::new;
-    rectangle(
-        &mut s,
-        "Rail",
-        p(0., 1., 0.49),
-        p(2., 1., 0.49),
-        p(0., 1., 0.51),
-    );
+    let s = floor_and_rail([("A", 0.5), ("B", 1.5)]);
     let pb = problem(
         "meshSize=\"10x1\"><lightInSurface id=\"A\" surface=\"Rail\" anchor=\"centre\"/><lightInSurface id=\"B\" surface=\"Rail\" anchor=\"centre\"/>",
         "maxIterations=\"150\" photons=\"20000\" seed=\"2\"",
