@@ -1242,6 +1242,206 @@ mod solve {
 
 /// What a newcomer meets in the first hour (issue 11) and what careless input does
 /// (issue 19): each a clear message or a correct result, never a panic.
+mod intentions {
+    use super::*;
+
+    fn example(rel: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(rel)
+    }
+
+    /// The office example end to end on a small budget: goal, constraints, levels and
+    /// verdicts in result.json and solutions.csv, the table's constraint lines, and its
+    /// member measured again on the desk's front.
+    #[test]
+    fn the_office_is_solved_with_its_constraints() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let problem = example("office-target/problem.xml");
+        let run = |json: bool| {
+            let mut a: Vec<&OsStr> = vec!["solve".as_ref(), problem.as_os_str()];
+            a.extend(["--output".as_ref(), out.as_os_str()]);
+            a.extend(
+                [
+                    "-n",
+                    "20000",
+                    "--iterations",
+                    "80",
+                    "--no-images",
+                    "--force",
+                ]
+                .map(OsStr::new),
+            );
+            if json {
+                a.push("--json".as_ref());
+            }
+            invlight(a)
+        };
+        let shown = run(false);
+        assert!(shown.status.success(), "{}", text(&shown.stderr));
+        let table = text(&shown.stdout);
+        assert!(
+            table.contains("Desk.front.minUniformity") && table.contains(" lm ["),
+            "{table}"
+        );
+        let result = json([
+            "solve".as_ref(),
+            problem.as_os_str(),
+            "--output".as_ref(),
+            out.as_os_str(),
+            OsStr::new("-n"),
+            OsStr::new("20000"),
+            OsStr::new("--iterations"),
+            OsStr::new("80"),
+            OsStr::new("--no-images"),
+            OsStr::new("--force"),
+            OsStr::new("--json"),
+        ]);
+        assert_eq!(result["schema_version"], 2);
+        assert_eq!(result["objective"]["element"], "minimizePower");
+        assert_eq!(result["objective"]["unit"], "lm");
+        let labels: Vec<&str> = result["constraints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["label"].as_str().unwrap())
+            .collect();
+        assert_eq!(
+            labels,
+            [
+                "Desk.front.minLux",
+                "Desk.front.minUniformity",
+                "Screen.front.maxLux"
+            ]
+        );
+        let feasible = result["feasible"].as_bool().unwrap();
+        let members = if feasible {
+            &result["isoc"]
+        } else {
+            &result["closest"]
+        };
+        let m = &members[0];
+        assert_eq!(m["variables"]["Lamp1.power"]["kind"], "lightPower");
+        assert_eq!(m["variables"]["Lamp1"]["kind"], "lightInSurface");
+        for c in m["constraints"].as_array().unwrap() {
+            let verdict = c["verdict"].as_str().unwrap();
+            assert!(["feasible", "infeasible", "undecided"].contains(&verdict));
+            assert!(
+                c["low"].as_f64() <= c["mean"].as_f64() && c["mean"].as_f64() <= c["high"].as_f64()
+            );
+        }
+        let csv = std::fs::read_to_string(out.join("solutions.csv")).unwrap();
+        let header = csv.lines().next().unwrap();
+        assert!(header.contains(",Lamp1.value,Lamp2.value,low,"), "{header}");
+        assert!(header.ends_with(",Screen.front.maxLux.verdict"), "{header}");
+        // The member measured again (its lamps dimmed in the scene): its desk front
+        // agrees with the search's estimate, photons and seed alike.
+        let config = format!("{}#1", out.join("result.json").display());
+        let measured = json([
+            "measure".as_ref(),
+            problem.as_os_str(),
+            OsStr::new("--config"),
+            OsStr::new(&config),
+            OsStr::new("--side"),
+            OsStr::new("front"),
+            OsStr::new("-s"),
+            OsStr::new("Desk"),
+            OsStr::new("-n"),
+            OsStr::new("200000"),
+            OsStr::new("--seed"),
+            OsStr::new("9"),
+            OsStr::new("--json"),
+        ]);
+        let desk = &measured["surfaces"][0];
+        let searched = &m["constraints"][0];
+        let (a, sa) = (
+            desk["mean"].as_f64().unwrap(),
+            desk["std_error"].as_f64().unwrap(),
+        );
+        let (b, sb) = (
+            searched["mean"].as_f64().unwrap(),
+            searched["std_error"].as_f64().unwrap(),
+        );
+        assert!(
+            (a - b).abs() < 4.0 * (sa * sa + sb * sb).sqrt(),
+            "measured {a} ± {sa}, searched {b} ± {sb}"
+        );
+        assert_eq!(desk["side"], "front");
+        // The desk's top is lit from above; its underside only through the 1 mm gap
+        // over the desk's body.
+        assert!(desk["back"].as_f64().unwrap() < 0.01 * desk["front"].as_f64().unwrap());
+    }
+
+    /// Dimming alone traces once, and a problem nothing satisfies says so.
+    #[test]
+    fn dimming_alone_traces_once_and_an_infeasible_result_says_so() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let problem = example("office-target/dimming.xml");
+        let o = invlight([
+            "solve".as_ref(),
+            problem.as_os_str(),
+            "--output".as_ref(),
+            out.as_os_str(),
+            OsStr::new("-n"),
+            OsStr::new("50000"),
+            OsStr::new("--iterations"),
+            OsStr::new("300"),
+            OsStr::new("--no-images"),
+        ]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let stderr = text(&o.stderr);
+        assert!(
+            stderr.contains(" 50048 photons,"),
+            "one trace of N: {stderr}"
+        );
+        assert!(text(&o.stdout).starts_with("No configuration tried meets every constraint"));
+        let result: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("result.json")).unwrap())
+                .unwrap();
+        assert_eq!(result["feasible"], false);
+        assert!(result["isoc"].as_array().unwrap().is_empty());
+        let closest = result["closest"].as_array().unwrap();
+        assert!(!closest.is_empty() && closest[0]["violation"].as_f64().unwrap() > 0.1);
+    }
+
+    /// A surface counted on both sides that gets much of its light from behind is
+    /// named, with both figures.
+    #[test]
+    fn light_from_behind_is_named() {
+        let o = invlight([
+            OsStr::new("measure"),
+            data("gltf/room_area.gltf").as_os_str(),
+            OsStr::new("-s"),
+            OsStr::new("Floor"),
+            OsStr::new("-n"),
+            OsStr::new("20000"),
+        ]);
+        assert!(o.status.success());
+        let stderr = text(&o.stderr);
+        assert!(
+            stderr.contains("'Floor' receives 100 % of its light on its back")
+                && stderr.contains("lx on its front"),
+            "{stderr}"
+        );
+        let o = invlight([
+            OsStr::new("measure"),
+            data("gltf/room_area.gltf").as_os_str(),
+            OsStr::new("-s"),
+            OsStr::new("Floor"),
+            OsStr::new("--side"),
+            OsStr::new("back"),
+            OsStr::new("-n"),
+            OsStr::new("20000"),
+        ]);
+        assert!(
+            !text(&o.stderr).contains("warning"),
+            "a side named: no warning"
+        );
+    }
+}
+
 mod first_hour {
     use super::*;
 

@@ -429,3 +429,123 @@ fn interrupted_run_resumes_without_retracing() {
     assert!(log2.records.iter().all(|r| r.verdict != Verdict::Initial));
     check_optimum(&space, resumed.isoc(), &[0.52, 0.71], &f);
 }
+
+/// The search with every sense and constraint on functions of known optimum (issue 13),
+/// returning the search for its ISOC and closest configurations.
+fn run_search<'s, F: Fn(&[f64]) -> f64>(
+    space: &'s Space,
+    settings: Settings,
+    start: Vec<f64>,
+    eval: &mut Noisy<F>,
+) -> Search<'s> {
+    let mut search = Search::new(space, settings, &Configuration { coords: start });
+    search.run(eval, &mut Log::default()).unwrap();
+    search
+}
+
+/// The cell of `x` in a one-segment space of `cells` cells.
+fn cell_index(x: f64, cells: u32) -> u32 {
+    ((x * cells as f64) as u32).min(cells - 1)
+}
+
+#[test]
+fn a_target_is_met_where_the_function_crosses_it() {
+    // f rises from 0 to 20 over [0, 1]; 13 is reached at x = 0.65.
+    let f = |x: &[f64]| 20.0 * x[0];
+    let space = Space::new(vec![segment("h")], &[20]);
+    let mut eval = Noisy::new(f, 3.0);
+    let settings = Settings {
+        sense: Sense::Target(13.0),
+        ..settings(200, Strategy::RefineOnIntersection)
+    };
+    let search = run_search(&space, settings, vec![0.1], &mut eval);
+    let cells: Vec<u32> = search
+        .isoc()
+        .members()
+        .iter()
+        .map(|m| m.cell.0[0])
+        .collect();
+    assert!(cells.contains(&cell_index(0.65, 20)), "{cells:?}");
+    for m in search.isoc().members() {
+        // Its score is minus the distance to the target.
+        assert!(m.estimate.mean <= 0.0);
+        assert!((m.evaluation.goal.mean - 13.0).abs() <= 0.5 + 4.0 * m.evaluation.goal.std_error);
+    }
+}
+
+#[test]
+fn a_minimum_under_a_lower_bound_sits_on_the_bound() {
+    // Least f = x (power) with g = 10 x (illuminance) at least 6: x ≥ 0.6.
+    let space = Space::new(vec![segment("level")], &[40]);
+    let mut eval = Noisy::new(|x: &[f64]| x[0], 0.0).with(|x| 10.0 * x[0], 2.0);
+    let settings = Settings {
+        sense: Sense::Minimize,
+        constraints: vec![Bound::MinLux(6.0)],
+        ..settings(300, Strategy::RefineOnIntersection)
+    };
+    let search = run_search(&space, settings, vec![0.95], &mut eval);
+    let best = search.isoc().best().expect("a feasible level");
+    let level = best.config.coords[0];
+    // The least level whose one-sided 95 % bound clears 6: σ of g is 2/√N = 0.02, so
+    // within a cell or two of 0.6 above it.
+    assert!(
+        (0.6..=0.6 + 2.0 / 40.0 + 0.01).contains(&level),
+        "level {level}"
+    );
+    for m in search.isoc().members() {
+        let g = &m.evaluation.constraints[0];
+        assert!(
+            g.mean - 1.645 * g.std_error >= 6.0 - 1e-12,
+            "every member feasible"
+        );
+    }
+}
+
+#[test]
+fn an_upper_bound_pulls_a_maximum_off_its_peak() {
+    // Most f, peaked at 0.7, with g = 10 x at most 4: the best is x just under 0.4.
+    let f = |x: &[f64]| 10.0 - 40.0 * (x[0] - 0.7).powi(2);
+    let space = Space::new(vec![segment("x")], &[40]);
+    let mut eval = Noisy::new(f, 2.0).with(|x| 10.0 * x[0], 1.0);
+    let settings = Settings {
+        constraints: vec![Bound::MaxLux(4.0)],
+        ..settings(300, Strategy::RefineOnIntersection)
+    };
+    let search = run_search(&space, settings, vec![0.1], &mut eval);
+    let cells: Vec<u32> = search
+        .isoc()
+        .members()
+        .iter()
+        .map(|m| m.cell.0[0])
+        .collect();
+    assert!(!cells.is_empty());
+    assert!(
+        cells.iter().all(|&c| c < 16),
+        "feasible cells only (x < 0.4): {cells:?}"
+    );
+    assert!(cells.contains(&15) || cells.contains(&14), "{cells:?}");
+}
+
+#[test]
+fn an_infeasible_problem_walks_toward_feasibility_and_says_what_came_closest() {
+    // g = 10 − 20 |x − 0.8| never reaches 12: the closest is x = 0.8.
+    let space = Space::new(vec![segment("x")], &[40]);
+    let mut eval =
+        Noisy::new(|x: &[f64]| x[0], 1.0).with(|x| 10.0 - 20.0 * (x[0] - 0.8).abs(), 0.5);
+    let settings = Settings {
+        constraints: vec![Bound::MinLux(12.0)],
+        ..settings(200, Strategy::RefineOnIntersection)
+    };
+    let search = run_search(&space, settings, vec![0.05], &mut eval);
+    let standing = search.standing();
+    assert!(standing.isoc.members().is_empty());
+    let (v, closest) = &standing.closest[0];
+    assert_eq!(
+        closest.cell.0[0],
+        cell_index(0.8, 40),
+        "closest at {:?}",
+        closest.config
+    );
+    assert!((v - (1.0 - 10.0 / 12.0)).abs() < 0.03, "shortfall {v}");
+    assert!(standing.closest.windows(2).all(|w| w[0].0 <= w[1].0));
+}
