@@ -1,0 +1,115 @@
+//! `run.json`: the settings a search's numbers depend on, written when a search starts
+//! so that `--resume` can refuse to mix rows traced differently: a different seed,
+//! sample count or confidence would make the old and new estimates incomparable
+//! (common random numbers are lost, intervals differ) while looking alike in the CSV.
+//! The iteration budget may change: resuming with more iterations is what it is for.
+
+use crate::vns::{Settings, Strategy};
+use invlight_scene::Diagnostic;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The version of `run.json`'s layout.
+pub const RUN_SCHEMA: u32 = 1;
+
+/// `run.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct RunFile {
+    /// [`RUN_SCHEMA`]; 0 in folders written before it was recorded.
+    #[serde(rename = "schema_version", default)]
+    pub schema_version: u32,
+    /// Seed of the photon streams and of the search.
+    pub seed: u64,
+    /// N, photons of a full evaluation.
+    pub photons: u64,
+    /// q, the fast evaluations' share of N.
+    pub fast_quality: f64,
+    /// The refinement strategy, as the problem file spells it.
+    pub strategy: String,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// The cap on the objective, lx.
+    pub cap: Option<f64>,
+    /// Bounce cap of the photon paths.
+    pub max_bounces: u32,
+}
+
+impl RunFile {
+    /// The settings of a search and its photon tracer.
+    pub fn new(settings: &Settings, max_bounces: u32) -> RunFile {
+        RunFile {
+            schema_version: RUN_SCHEMA,
+            seed: settings.seed,
+            photons: settings.photons,
+            fast_quality: settings.fast_quality,
+            strategy: settings.strategy.name().to_string(),
+            confidence: settings.confidence.level(),
+            cap: settings.cap,
+            max_bounces,
+        }
+    }
+
+    /// Whether rows made with `old` may be continued with these settings: `Err` names
+    /// every setting that differs, with the value the folder was made with.
+    pub fn check_resume(&self, old: &RunFile, dir: &Path) -> Result<(), Diagnostic> {
+        let mut differ = Vec::new();
+        let mut check = |name: &str, new: String, was: String| {
+            if new != was {
+                differ.push(format!("{name} {new} (the folder has {was})"));
+            }
+        };
+        check("seed", self.seed.to_string(), old.seed.to_string());
+        check("photons", self.photons.to_string(), old.photons.to_string());
+        check(
+            "fastQuality",
+            self.fast_quality.to_string(),
+            old.fast_quality.to_string(),
+        );
+        check("strategy", self.strategy.clone(), old.strategy.clone());
+        check(
+            "confidence",
+            self.confidence.to_string(),
+            old.confidence.to_string(),
+        );
+        check("cap", format!("{:?}", self.cap), format!("{:?}", old.cap));
+        check(
+            "maxBounces",
+            self.max_bounces.to_string(),
+            old.max_bounces.to_string(),
+        );
+        if differ.is_empty() {
+            Ok(())
+        } else {
+            Err(Diagnostic::new(
+                &dir.join("run.json"),
+                format!(
+                    "cannot resume {}: its rows were traced with other settings: {}",
+                    dir.display(),
+                    differ.join(", ")
+                ),
+            )
+            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, the problem file's quality and strategy) or choose a new --output"))
+        }
+    }
+
+    /// Reads `dir/run.json`; `Ok(None)` when there is none.
+    pub fn read(dir: &Path) -> Result<Option<RunFile>, Diagnostic> {
+        let path = dir.join("run.json");
+        let text = match std::fs::read_to_string(&path) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(Diagnostic::new(&path, format!("cannot read it: {e}"))),
+        };
+        let run: RunFile = serde_json::from_str(&text).map_err(|e| {
+            Diagnostic::at_line(&path, e.line() as u32, format!("not a run.json: {e}"))
+        })?;
+        if Strategy::parse(&run.strategy).is_none() {
+            return Err(Diagnostic::new(
+                &path,
+                format!("strategy '{}' unknown", run.strategy),
+            ));
+        }
+        Ok(Some(run))
+    }
+}

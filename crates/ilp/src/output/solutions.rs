@@ -1,0 +1,279 @@
+//! `solutions.csv`: one row per evaluation (thesis §4.2.2), written as the search goes
+//! and read back by `--resume`. One [`SolutionRow`] writes and reads a row, through the
+//! `csv` crate (quoting: a variable id may hold a comma).
+//!
+//! Columns: `iteration`; per variable its world value — a placement's point P
+//! (`<id>.x`, `<id>.y`, `<id>.z`) and anchor (`<id>.anchor.x`, …), a direction
+//! (`<id>.x`, …), a colour value (`<id>.value`); then `low`, `mean`, `high` (the
+//! interval at the run's confidence), `std_error`, `photons`, `seconds` (of this
+//! evaluation), `elapsed` (since the run started) and `verdict`.
+
+use crate::binding::{Binding, VariableValue};
+use crate::space::Domain;
+use crate::vns::{Record, Verdict};
+use glam::DVec3;
+use invlight_scene::Diagnostic;
+use invlight_stats::Estimate;
+use std::path::Path;
+
+/// One row of `solutions.csv`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolutionRow {
+    /// The candidate's number (the initial configuration is 0).
+    pub iteration: u64,
+    /// Each variable's world value, in variable order.
+    pub values: Vec<VariableValue>,
+    /// The estimate: mean, standard error, photons.
+    pub estimate: Estimate,
+    /// Seconds this evaluation took.
+    pub seconds: f64,
+    /// Seconds since the run started (resumed runs go on counting).
+    pub elapsed: f64,
+    /// What the search decided.
+    pub verdict: Verdict,
+}
+
+/// The header of a binding's `solutions.csv`.
+pub fn header(binding: &Binding) -> Vec<String> {
+    let mut h = vec!["iteration".to_string()];
+    for v in binding.space.variables() {
+        match v.domain {
+            Domain::Parallelogram(_) => {
+                h.extend(["x", "y", "z"].map(|c| format!("{}.{c}", v.id)));
+                h.extend(["x", "y", "z"].map(|c| format!("{}.anchor.{c}", v.id)));
+            }
+            Domain::Hemisphere(_) => h.extend(["x", "y", "z"].map(|c| format!("{}.{c}", v.id))),
+            Domain::Segment { .. } => h.push(format!("{}.value", v.id)),
+        }
+    }
+    h.extend(
+        [
+            "low",
+            "mean",
+            "high",
+            "std_error",
+            "photons",
+            "seconds",
+            "elapsed",
+            "verdict",
+        ]
+        .map(String::from),
+    );
+    h
+}
+
+/// A CSV line (with its newline) of the fields `fields`, quoted where they need it.
+pub fn line<I, S>(fields: I) -> String
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<[u8]>,
+{
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    w.write_record(fields)
+        .expect("a CSV record in memory always writes");
+    String::from_utf8(w.into_inner().expect("an in-memory writer flushes"))
+        .expect("fields are UTF-8")
+}
+
+impl SolutionRow {
+    /// The row of a search record.
+    pub fn of(binding: &Binding, record: &Record, elapsed: f64) -> SolutionRow {
+        SolutionRow {
+            iteration: record.iteration,
+            values: binding.values(&record.config),
+            estimate: record.estimate,
+            seconds: record.seconds,
+            elapsed,
+            verdict: record.verdict,
+        }
+    }
+
+    /// The fields, in [`header`]'s order, `low` and `high` at `z`. Numbers are written
+    /// in Rust's shortest form that reads back to the same f64.
+    pub fn fields(&self, z: f64) -> Vec<String> {
+        let mut f = vec![self.iteration.to_string()];
+        for v in &self.values {
+            match *v {
+                VariableValue::Position { point, anchor } => {
+                    f.extend(point.to_array().map(|c| c.to_string()));
+                    f.extend(anchor.to_array().map(|c| c.to_string()));
+                }
+                VariableValue::Direction(d) => f.extend(d.to_array().map(|c| c.to_string())),
+                VariableValue::Colour { value, .. } => f.push(value.to_string()),
+            }
+        }
+        let i = self.estimate.interval(z);
+        f.extend([
+            i.low.to_string(),
+            self.estimate.mean.to_string(),
+            i.high.to_string(),
+            self.estimate.std_error.to_string(),
+            self.estimate.samples.to_string(),
+            format!("{:.6}", self.seconds),
+            format!("{:.3}", self.elapsed),
+            self.verdict.name().to_string(),
+        ]);
+        f
+    }
+
+    /// The search record of this row: its values mapped back to a configuration by
+    /// [`Binding::configuration`].
+    pub fn record(&self, binding: &Binding) -> Result<Record, String> {
+        Ok(Record {
+            iteration: self.iteration,
+            config: binding.configuration(&self.values)?,
+            estimate: self.estimate,
+            seconds: self.seconds,
+            verdict: self.verdict,
+        })
+    }
+}
+
+/// Rows read back from a `solutions.csv`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solutions {
+    /// The complete rows, as records of the search.
+    pub records: Vec<Record>,
+    /// `elapsed` of the last row, s.
+    pub elapsed: f64,
+    /// Bytes of the file up to the end of its last complete row: a row cut short by a
+    /// hard stop lies beyond (and is cut off before appending).
+    pub complete_len: u64,
+}
+
+impl Solutions {
+    /// Reads `path`, written for `binding` (same variables in the same order), back into
+    /// records. Every complete row must parse, with finite numbers: a row that does not is
+    /// an error naming the line. Only a last row without its newline — cut short by a hard
+    /// stop — is ignored.
+    pub fn read(path: &Path, binding: &Binding) -> Result<Solutions, Diagnostic> {
+        let bytes = std::fs::read(path)
+            .map_err(|e| Diagnostic::new(path, format!("cannot read it: {e}")))?;
+        let complete_len = bytes.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let bad = |line: u64, msg: String| Diagnostic::at_line(path, line as u32, msg);
+        let want = header(binding);
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .from_reader(&bytes[..complete_len]);
+        let mut rows = reader.records();
+        let mut out = Solutions {
+            records: Vec::new(),
+            elapsed: 0.0,
+            complete_len: complete_len as u64,
+        };
+        match rows.next() {
+            None => return Ok(out),
+            Some(h) => {
+                let h = h.map_err(|e| bad(1, e.to_string()))?;
+                if h.iter().ne(want.iter().map(String::as_str)) {
+                    return Err(bad(
+                        1,
+                        format!(
+                            "header '{}' does not match this problem's, expected '{}'",
+                            h.iter().collect::<Vec<_>>().join(","),
+                            want.join(",")
+                        ),
+                    ));
+                }
+            }
+        }
+        let mut last_elapsed = 0.0f64;
+        for row in rows {
+            let row = row.map_err(|e| Diagnostic::new(path, e.to_string()))?;
+            let n = row.position().map_or(0, |p| p.line());
+            if row.len() != want.len() {
+                return Err(bad(
+                    n,
+                    format!("{} columns, expected {}", row.len(), want.len()),
+                ));
+            }
+            let real = |i: usize| -> Result<f64, Diagnostic> {
+                match row[i].parse::<f64>() {
+                    Ok(x) if x.is_finite() => Ok(x),
+                    _ => Err(bad(
+                        n,
+                        format!(
+                            "'{}' in column {}, expected a finite number",
+                            &row[i], want[i]
+                        ),
+                    )),
+                }
+            };
+            let integer = |i: usize| -> Result<u64, Diagnostic> {
+                row[i].parse::<u64>().map_err(|_| {
+                    bad(
+                        n,
+                        format!("'{}' in column {}, expected an integer", &row[i], want[i]),
+                    )
+                })
+            };
+            let iteration = integer(0)?;
+            let mut values = Vec::new();
+            let mut c = 1;
+            let vec3 = |c: usize| -> Result<DVec3, Diagnostic> {
+                Ok(DVec3::new(real(c)?, real(c + 1)?, real(c + 2)?))
+            };
+            for v in binding.space.variables() {
+                match &v.domain {
+                    Domain::Parallelogram(_) => {
+                        values.push(VariableValue::Position {
+                            point: vec3(c)?,
+                            anchor: vec3(c + 3)?,
+                        });
+                        c += 6;
+                    }
+                    Domain::Hemisphere(_) => {
+                        values.push(VariableValue::Direction(vec3(c)?));
+                        c += 3;
+                    }
+                    Domain::Segment { .. } => {
+                        // The row holds V alone; K_d follows from it (and is not needed to
+                        // map the row back to a configuration).
+                        values.push(VariableValue::Colour {
+                            value: real(c)?,
+                            rgb: [0.0; 3],
+                        });
+                        c += 1;
+                    }
+                }
+            }
+            let (low, mean, high, std_error) = (real(c)?, real(c + 1)?, real(c + 2)?, real(c + 3)?);
+            let samples = integer(c + 4)?;
+            let (seconds, elapsed) = (real(c + 5)?, real(c + 6)?);
+            let verdict = Verdict::parse(&row[c + 7])
+                .ok_or_else(|| bad(n, format!("verdict '{}' unknown", &row[c + 7])))?;
+            if !(std_error >= 0.0 && low <= mean && mean <= high && samples > 0) {
+                return Err(bad(
+                    n,
+                    "the estimate is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, photons > 0)".into(),
+                ));
+            }
+            if !(seconds >= 0.0 && elapsed >= last_elapsed) {
+                return Err(bad(
+                    n,
+                    format!(
+                        "times {seconds} s and {elapsed} s, expected non-negative seconds and an elapsed time that does not go back ({last_elapsed} s before)"
+                    ),
+                ));
+            }
+            last_elapsed = elapsed;
+            let row = SolutionRow {
+                iteration,
+                values,
+                estimate: Estimate {
+                    mean,
+                    std_error,
+                    samples,
+                },
+                seconds,
+                elapsed,
+                verdict,
+            };
+            out.records
+                .push(row.record(binding).map_err(|e| bad(n, e))?);
+            out.elapsed = elapsed;
+        }
+        Ok(out)
+    }
+}

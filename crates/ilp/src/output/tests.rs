@@ -1,0 +1,242 @@
+//! The files of a run: written as a search goes, read back into the same search, and
+//! cut back to what was complete when something goes wrong.
+
+use super::*;
+use crate::Configuration;
+use crate::problem::Problem;
+use crate::vns::{Evaluate, Search, Settings, Strategy, Verdict};
+use glam::{Mat4, Vec3};
+use invlight_scene::{Light, LightKind, Material, Mesh, Scene};
+use invlight_stats::{Confidence, Estimate};
+use std::io::Write;
+
+struct Bowl;
+impl Evaluate for Bowl {
+    type Error = ();
+    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Estimate, ()> {
+        let x = &c.coords;
+        Ok(Estimate {
+            mean: 10.0 - (x[0] - 0.3).powi(2) - (x[2] - 0.6).powi(2) - x[3],
+            std_error: 0.01,
+            samples: photons,
+        })
+    }
+}
+
+/// A floor that moves on itself (id "Floor, left": a comma the CSV must quote), a sun
+/// and a colour.
+fn binding() -> (Binding, Scene) {
+    let mut s = Scene::default();
+    let grey = s.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let floor = s.add_mesh(Mesh::quad(
+        [
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(0.0, 0.0, -1.0),
+        ],
+        grey,
+    ));
+    s.add_instance("Floor, left", floor, Mat4::IDENTITY);
+    s.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: -Vec3::Y,
+            illuminance: Vec3::ONE,
+        },
+    });
+    let p = Problem::parse(
+        Path::new("/p/x.xml"),
+        "<input><scene path=\"s.gltf\"/><conditions meshSize=\"10\"><objectInSurface id=\"Floor, left\" surface=\"Floor, left\"/><directionalLight id=\"Sun\"/><color id=\"Grey\" hue=\"30\" saturation=\"0.5\"/></conditions><objectives><maximizeRadiance surface=\"Floor, left\" maxRadiosity=\"9.5\"/></objectives></input>",
+    )
+    .unwrap();
+    (Binding::new(&p, &mut s).unwrap(), s)
+}
+
+fn settings() -> Settings {
+    Settings {
+        max_iterations: 60,
+        photons: 1000,
+        fast_quality: 0.25,
+        strategy: Strategy::RefineOnIntersection,
+        confidence: Confidence::DEFAULT,
+        cap: Some(9.5),
+        seed: 4,
+        tries_per_radius: None,
+    }
+}
+
+fn info() -> ObjectiveInfo {
+    ObjectiveInfo {
+        surface: "Floor, left".into(),
+        sense: "maximize".into(),
+        unit: "lx".into(),
+        cap: Some(9.5),
+    }
+}
+
+fn fresh(replace: bool) -> Start {
+    Start::Fresh { replace }
+}
+
+/// Runs the bowl search into `dir`.
+fn run_into(dir: &Path, b: &Binding) -> u64 {
+    let mut search = Search::new(&b.space, settings(), &b.initial);
+    let mut out = Output::create(dir, b, info(), &settings(), 7, &fresh(false)).unwrap();
+    search.run(&mut Bowl, &mut out).unwrap();
+    search.evaluations()
+}
+
+#[test]
+fn csv_and_json_round_trip() {
+    let (b, _) = binding();
+    assert_eq!(
+        csv_line(csv_header(&b)),
+        "iteration,\"Floor, left.x\",\"Floor, left.y\",\"Floor, left.z\",\"Floor, left.anchor.x\",\"Floor, left.anchor.y\",\"Floor, left.anchor.z\",Sun.x,Sun.y,Sun.z,Grey.value,low,mean,high,std_error,photons,seconds,elapsed,verdict\n"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let mut search = Search::new(&b.space, settings(), &b.initial);
+    {
+        let mut out = Output::create(dir, &b, info(), &settings(), 7, &fresh(false)).unwrap();
+        search.run(&mut Bowl, &mut out).unwrap();
+    }
+    // A hard stop mid-row: the partial row is ignored, then cut off on resuming.
+    let csv = dir.join("solutions.csv");
+    let mut f = OpenOptions::new().append(true).open(&csv).unwrap();
+    write!(f, "999,0.5,0.").unwrap();
+    drop(f);
+    let rows = Solutions::read(&csv, &b).unwrap();
+    assert_eq!(rows.records.len() as u64, search.evaluations());
+    let start = Start::Resume(rows.clone());
+    let resumed = Output::create(dir, &b, info(), &settings(), 7, &start).unwrap();
+    assert!(resumed.elapsed() >= rows.elapsed);
+    drop(resumed);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.ends_with('\n'));
+    assert_eq!(text.lines().count(), rows.records.len() + 1);
+    assert!(
+        rows.records.iter().any(|r| r.verdict == Verdict::Invalid),
+        "cap 9.5"
+    );
+    // The rows rebuild the same ISOC, estimates exactly (std_error is stored).
+    let mut again = Search::new(&b.space, settings(), &b.initial);
+    again.replay(&rows.records);
+    assert_eq!(again.isoc().members(), search.isoc().members());
+    // result.json reads back into the same members, and each member maps back to its
+    // configuration.
+    let result = ResultFile::read(&dir.join("result.json")).unwrap();
+    assert_eq!(result.schema_version, RESULT_SCHEMA);
+    assert_eq!(result.objective.cap, Some(9.5));
+    assert_eq!(result.isoc.len(), search.isoc().members().len());
+    let by_mean = search.isoc().by_mean();
+    for (k, m) in by_mean.iter().enumerate() {
+        assert_eq!(result.configuration(&b, k + 1).unwrap(), m.config);
+    }
+    assert!(result.configuration(&b, by_mean.len() + 1).is_err());
+    assert!(result.configuration(&b, 0).is_err());
+    let m = &result.isoc[0];
+    assert!(matches!(
+        m.variables["Floor, left"],
+        ResultValue::ObjectInSurface { .. }
+    ));
+    assert!(matches!(
+        m.variables["Sun"],
+        ResultValue::DirectionalLight { .. }
+    ));
+    assert!(matches!(m.variables["Grey"], ResultValue::Color { .. }));
+    assert!(m.estimate.low <= m.estimate.mean && m.estimate.mean <= m.estimate.high);
+    let run = RunFile::read(dir).unwrap().unwrap();
+    assert_eq!(run, RunFile::new(&settings(), 7));
+}
+
+/// Rows that do not hold what a run writes are errors naming the line; only a last row
+/// without its newline is taken for a hard stop and ignored.
+#[test]
+fn bad_rows_are_errors_with_their_line() {
+    let (b, _) = binding();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    run_into(dir, &b);
+    let csv = dir.join("solutions.csv");
+    let good = std::fs::read_to_string(&csv).unwrap();
+    let lines = good.lines().count();
+    let last: Vec<&str> = good.lines().last().unwrap().split(',').collect();
+    let with = |k: usize, value: &str| {
+        let mut row = last.clone();
+        row[k] = value;
+        row.join(",") + "\n"
+    };
+    let elapsed = last.len() - 2;
+    for (what, appended, line) in [
+        ("columns", "1,2,3\n".to_string(), lines + 1),
+        ("finite", with(elapsed, "NaN"), lines + 1),
+        (
+            "go back",
+            with(elapsed, "1000") + &with(elapsed, "999"),
+            lines + 2,
+        ),
+        ("verdict", with(last.len() - 1, "splendid"), lines + 1),
+    ] {
+        std::fs::write(&csv, format!("{good}{appended}")).unwrap();
+        let e = Solutions::read(&csv, &b).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!(":{line}:")) && e.contains(what),
+            "{what}: {e}"
+        );
+    }
+    // The clock of a resumed run goes on from the last row's elapsed time.
+    std::fs::write(&csv, format!("{good}{}", with(elapsed, "12.5"))).unwrap();
+    let rows = Solutions::read(&csv, &b).unwrap();
+    assert_eq!(rows.elapsed, 12.5);
+    let out = Output::create(dir, &b, info(), &settings(), 7, &Start::Resume(rows)).unwrap();
+    assert!(out.elapsed() >= 12.5);
+    drop(out);
+    std::fs::write(&csv, format!("{good}1,2,3")).unwrap();
+    assert_eq!(
+        Solutions::read(&csv, &b).unwrap().records.len(),
+        lines - 1,
+        "a row without its newline is a hard stop's"
+    );
+}
+
+/// A folder holding a run is refused unless asked to replace it, which removes that
+/// run's files and pictures; a folder in use by a live run is refused with its pid; a
+/// stale lock is taken over.
+#[test]
+fn folders_are_not_shared_or_silently_overwritten() {
+    let (b, _) = binding();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    {
+        let _held = Output::create(dir, &b, info(), &settings(), 7, &fresh(false)).unwrap();
+        let e = Output::create(dir, &b, info(), &settings(), 7, &fresh(true))
+            .err()
+            .unwrap();
+        assert!(
+            matches!(&e, OutputError::Locked(m) if m.contains(&std::process::id().to_string())),
+            "{e}"
+        );
+    }
+    std::fs::write(dir.join("isoc-07.png"), b"old").unwrap();
+    std::fs::write(dir.join("notes.txt"), b"mine").unwrap();
+    let e = Output::create(dir, &b, info(), &settings(), 7, &fresh(false))
+        .err()
+        .unwrap();
+    assert!(matches!(e, OutputError::Occupied(_)), "{e}");
+    assert!(e.to_string().contains("--force") && e.to_string().contains("--resume"));
+    // A lock whose process is gone (pid 0 is never a user process).
+    std::fs::write(dir.join(lock::LOCK_FILE), "0\n").unwrap();
+    let out = Output::create(dir, &b, info(), &settings(), 7, &fresh(true)).unwrap();
+    assert!(
+        !dir.join("isoc-07.png").exists(),
+        "the earlier run's picture"
+    );
+    assert!(dir.join("notes.txt").exists(), "not a run's file");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("solutions.csv")).unwrap(),
+        csv_line(csv_header(&b))
+    );
+    drop(out);
+    assert!(!dir.join(lock::LOCK_FILE).exists(), "released");
+}
