@@ -206,3 +206,46 @@ impl TraceArgs {
             .context("starting the worker threads")
     }
 }
+
+/// What the report checks a grid against (EN 12464-1), and how it measures the grid.
+#[derive(Args, Debug, Clone)]
+pub struct ReportArgs {
+    /// An EN 12464-1:2021 task whose Em and U0 the grid must meet: office, filing,
+    /// meeting, drawing, corridor, classroom or board.
+    #[arg(long, value_name = "NAME")]
+    pub task: Option<String>,
+    /// Required maintained mean illuminance, lx (replaces the task's).
+    #[arg(long, value_name = "LX", value_parser = positive::<f64>)]
+    pub em: Option<f64>,
+    /// Required uniformity Emin/Eavg (replaces the task's).
+    #[arg(long, value_name = "U0", value_parser = positive::<f64>)]
+    pub u0: Option<f64>,
+    /// Maintenance factor in (0, 1]: maintained values are MF × the computed ones.
+    #[arg(long, default_value_t = 1.0, value_name = "MF")]
+    pub maintenance_factor: f64,
+    /// Photons of the objective surface's grid in report.html.
+    #[arg(long, default_value_t = 1_000_000, value_name = "N")]
+    pub report_photons: u64,
+}
+
+impl ReportArgs {
+    /// The requirement asked for, if any.
+    pub fn requirement(&self) -> anyhow::Result<Option<invlight_render::Requirement>> {
+        let (t, mf) = (self.task.as_deref(), self.maintenance_factor);
+        invlight_render::Requirement::from_flags(t, self.em, self.u0, mf)
+            .map_err(|e| InputError(e).into())
+    }
+
+    /// The objective's grid with EN 12464-1's spacing, traced as `trace` says.
+    pub fn grid(&self, seed: u64, max_bounces: u32) -> invlight_report::GridOptions {
+        let trace = TraceSettings {
+            photons: self.report_photons,
+            seed,
+            max_bounces,
+        };
+        invlight_report::GridOptions {
+            trace,
+            spacing: invlight_render::GridSpacing::Auto,
+        }
+    }
+}

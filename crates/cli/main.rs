@@ -6,6 +6,7 @@ mod map;
 mod measure;
 mod progress;
 mod render;
+mod report;
 mod scene;
 mod solve;
 
@@ -40,13 +41,13 @@ enum Command {
     /// docs/problem-file.md). Results are written as they are found.
     ///
     /// The output folder gets solutions.csv (one row per photon trace), result.json (the
-    /// best configurations, rewritten whenever they change) and run.json (the settings,
-    /// which --resume checks). Ctrl-C stops cleanly with exit status 130; --resume
-    /// continues from solutions.csv. A folder holding an earlier run is refused unless
-    /// --resume or --force is given. At the end, isoc-01.png, isoc-02.png, … render the
-    /// ISOC's configurations from the scene's camera and search.png plots the
-    /// configurations evaluated.
+    /// best configurations) and run.json (the settings --resume checks). Ctrl-C stops
+    /// cleanly with exit status 130; --resume continues. An earlier run is refused unless
+    /// --resume or --force is given. At the end isoc-NN.png render the ISOC, search.png
+    /// plots the search and report.html reports it all in one page.
     Solve(solve::SolveArgs),
+    /// Rebuild a solve's report.html from its output folder.
+    Report(report::ReportCommandArgs),
     /// Render a picture from a scene camera by photon mapping, or a false-colour
     /// illuminance picture with a lux scale.
     Render(render::RenderArgs),
@@ -88,6 +89,7 @@ fn main() -> ExitCode {
         Command::Measure(args) => measure::run(args),
         Command::Scene(args) => scene::run(args),
         Command::Solve(args) => solve::run(args),
+        Command::Report(args) => report::run(args),
         Command::Render(args) => render::run(args),
         Command::Map(args) => map::run(args),
     };

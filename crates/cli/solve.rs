@@ -2,18 +2,18 @@
 //! photon-traced estimates ([`invlight_ilp::Search`]), and reports the ISOC. The files
 //! (`solutions.csv`, `result.json`, `run.json`) are written as the search goes; Ctrl-C
 //! stops it cleanly (exit 130) and `--resume` continues it. At the end (also after
-//! Ctrl-C) every ISOC member is rendered (`isoc-NN.png`) and the visited
-//! configurations plotted (`search.png`).
+//! Ctrl-C) every ISOC member is rendered (`isoc-NN.png`), the visited configurations
+//! plotted (`search.png`) and all of it reported in `report.html`.
 
 use crate::InputError;
-use crate::args::{LoadArgs, TraceArgs};
+use crate::args::{LoadArgs, ReportArgs, TraceArgs};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
     Binding, Isoc, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Problem, Record, Run,
 };
 use invlight_photon::DEFAULT_MAX_BOUNCES;
-use invlight_report::Pictures;
+use invlight_report::{Pictures, SolveFolder, SolveReport};
 use invlight_stats::significant;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -60,6 +60,11 @@ pub struct SolveArgs {
     /// Write neither the ISOC pictures nor search.png.
     #[arg(long)]
     pub no_images: bool,
+    /// Write no report.html.
+    #[arg(long)]
+    pub no_report: bool,
+    #[command(flatten)]
+    pub report: ReportArgs,
 }
 
 /// Runs `invlight solve`.
@@ -87,11 +92,20 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let pictures = (!args.no_images)
         .then(|| {
             let (w, n) = (args.image_width, args.image_photons);
-            Pictures::new(&scene, w, n, problem.seed, max_bounces)
-                .map_err(|e| InputError(format!("--image-width: {e}")))
+            Pictures::new(
+                &scene,
+                &problem.objective.surface,
+                w,
+                n,
+                problem.seed,
+                max_bounces,
+            )
+            .map_err(|e| InputError(format!("--image-width: {e}")))
         })
         .transpose()?;
     let settings = problem.settings();
+    let requirement = args.report.requirement()?;
+    let report_scene = (!args.no_report).then(|| scene.clone());
 
     // 2. The output folder: a fresh run, or the rows of the one it continues.
     let dir = args.output.clone().unwrap_or(problem.output.clone());
@@ -147,18 +161,36 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     if let Some(pictures) = &pictures {
         let started = std::time::Instant::now();
         let isoc = search.isoc();
-        let members: Vec<_> = isoc.by_mean().iter().map(|m| m.config.clone()).collect();
         let bar = Progress::new(0, "rows", "the ISOC pictures");
         let report = |done: u64, total: u64| bar.set_total(done, total);
         let records = &reporter.records;
-        pool.install(|| pictures.write(&dir, &binding, &members, records, isoc, Some(&report)))?;
+        pool.install(|| pictures.write(&dir, &binding, records, isoc, Some(&report)))?;
         bar.finish();
-        let plots = binding.space.variables().len();
+        let (n, plots) = (isoc.members().len(), binding.space.variables().len());
         let secs = started.elapsed().as_secs_f64();
-        eprintln!(
-            "{} ISOC pictures and {plots} search plots in {secs:.1} s",
-            members.len()
-        );
+        eprintln!("{n} ISOC pictures and {plots} search plots in {secs:.1} s");
+    }
+    if let Some(scene) = &report_scene {
+        let (records, isoc) = (reporter.records.clone(), search.isoc().clone());
+        let folder = SolveFolder {
+            dir: dir.clone(),
+            records,
+            isoc,
+            result: result.clone(),
+        };
+        let grid = Some(args.report.grid(problem.seed, max_bounces));
+        let req = requirement.as_ref();
+        let report = SolveReport {
+            problem: &problem,
+            binding: &binding,
+            scene,
+            folder: &folder,
+            requirement: req,
+            grid,
+        };
+        let written = pool.install(|| report.write())?;
+        written.no_plan.iter().for_each(|n| eprintln!("note: {n}"));
+        eprintln!("{} in {:.1} s", written.path.display(), written.seconds);
     }
 
     // 5. Report.

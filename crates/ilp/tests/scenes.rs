@@ -534,6 +534,7 @@ fn lamp_files(threads: usize, dir: &Path) -> String {
         sense: "maximize".into(),
         unit: "lx".into(),
         cap: None,
+        problem: None,
     };
     let start = Start::Fresh { replace: false };
     let mut out = Output::create(dir, &binding, info, &pb.settings(), 64, &start).unwrap();

@@ -26,6 +26,11 @@ pub struct ObjectiveInfo {
     pub unit: String,
     /// The cap, lx.
     pub cap: Option<f64>,
+    /// The problem file solved (absolute), so that `invlight report DIR` can rebuild
+    /// the report from the folder alone. Optional and absent in folders written before
+    /// it was recorded: readers of this schema version read either.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub problem: Option<std::path::PathBuf>,
 }
 
 impl ObjectiveInfo {
@@ -36,6 +41,7 @@ impl ObjectiveInfo {
             sense: "maximize".into(),
             unit: "lx".into(),
             cap: problem.objective.cap,
+            problem: std::fs::canonicalize(&problem.path).ok(),
         }
     }
 }

@@ -72,6 +72,7 @@ fn info() -> ObjectiveInfo {
         sense: "maximize".into(),
         unit: "lx".into(),
         cap: Some(9.5),
+        problem: None,
     }
 }
 
