@@ -289,6 +289,14 @@ impl SearchPlot {
                 colour.filled(),
             )
         }))?;
+        // A dot as well, so that cells smaller than a few pixels still show.
+        chart.draw_series(self.points.iter().map(|p| {
+            let colour = match p.mark {
+                Mark::Invalid => INVALID,
+                _ => rgb(scale.colour(p.mean)),
+            };
+            Circle::new((p.at[0], p.at[1]), 3, colour.filled())
+        }))?;
         Ok(())
     }
 

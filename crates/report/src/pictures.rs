@@ -156,12 +156,10 @@ impl Pictures {
             let mut marks = Vec::new();
             let values = binding.values(&member.config);
             for ((spec, value), from) in binding.specs.iter().zip(&values).zip(&start) {
-                lines.push(format!(
-                    "{} {}, {}",
-                    subject(spec),
-                    describe::value(value, compass.as_ref()),
-                    describe::moved(from, value)
-                ));
+                let moved = describe::moved(from, value);
+                let moved = moved.split(" (Δ").next().unwrap_or_default();
+                let what = describe::value(value, compass.as_ref());
+                lines.push(format!("{} {what}, {moved}", subject(spec)));
                 if let VariableValue::Position { anchor, .. } = value {
                     let p = anchor.as_vec3();
                     if let Some(px) = self
