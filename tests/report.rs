@@ -19,7 +19,9 @@ fn chromium() -> Option<PathBuf> {
         .iter()
         .find_map(|name| {
             let out = Command::new("which").arg(name).output().ok()?;
-            out.status.success().then(|| PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()))
+            out.status
+                .success()
+                .then(|| PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()))
         })
 }
 
@@ -47,7 +49,11 @@ fn screenshot(browser: &Path, page: &Path, shot: &Path, width: u32, height: u32)
         .arg(format!("file://{}", page.display()))
         .output()
         .unwrap();
-    assert!(status.status.success(), "chromium: {}", String::from_utf8_lossy(&status.stderr));
+    assert!(
+        status.status.success(),
+        "chromium: {}",
+        String::from_utf8_lossy(&status.stderr)
+    );
 }
 
 /// Checks a screenshot: the size asked for, and a page with text and pictures on it
@@ -55,10 +61,20 @@ fn screenshot(browser: &Path, page: &Path, shot: &Path, width: u32, height: u32)
 fn rendered(shot: &Path, width: u32, height: u32) {
     let img = invlight_render::image::open(shot).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (width, height));
-    let ink = img.pixels().filter(|p| p.0.iter().any(|&c| c < 200)).count();
+    let ink = img
+        .pixels()
+        .filter(|p| p.0.iter().any(|&c| c < 200))
+        .count();
     let colours: std::collections::HashSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
-    assert!(ink > (width * height / 50) as usize, "{ink} inked pixels: a blank page");
-    assert!(colours.len() > 200, "{} colours: no pictures", colours.len());
+    assert!(
+        ink > (width * height / 50) as usize,
+        "{ink} inked pixels: a blank page"
+    );
+    assert!(
+        colours.len() > 200,
+        "{} colours: no pictures",
+        colours.len()
+    );
 }
 
 #[test]
@@ -67,7 +83,9 @@ fn reports_render_in_a_browser_and_reference_nothing_outside() {
         if std::env::var("INVLIGHT_REQUIRE_BROWSER").is_ok_and(|v| v == "1") {
             panic!("INVLIGHT_REQUIRE_BROWSER=1 but no chromium is installed");
         }
-        eprintln!("SKIPPED: no chromium on this machine (apt-get install chromium); the report's browser test did not run");
+        eprintln!(
+            "SKIPPED: no chromium on this machine (apt-get install chromium); the report's browser test did not run"
+        );
         return;
     };
     let dir = tempfile::tempdir().unwrap();
@@ -75,34 +93,67 @@ fn reports_render_in_a_browser_and_reference_nothing_outside() {
     let root = env!("CARGO_MANIFEST_DIR");
     let solve = invlight()
         .current_dir(root)
-        .args(["solve", "examples/cornell-cone/problem.xml", "--iterations", "60"])
-        .args(["--image-photons", "50000", "--image-width", "320", "--output"])
+        .args([
+            "solve",
+            "examples/cornell-cone/problem.xml",
+            "--iterations",
+            "60",
+        ])
+        .args([
+            "--image-photons",
+            "50000",
+            "--image-width",
+            "320",
+            "--output",
+        ])
         .arg(&out)
         .output()
         .unwrap();
-    assert!(solve.status.success(), "{}", String::from_utf8_lossy(&solve.stderr));
+    assert!(
+        solve.status.success(),
+        "{}",
+        String::from_utf8_lossy(&solve.stderr)
+    );
     let map_page = dir.path().join("map.html");
     let map = invlight()
         .current_dir(root)
-        .args(["map", "tests/data/gltf/room_area.gltf", "--surface", "Floor", "--grid", "auto"])
+        .args([
+            "map",
+            "tests/data/gltf/room_area.gltf",
+            "--surface",
+            "Floor",
+            "--grid",
+            "auto",
+        ])
         .args(["--photons", "200000", "--task", "office", "--report"])
         .arg(&map_page)
         .arg("--output")
         .arg(dir.path().join("floor"))
         .output()
         .unwrap();
-    assert!(map.status.success(), "{}", String::from_utf8_lossy(&map.stderr));
+    assert!(
+        map.status.success(),
+        "{}",
+        String::from_utf8_lossy(&map.stderr)
+    );
     // `invlight report` rebuilds the solve's page from the folder.
     let page = out.join("report.html");
     let first = std::fs::read_to_string(&page).unwrap();
     std::fs::remove_file(&page).unwrap();
     let rebuilt = invlight().arg("report").arg(&out).output().unwrap();
-    assert!(rebuilt.status.success(), "{}", String::from_utf8_lossy(&rebuilt.stderr));
+    assert!(
+        rebuilt.status.success(),
+        "{}",
+        String::from_utf8_lossy(&rebuilt.stderr)
+    );
     let answer = |html: &str| {
         let i = html.find("<div class=\"answer\">").unwrap();
         html[i..i + html[i..].find("</div>").unwrap()].to_string()
     };
-    assert_eq!(answer(&std::fs::read_to_string(&page).unwrap()), answer(&first));
+    assert_eq!(
+        answer(&std::fs::read_to_string(&page).unwrap()),
+        answer(&first)
+    );
     for (page, height) in [(page, 2400), (map_page, 1600)] {
         let html = std::fs::read_to_string(&page).unwrap();
         let external = invlight_report::external_references(&html);

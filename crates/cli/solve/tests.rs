@@ -84,7 +84,10 @@ fn solve_resume_refuse_and_replace() {
     assert_eq!(run(first_args).unwrap(), ExitCode::SUCCESS);
     // The report: the answer, the desk's grid and its compliance stated.
     let page = std::fs::read_to_string(out.join("report.html")).unwrap();
-    assert!(page.contains("Light on Desk") && page.contains("EN 12464-1:2021"), "{page:.2000}");
+    assert!(
+        page.contains("Light on Desk") && page.contains("EN 12464-1:2021"),
+        "{page:.2000}"
+    );
     assert!(invlight_report::external_references(&page).is_empty());
     let first = rows(&out);
     assert_eq!(
@@ -101,7 +104,10 @@ fn solve_resume_refuse_and_replace() {
         .collect();
     expected.push("search.png".to_string());
     let got = pngs(&out);
-    assert_eq!(got.iter().map(|p| p.0.clone()).collect::<Vec<_>>(), expected);
+    assert_eq!(
+        got.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
+        expected
+    );
     for (name, (w, h)) in got {
         match name.as_str() {
             "search.png" => assert_eq!((w, h), invlight_render::PLOT_SIZE),

@@ -58,7 +58,7 @@ pub struct PlanFrame {
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlotKind {
     /// A plan: points are the anchor's plan coordinates, m.
-    Plan(PlanFrame),
+    Plan(Box<PlanFrame>),
     /// A sun chart: points are (azimuth clockwise from north, elevation), degrees.
     Sky,
     /// A colour value: `at[0]` = V in [`min`, `max`].
@@ -170,7 +170,7 @@ fn metres(v: f64) -> String {
 
 /// `lo..hi` widened by `pad` of its length on each side (a unit when empty).
 fn padded(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
-    if !(hi > lo) {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return (lo - 0.5, lo + 0.5);
     }
     let d = (hi - lo) * pad;

@@ -620,7 +620,7 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
         moved: "Cone centre".into(),
     };
     let kinds = [
-        PlotKind::Plan(plan),
+        PlotKind::Plan(Box::new(plan)),
         PlotKind::Sky,
         PlotKind::Value { min: 0.0, max: 5.0 },
     ];

@@ -153,7 +153,7 @@ pub fn search_plot(
                 rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
                 moved: subject(spec),
             };
-            (PlotKind::Plan(plan), pts)
+            (PlotKind::Plan(Box::new(plan)), pts)
         }
         (Axes::Direction, Domain::Hemisphere(hemi)) => {
             let compass = compass(scene);
