@@ -97,15 +97,21 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let png_path = prefix.with_extension("png");
     map.write_csv(&csv_path, confidence)
         .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", csv_path.display()))?;
-    let plan = MapPlan::new(&map, &args.surface, confidence).image()?.0;
+    let plan = MapPlan::new(&map, &args.surface, confidence).from_above(scene.up);
+    let plan = plan.image()?.0;
     save_image(&plan, &png_path)?;
     if let Some(html) = &args.report {
-        let (scene, estimator) = (path.display().to_string(), settings.estimator.name());
-        let (surface, requirement) = (args.surface.as_str(), requirement.as_ref());
+        let (up, estimator) = (scene.up, settings.estimator.name());
+        let (file, surface, requirement) = (
+            path.display().to_string(),
+            args.surface.as_str(),
+            requirement.as_ref(),
+        );
         let page = MapPage {
             map: &map,
             surface,
-            scene: &scene,
+            up,
+            scene: &file,
             confidence,
             requirement,
             estimator,

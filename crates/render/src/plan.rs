@@ -6,6 +6,7 @@
 
 use crate::chart::{ChartError, colour_bar, rgb, text, to_image, to_svg};
 use crate::colour_map::{ColourScale, tick_label};
+use crate::compliance::plain;
 use crate::map::IlluminanceMap;
 use crate::plot::Frame;
 use glam::Vec3;
@@ -71,6 +72,16 @@ pub fn isolines(
     out
 }
 
+/// A cell's value with three significant digits and no exponent: 5.69, 520, 12 400.
+fn three_digits(e: f64) -> String {
+    let decimals = if e.abs() >= 100.0 || e == 0.0 {
+        0
+    } else {
+        (2 - e.abs().log10().floor() as i32).clamp(0, 4) as usize
+    };
+    format!("{e:.decimals$}")
+}
+
 /// How a grid's in-plane axis reads in the world: a world axis, or metres along it.
 fn axis_name(axis: Vec3) -> (String, Option<(usize, f32)>) {
     for (k, name) in ["x", "y", "z"].iter().enumerate() {
@@ -107,6 +118,9 @@ pub struct MapPlan<'a> {
     map: &'a IlluminanceMap,
     title: String,
     confidence: Confidence,
+    /// Whether rows run down the page: a grid whose normal points down, drawn as seen
+    /// from above.
+    flip: bool,
 }
 
 impl<'a> MapPlan<'a> {
@@ -116,6 +130,18 @@ impl<'a> MapPlan<'a> {
             map,
             title: title.to_string(),
             confidence,
+            flip: false,
+        }
+    }
+
+    /// The plan seen from above in a scene whose up axis is `up`, when the surface is
+    /// horizontal and its normal points down (a floor whose triangles face the ground,
+    /// a ceiling): mirrored, so that a plan reads as on a drawing.
+    pub fn from_above(self, up: Vec3) -> MapPlan<'a> {
+        let n = self.map.u.cross(self.map.v);
+        MapPlan {
+            flip: n.dot(up.normalize_or_zero()) < -0.7,
+            ..self
         }
     }
 
@@ -222,11 +248,21 @@ impl<'a> MapPlan<'a> {
             Some((k, sign)) => tick_label(o[k] as f64 + sign as f64 * s, 0.01),
             None => tick_label(*s, 0.01),
         };
-        let fv = move |s: &f64| match ov {
-            Some((k, sign)) => tick_label(o[k] as f64 + sign as f64 * s, 0.01),
-            None => tick_label(*s, 0.01),
+        let flip = self.flip;
+        // Page y of a grid coordinate t (m along v), and back.
+        let fy = move |t: f64| if flip { gh - t } else { t };
+        let fv = move |s: &f64| {
+            let t = fy(*s);
+            match ov {
+                Some((k, sign)) => tick_label(o[k] as f64 + sign as f64 * t, 0.01),
+                None => tick_label(t, 0.01),
+            }
         };
-        let normal = m.u.cross(m.v);
+        let normal = if flip {
+            -m.u.cross(m.v)
+        } else {
+            m.u.cross(m.v)
+        };
         chart
             .configure_mesh()
             .disable_mesh()
@@ -244,10 +280,16 @@ impl<'a> MapPlan<'a> {
                 Some(cell) => rgb(scale.colour(cell.estimate.mean)).filled(),
                 None => RGBColor(230, 230, 230).filled(),
             };
-            Rectangle::new([(c * cu, r * cv), ((c + 1.0) * cu, (r + 1.0) * cv)], colour)
+            Rectangle::new(
+                [(c * cu, fy(r * cv)), ((c + 1.0) * cu, fy((r + 1.0) * cv))],
+                colour,
+            )
         }))?;
-        // Isolux lines, each level labelled once, at its segment nearest the centre.
+        // Isolux lines, each level labelled once: at its segment farthest from the
+        // labels placed before (nearest the centre among equals), so labels do not pile up.
         let values: Vec<Option<f64>> = m.cells.iter().map(|c| c.map(|c| c.estimate.mean)).collect();
+        let mut placed: Vec<(f64, f64)> = Vec::new();
+        let centre = (0.5 * m.columns as f64, 0.5 * m.rows as f64);
         for level in self.levels() {
             let segments = isolines(&values, m.columns as usize, m.rows as usize, level);
             let ink = if scale.fraction(level) > 0.6 {
@@ -255,26 +297,32 @@ impl<'a> MapPlan<'a> {
             } else {
                 WHITE
             };
-            chart.draw_series(segments.iter().map(|[a, b]| {
-                PathElement::new(
-                    vec![(a.0 * cu, a.1 * cv), (b.0 * cu, b.1 * cv)],
-                    ink.stroke_width(2),
-                )
-            }))?;
-            let centre = (0.5 * m.columns as f64, 0.5 * m.rows as f64);
-            if let Some([a, b]) = segments.iter().min_by(|p, q| {
-                let d = |s: &[(f64, f64); 2]| {
-                    let mx = 0.5 * (s[0].0 + s[1].0) - centre.0;
-                    let my = 0.5 * (s[0].1 + s[1].1) - centre.1;
-                    mx * mx + my * my
-                };
-                d(p).total_cmp(&d(q))
+            let page = |p: (f64, f64)| (p.0 * cu, fy(p.1 * cv));
+            chart.draw_series(
+                segments
+                    .iter()
+                    .map(|[a, b]| PathElement::new(vec![page(*a), page(*b)], ink.stroke_width(2))),
+            )?;
+            let mid = |s: &[(f64, f64); 2]| (0.5 * (s[0].0 + s[1].0), 0.5 * (s[0].1 + s[1].1));
+            let d2 = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).powi(2) + (a.1 - b.1).powi(2);
+            let score = |s: &[(f64, f64); 2]| {
+                let m = mid(s);
+                let far = placed
+                    .iter()
+                    .map(|&p| d2(m, p))
+                    .fold(f64::INFINITY, f64::min)
+                    .min(4.0);
+                (far, -d2(m, centre))
+            };
+            if let Some(best) = segments.iter().max_by(|p, q| {
+                let (a, b) = (score(p), score(q));
+                a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1))
             }) {
-                let at = (0.5 * (a.0 + b.0) * cu, 0.5 * (a.1 + b.1) * cv);
-                let label = format!("{} lx", significant(level).trim_end_matches(".0"));
+                let at = mid(best);
+                placed.push(at);
                 chart.draw_series(std::iter::once(Text::new(
-                    label,
-                    at,
+                    format!("{} lx", plain(level)),
+                    page(at),
                     text(FONT - 4)
                         .color(&ink)
                         .pos(Pos::new(HPos::Center, VPos::Bottom)),
@@ -292,7 +340,7 @@ impl<'a> MapPlan<'a> {
             }
         };
         let cell_px = (cu / k, cv / k);
-        if cell_px.0 >= 46.0 && cell_px.1 >= 20.0 {
+        if cell_px.0 >= 48.0 && cell_px.1 >= 22.0 {
             chart.draw_series(m.cells.iter().flatten().map(|cell| {
                 let (c, r) = (cell.index.0 as f64, cell.index.1 as f64);
                 let e = cell.estimate.mean;
@@ -302,9 +350,9 @@ impl<'a> MapPlan<'a> {
                     &WHITE
                 };
                 Text::new(
-                    format!("{:.0}", e),
-                    ((c + 0.5) * cu, (r + 0.5) * cv),
-                    text(FONT - 6)
+                    three_digits(e),
+                    ((c + 0.5) * cu, fy((r + 0.5) * cv)),
+                    text(FONT - 4)
                         .color(ink)
                         .pos(Pos::new(HPos::Center, VPos::Center)),
                 )

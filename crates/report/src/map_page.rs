@@ -4,6 +4,7 @@
 
 use crate::html::{Page, escape, figure, table};
 use invlight_render::{Compliance, IlluminanceMap, MapPlan, Requirement, Verdict, plain};
+use invlight_scene::Vec3;
 use invlight_stats::{Confidence, significant};
 
 /// The most cells listed in a page's table; a larger grid points to its CSV.
@@ -122,11 +123,12 @@ pub fn compliance_html(c: &Compliance) -> String {
 /// The grid section: the plan, the figures, the compliance when asked, the cells.
 pub fn grid_section(
     map: &IlluminanceMap,
+    up: Vec3,
     title: &str,
     confidence: Confidence,
     requirement: Option<&Requirement>,
 ) -> Result<String, invlight_render::ChartError> {
-    let plan = MapPlan::new(map, title, confidence);
+    let plan = MapPlan::new(map, title, confidence).from_above(up);
     let s = map.summary();
     let i = map.mean.interval(confidence.z());
     let mut out = figure(
@@ -206,6 +208,8 @@ pub struct MapPage<'a> {
     pub map: &'a IlluminanceMap,
     /// The surface's name.
     pub surface: &'a str,
+    /// The scene's up axis: a horizontal grid is drawn as seen from above.
+    pub up: Vec3,
     /// The scene file.
     pub scene: &'a str,
     /// Confidence of the intervals and the verdict.
@@ -251,7 +255,13 @@ impl MapPage<'_> {
         page.section("The answer", &answer);
         page.section(
             &format!("Light on {}", self.surface),
-            &grid_section(self.map, self.surface, self.confidence, self.requirement)?,
+            &grid_section(
+                self.map,
+                self.up,
+                self.surface,
+                self.confidence,
+                self.requirement,
+            )?,
         );
         page.section(
             "How it was measured",

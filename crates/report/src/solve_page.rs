@@ -350,6 +350,7 @@ impl SolveReport<'_> {
                 Ok(map) => {
                     let mut s = grid_section(
                         &map,
+                        self.scene.up,
                         &format!("{surface} in the best configuration"),
                         p.confidence,
                         self.requirement,
