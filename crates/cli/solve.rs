@@ -92,15 +92,8 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let pictures = (!args.no_images)
         .then(|| {
             let (w, n) = (args.image_width, args.image_photons);
-            Pictures::new(
-                &scene,
-                &problem.objective.surface,
-                w,
-                n,
-                problem.seed,
-                max_bounces,
-            )
-            .map_err(|e| InputError(format!("--image-width: {e}")))
+            Pictures::new(&scene, &problem.objective, w, n, problem.seed, max_bounces)
+                .map_err(|e| InputError(format!("--image-width: {e}")))
         })
         .transpose()?;
     let settings = problem.settings();

@@ -52,6 +52,8 @@ pub struct PlanFrame {
     pub rectangle: Option<[[f64; 2]; 4]>,
     /// What moves, for the key ("Cone centre").
     pub moved: String,
+    /// The objective surface's name, for the key.
+    pub target_name: String,
 }
 
 /// What the coordinates of the points are.
@@ -60,7 +62,10 @@ pub enum PlotKind {
     /// A plan: points are the anchor's plan coordinates, m.
     Plan(Box<PlanFrame>),
     /// A sun chart: points are (azimuth clockwise from north, elevation), degrees.
-    Sky,
+    Sky {
+        /// Which scene direction is north, for the axis ("−z").
+        north: String,
+    },
     /// A colour value: `at[0]` = V in [`min`, `max`].
     Value {
         /// Smallest V allowed.
@@ -111,6 +116,8 @@ pub struct SearchPlot {
     pub kind: PlotKind,
     /// The unit of the means (`lx`).
     pub unit: String,
+    /// The objective's cap, drawn as a line on a value plot.
+    pub cap: Option<f64>,
     /// Evaluations in order.
     pub points: Vec<PlotPoint>,
 }
@@ -222,7 +229,7 @@ impl SearchPlot {
         colour_bar(&bar.margin(40, 50, 0, 0), &scale, &self.unit, FONT - 2)?;
         let frame = match &self.kind {
             PlotKind::Plan(plan) => self.plan(&main, plan, &scale)?,
-            PlotKind::Sky => self.sky(&main, &scale)?,
+            PlotKind::Sky { north } => self.sky(&main, north, &scale)?,
             &PlotKind::Value { min, max } => self.value(&main, min, max, &scale)?,
         };
         self.key(&key)?;
@@ -384,6 +391,7 @@ impl SearchPlot {
     fn sky<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
+        north: &str,
         scale: &ColourScale,
     ) -> Result<Frame, ChartError>
     where
@@ -401,7 +409,9 @@ impl SearchPlot {
             .x_labels(0)
             .y_labels(7)
             .y_label_formatter(&|v: &f64| format!("{}°", v.round()))
-            .x_desc("azimuth, clockwise from north")
+            .x_desc(format!(
+                "azimuth, clockwise from north (the scene's {north})"
+            ))
             .y_desc("elevation above the horizon")
             .label_style(text(FONT - 2))
             .axis_desc_style(text(FONT))
@@ -447,6 +457,10 @@ impl SearchPlot {
         let hi = highs
             .filter(|v| v.is_finite())
             .fold(f64::NEG_INFINITY, f64::max);
+        let (lo, hi) = match self.cap {
+            Some(c) => (lo.min(c), hi.max(c)),
+            None => (lo, hi),
+        };
         let y = padded(lo, hi, 0.05);
         let mut chart = ChartBuilder::on(area)
             .margin(12)
@@ -481,6 +495,19 @@ impl SearchPlot {
                 (v, p.mean),
                 4,
                 colour.filled(),
+            )))?;
+        }
+        if let Some(cap) = self.cap {
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(x.0, cap), (x.1, cap)],
+                ISOC.stroke_width(1),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("cap {} {}", significant(cap), self.unit),
+                (x.0 + 0.01 * (x.1 - x.0), cap),
+                text(FONT - 2)
+                    .color(&ISOC)
+                    .pos(Pos::new(HPos::Left, VPos::Bottom)),
             )))?;
         }
         self.marks(&mut chart, |p| (p.at[0], p.mean))?;
@@ -547,6 +574,17 @@ impl SearchPlot {
             )?;
         }
         if let PlotKind::Plan(plan) = &self.kind {
+            if !plan.target.is_empty() {
+                let label = format!("{} (the objective, as authored)", plan.target_name);
+                item(
+                    &|x| {
+                        let patch = RGBColor(255, 200, 120).mix(0.5).filled();
+                        area.draw(&Rectangle::new([(x - 6, y - 6), (x + 6, y + 6)], patch))?;
+                        Ok(())
+                    },
+                    &label,
+                )?;
+            }
             let label = format!("{} range", plan.moved);
             item(
                 &|x| {

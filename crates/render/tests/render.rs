@@ -618,10 +618,13 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
         range: [[1.0, 1.0], [4.0, 1.0], [4.0, 3.0], [1.0, 3.0]],
         rectangle: None,
         moved: "Cone centre".into(),
+        target_name: "Cone".into(),
     };
     let kinds = [
         PlotKind::Plan(Box::new(plan)),
-        PlotKind::Sky,
+        PlotKind::Sky {
+            north: "−z".into()
+        },
         PlotKind::Value { min: 0.0, max: 5.0 },
     ];
     for (k, kind) in kinds.into_iter().enumerate() {
@@ -629,6 +632,7 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
             title: "search".into(),
             kind,
             unit: "lx".into(),
+            cap: (k == 2).then_some(240.0),
             points: points.clone(),
         };
         let path = dir.path().join(format!("search-{k}.png"));

@@ -38,7 +38,8 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::ObjectInSurface(_) => format!("{} (its centre)", spec.id),
         VariableKind::LightInSurface(_) => format!("light {}", spec.id),
         VariableKind::HoleInSurface(_) => format!("hole {} (its centre)", spec.id),
-        VariableKind::DirectionalLight => format!("the sun {}", spec.id),
+        VariableKind::DirectionalLight if spec.id.eq_ignore_ascii_case("sun") => "the sun".into(),
+        VariableKind::DirectionalLight => format!("the sun ({})", spec.id),
         VariableKind::Color { .. } => format!("the colour of {}", spec.id),
     }
 }

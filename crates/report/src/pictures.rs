@@ -2,7 +2,7 @@
 
 use crate::describe::{self, compass, subject};
 use crate::plots::search_plot;
-use invlight_ilp::{Binding, Isoc, Record, VariableValue, is_run_picture};
+use invlight_ilp::{Binding, Isoc, Objective, Record, VariableValue, is_run_picture};
 use invlight_render::{
     Exposure, PictureSettings, Renderer, SaveError, ToneMap, View, ViewError, captioned,
     choose_view, log_average, save_picture, tone_map,
@@ -53,20 +53,20 @@ impl std::error::Error for PictureError {}
 /// five-member ISOC takes seconds, not minutes.
 pub struct Pictures {
     scene: Scene,
-    objective: String,
+    objective: Objective,
     view: View,
     settings: PictureSettings,
 }
 
 impl Pictures {
     /// Pictures `width` pixels wide (the height from the camera's aspect) of `scene`
-    /// (captioned with the illuminance on the surface `objective`),
+    /// (captioned with the illuminance on `objective`'s surface),
     /// before the search changes it, with photon maps of `photons` photons, traced with
     /// `seed` (the same for every member, so that their differences are the
     /// configurations', not the noise's) and `max_bounces`.
     pub fn new(
         scene: &Scene,
-        objective: &str,
+        objective: &Objective,
         width: u32,
         photons: u64,
         seed: u64,
@@ -76,7 +76,7 @@ impl Pictures {
             choose_view(scene, None, width, None).map_err(PictureError::View)?;
         Ok(Pictures {
             scene: scene.clone(),
-            objective: objective.to_string(),
+            objective: objective.clone(),
             view,
             settings: PictureSettings {
                 width,
@@ -151,7 +151,7 @@ impl Pictures {
                 significant(member.estimate.mean),
                 significant(interval.low),
                 significant(interval.high),
-                self.objective
+                self.objective.surface
             )];
             let mut marks = Vec::new();
             let values = binding.values(&member.config);
@@ -181,7 +181,7 @@ impl Pictures {
                 _ => format!("search-{}.png", file_safe(&v.id)),
             };
             let path = dir.join(name);
-            search_plot(&self.scene, binding, i, records, isoc)
+            search_plot(&self.scene, binding, self.objective.cap, i, records, isoc)
                 .write(&path)
                 .map_err(|e| PictureError::Save(path, e))?;
         }

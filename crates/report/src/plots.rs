@@ -69,10 +69,11 @@ fn mark(role: Role) -> Mark {
 }
 
 /// The plot of variable `i`'s visits over `records`, in world terms; `scene` is the
-/// scene as bound (for the room, the target and the compass).
+/// scene as bound (for the room, the target and the compass), `cap` the objective's.
 pub fn search_plot(
     scene: &Scene,
     binding: &Binding,
+    cap: Option<f64>,
     i: usize,
     records: &[Record],
     isoc: &Isoc,
@@ -152,6 +153,7 @@ pub fn search_plot(
                 range: corners(offset),
                 rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
                 moved: subject(spec),
+                target_name: scene.surfaces[binding.objective as usize].name.clone(),
             };
             (PlotKind::Plan(Box::new(plan)), pts)
         }
@@ -180,7 +182,15 @@ pub fn search_plot(
                     .to_vec();
                 (centre, corners)
             });
-            (PlotKind::Sky, pts)
+            let north = compass.as_ref().map_or("φ = 0".to_string(), |c| {
+                let n = c.north();
+                let k = (0..3)
+                    .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                    .unwrap_or(0);
+                let sign = if n[k] < 0.0 { "−" } else { "+" };
+                format!("{sign}{}", ["x", "y", "z"][k])
+            });
+            (PlotKind::Sky { north }, pts)
         }
         (Axes::Value { min, max }, _) => {
             (PlotKind::Value { min, max }, points(&|c| (c, Vec::new())))
@@ -192,6 +202,7 @@ pub fn search_plot(
         title,
         kind,
         unit: "lx".into(),
+        cap,
         points,
     }
 }

@@ -317,7 +317,7 @@ impl SolveReport<'_> {
         // 4. The search.
         let mut search = String::new();
         for i in 0..b.specs.len() {
-            let plot = search_plot(self.scene, b, i, &f.records, &f.isoc);
+            let plot = search_plot(self.scene, b, p.objective.cap, i, &f.records, &f.isoc);
             search += &figure(
                 &plot.svg()?,
                 "Every evaluated cell in the colour of its mean (viridis over the evaluated range); the start (square), the improvements in order (line), the ISOC (red rings).",
