@@ -521,7 +521,7 @@ impl SearchPlot {
     {
         let y = FONT as i32;
         let style = text(FONT - 2);
-        let mut x = 70;
+        let mut x = 24;
         let mut item = |shape: &dyn Fn(i32) -> Result<(), ChartError>, label: &str| {
             shape(x)?;
             area.draw(&Text::new(
@@ -530,7 +530,7 @@ impl SearchPlot {
                 style.clone(),
             ))?;
             let (w, _) = area.estimate_text_size(label, &style)?;
-            x += w as i32 + 44;
+            x += w as i32 + 36;
             Ok::<(), ChartError>(())
         };
         item(
@@ -552,14 +552,14 @@ impl SearchPlot {
                 area.draw(&Circle::new((x + 8, y), 3, BLACK.filled()))?;
                 Ok(())
             },
-            "improvements, in order",
+            "improvements",
         )?;
         item(
             &|x| {
                 area.draw(&Circle::new((x, y), 7, ISOC.stroke_width(2)))?;
                 Ok(())
             },
-            "ISOC: the best, indistinguishable",
+            "ISOC",
         )?;
         if self.points.iter().any(|p| p.mark == Mark::Invalid) {
             item(
@@ -575,7 +575,7 @@ impl SearchPlot {
         }
         if let PlotKind::Plan(plan) = &self.kind {
             if !plan.target.is_empty() {
-                let label = format!("{} (the objective, as authored)", plan.target_name);
+                let label = format!("{} (objective, as authored)", plan.target_name);
                 item(
                     &|x| {
                         let patch = RGBColor(255, 200, 120).mix(0.5).filled();
@@ -585,7 +585,7 @@ impl SearchPlot {
                     &label,
                 )?;
             }
-            let label = format!("{} range", plan.moved);
+            let label = format!("where {} may go", plan.moved);
             item(
                 &|x| {
                     area.draw(&PathElement::new(

@@ -32,10 +32,13 @@ pub fn sun_angles(compass: &Compass, travel: DVec3) -> (f64, f64) {
     (90.0 - zenith, azimuth)
 }
 
-/// What a variable moves, as a noun: "Cone (its centre)", "the sun".
+/// What a variable moves, as a noun: "Cone (its centre)", "light Lamp", "the sun".
 pub fn subject(spec: &VariableSpec) -> String {
     match &spec.kind {
         VariableKind::ObjectInSurface(_) => format!("{} (its centre)", spec.id),
+        VariableKind::LightInSurface(_) if spec.id.to_lowercase().contains("light") => {
+            spec.id.clone()
+        }
         VariableKind::LightInSurface(_) => format!("light {}", spec.id),
         VariableKind::HoleInSurface(_) => format!("hole {} (its centre)", spec.id),
         VariableKind::DirectionalLight if spec.id.eq_ignore_ascii_case("sun") => "the sun".into(),
