@@ -51,7 +51,7 @@ enum Command {
     /// Render a picture from a scene camera by photon mapping, or a false-colour
     /// illuminance picture with a lux scale.
     Render(render::RenderArgs),
-    /// Illuminance on a regular grid over a planar surface (CSV and a heat map), with
+    /// Illuminance on a regular grid over a planar surface (CSV and a plan), with
     /// Emin, Eavg, Emax and uniformity U0 as lighting standards ask.
     Map(map::MapArgs),
 }

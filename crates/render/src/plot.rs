@@ -175,6 +175,39 @@ fn metres(v: f64) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
+/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain, "Another
+/// efficient algorithm for convex hulls in two dimensions", IPL 9(5), 1979).
+fn convex_hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    points.retain(|p| p[0].is_finite() && p[1].is_finite());
+    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    points.dedup();
+    if points.len() < 3 {
+        return points;
+    }
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * points.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let ordered: Box<dyn Iterator<Item = &[f64; 2]>> = if pass == 0 {
+            Box::new(points.iter())
+        } else {
+            Box::new(points.iter().rev())
+        };
+        for &p in ordered {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
 /// `lo..hi` widened by `pad` of its length on each side (a unit when empty).
 fn padded(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
     if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
@@ -380,6 +413,15 @@ impl SearchPlot {
             )))?;
         }
         self.cells(&mut chart, scale)?;
+        // The target's outline over the cells, which may cover its fill.
+        let mut hull = convex_hull(plan.target.iter().flatten().copied().collect());
+        if hull.len() >= 3 {
+            hull.push(hull[0]);
+            chart.draw_series(std::iter::once(PathElement::new(
+                hull.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>(),
+                RGBColor(230, 120, 0).stroke_width(2),
+            )))?;
+        }
         chart.draw_series(std::iter::once(PathElement::new(
             closed(&plan.range),
             BLACK.stroke_width(2),
@@ -694,5 +736,25 @@ impl ConvergencePlot {
             BLACK.stroke_width(2),
         )))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_hull_keeps_the_outer_points_in_order() {
+        let square = vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [0.0, 1.0],
+            [0.5, 0.5],
+            [1.0, 0.0],
+        ];
+        let hull = convex_hull(square);
+        assert_eq!(hull, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+        assert_eq!(convex_hull(vec![[2.0, 2.0]]).len(), 1);
     }
 }
