@@ -6,8 +6,10 @@
 use crate::InputError;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use invlight_ilp::{MemberRef, Problem};
+use invlight_ilp::{Problem, configured_scene};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photons_traced};
+use invlight_render::Requirement;
+use invlight_report::GridOptions as Grid;
 use invlight_scene::{LoadOptions, Scene, UpAxis};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -124,27 +126,11 @@ pub struct SceneArgs {
 impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
-        let ext = self.scene.extension().map(|e| e.to_ascii_lowercase());
-        if ext.is_none_or(|e| e != "xml") {
-            if self.config.is_some() {
-                return Err(InputError(format!(
-                    "--config applies a solve's configuration to the scene of its problem file; {} is not a problem file (.xml)",
-                    self.scene.display()
-                ))
-                .into());
-            }
-            let scene = invlight_scene::load(&self.scene, &self.load.options())?;
-            return self.load.fits(scene, &self.scene);
-        }
-        let problem = Problem::read(&self.scene)?;
-        let mut scene = self.load.load_problem(&problem)?;
-        if let Some(config) = &self.config {
-            let member: MemberRef = config
-                .parse()
-                .map_err(|e| InputError(format!("--config {config}: {e}")))?;
-            member.apply(&problem, &mut scene)?;
-        }
-        Ok(scene)
+        let (path, options) = (&self.scene, self.load.options());
+        let file = || self.load.fits(invlight_scene::load(path, &options)?, path);
+        configured_scene(path, self.config.as_deref(), file, |p| {
+            self.load.load_problem(p)
+        })
     }
 }
 
@@ -229,23 +215,11 @@ pub struct ReportArgs {
 }
 
 impl ReportArgs {
-    /// The requirement asked for, if any.
-    pub fn requirement(&self) -> anyhow::Result<Option<invlight_render::Requirement>> {
+    /// The requirement asked for (if any), and the objective's grid at EN 12464-1's
+    /// spacing traced with `seed` and `max_bounces`.
+    pub fn report(&self, seed: u64, bounces: u32) -> anyhow::Result<(Option<Requirement>, Grid)> {
         let (t, mf) = (self.task.as_deref(), self.maintenance_factor);
-        invlight_render::Requirement::from_flags(t, self.em, self.u0, mf)
-            .map_err(|e| InputError(e).into())
-    }
-
-    /// The objective's grid with EN 12464-1's spacing, traced as `trace` says.
-    pub fn grid(&self, seed: u64, max_bounces: u32) -> invlight_report::GridOptions {
-        let trace = TraceSettings {
-            photons: self.report_photons,
-            seed,
-            max_bounces,
-        };
-        invlight_report::GridOptions {
-            trace,
-            spacing: invlight_render::GridSpacing::Auto,
-        }
+        let requirement = Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?;
+        Ok((requirement, Grid::en(self.report_photons, seed, bounces)))
     }
 }

@@ -83,6 +83,18 @@ pub fn print_json(value: &impl serde::Serialize) -> anyhow::Result<()> {
     print(&(serde_json::to_string_pretty(value)? + "\n"))
 }
 
+/// Whether `err` was caused by what the user gave us (a file, a name, a value, an
+/// occupied output folder): exit code 2, as for clap's own usage errors; anything else
+/// that fails (writing output) is 1.
+pub fn is_input(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| {
+        e.is::<InputError>()
+            || e.is::<invlight_scene::Diagnostic>()
+            || e.downcast_ref::<invlight_ilp::OutputError>()
+                .is_some_and(|e| e.is_input())
+    })
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -104,12 +116,7 @@ fn main() -> ExitCode {
                 return ExitCode::SUCCESS;
             }
             eprintln!("error: {err:#}");
-            // Bad input (a file, a name, a value) is exit code 2, as for clap's own
-            // usage errors; anything else that fails (writing output) is 1.
-            let input = err
-                .chain()
-                .any(|e| e.is::<InputError>() || e.is::<invlight_scene::Diagnostic>());
-            ExitCode::from(if input { 2 } else { 1 })
+            ExitCode::from(if is_input(&err) { 2 } else { 1 })
         }
     }
 }

@@ -62,7 +62,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let pool = args.trace.pool()?;
     let start = Instant::now();
     let accel = Accel::new(&scene);
-    let requirement = args.require.requirement()?;
+    let (requirement, _) = args.require.report(trace.seed, trace.max_bounces)?;
     let bad = |e| {
         InputError(format!(
             "{}: surface '{}': {e}",
@@ -73,11 +73,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let settings = MapSettings {
         cell: args.grid.cell(&scene, surface).map_err(bad)?,
         trace,
-        estimator: if args.arrivals_only {
-            Estimator::ArrivalsOnly
-        } else {
-            Estimator::Connected
-        },
+        estimator: Estimator::arrivals_only(args.arrivals_only),
     };
     let total = photons_traced(trace.photons).unwrap_or(trace.photons);
     let bar = Progress::new(total, "photons", "this map");
@@ -101,24 +97,8 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let plan = plan.image()?.0;
     save_image(&plan, &png_path)?;
     if let Some(html) = &args.report {
-        let (up, estimator) = (scene.up, settings.estimator.name());
-        let (file, surface, requirement) = (
-            path.display().to_string(),
-            args.surface.as_str(),
-            requirement.as_ref(),
-        );
-        let page = MapPage {
-            map: &map,
-            surface,
-            up,
-            scene: &file,
-            confidence,
-            requirement,
-            estimator,
-            seconds,
-        };
-        std::fs::write(html, page.html()?)
-            .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", html.display()))?;
+        let file = path.display().to_string();
+        MapPage::new(&map, &report, file, scene.up, requirement.as_ref()).write(html)?;
     }
 
     if args.json {

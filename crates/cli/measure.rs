@@ -49,11 +49,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     // faster than a top level over overlapping instances (BENCHMARKS.md).
     let accel = Accel::with_movable(&scene, &[]);
     let build_seconds = start.elapsed().as_secs_f64();
-    let estimator = if args.arrivals_only {
-        Estimator::ArrivalsOnly
-    } else {
-        Estimator::Connected
-    };
+    let estimator = Estimator::arrivals_only(args.arrivals_only);
     let total = photons_traced(settings.photons).unwrap_or(settings.photons);
     let bar = Progress::new(total, "photons", "this measurement");
     let report = |done: u64| bar.set(done);

@@ -2,7 +2,6 @@
 //! ([`invlight_report::SolveReport`]).
 
 use crate::args::{LoadArgs, ReportArgs};
-use invlight_ilp::Binding;
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{SolveFolder, SolveReport};
 use std::path::PathBuf;
@@ -25,25 +24,10 @@ pub struct ReportCommandArgs {
 /// Runs `invlight report`.
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
     let problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
-    let requirement = args.report.requirement()?;
-    let mut scene = args.load.load_problem(&problem)?;
-    let binding = Binding::new(&problem, &mut scene)?;
-    let folder = SolveFolder::read(&args.dir, &problem, &binding)?;
     let bounces = problem.max_bounces.unwrap_or(DEFAULT_MAX_BOUNCES);
-    let report = SolveReport {
-        problem: &problem,
-        binding: &binding,
-        scene: &scene,
-        folder: &folder,
-        requirement: requirement.as_ref(),
-        grid: Some(args.report.grid(problem.seed, bounces)),
-    };
-    let written = report.write()?;
-    written.no_plan.iter().for_each(|n| eprintln!("note: {n}"));
-    crate::print(&format!(
-        "wrote {} in {:.1} s\n",
-        written.path.display(),
-        written.seconds
-    ))?;
+    let (requirement, grid) = args.report.report(problem.seed, bounces)?;
+    let scene = args.load.load_problem(&problem)?;
+    let written = SolveReport::rebuild(&args.dir, &problem, scene, requirement.as_ref(), grid)?;
+    crate::print(&(written.lines() + "\n"))?;
     Ok(ExitCode::SUCCESS)
 }

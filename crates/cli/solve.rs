@@ -10,11 +10,10 @@ use crate::args::{LoadArgs, ReportArgs, TraceArgs};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
-    Binding, Isoc, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Problem, Record, Run,
+    Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
 };
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{Pictures, SolveFolder, SolveReport};
-use invlight_stats::significant;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -97,21 +96,15 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         })
         .transpose()?;
     let settings = problem.settings();
-    let requirement = args.report.requirement()?;
+    let (requirement, grid) = args.report.report(problem.seed, max_bounces)?;
     let report_scene = (!args.no_report).then(|| scene.clone());
 
     // 2. The output folder: a fresh run, or the rows of the one it continues.
     let dir = args.output.clone().unwrap_or(problem.output.clone());
     let info = ObjectiveInfo::of(&problem);
     let flags = (args.resume, args.force);
-    let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags).map_err(|e| {
-        let what = format!("the output folder {}: {e}", dir.display());
-        if e.is_input() {
-            anyhow::Error::new(InputError(what))
-        } else {
-            anyhow::anyhow!(what)
-        }
-    })?;
+    let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags)
+        .with_context(|| format!("the output folder {}", dir.display()))?;
     run.notes.iter().for_each(|n| eprintln!("note: {n}"));
     let Run {
         mut search,
@@ -134,56 +127,37 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     });
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
     bar.set(search.iteration());
-    let mut reporter = Reporter {
-        output,
-        bar,
-        records,
-        refused: 0,
-    };
+    let mut reporter = Recorder::new(output, records, &STOP, |p| match p {
+        Shown::Best(line) => bar.message(line),
+        Shown::Iteration(i) => bar.set(i),
+        Shown::FirstRefusal(i, why) => eprintln!(
+            "warning: candidate {i} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
+        ),
+    });
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;
-    reporter.bar.finish();
+    bar.finish();
     reporter
         .output
         .write_result(search.isoc())
         .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
     let result = reporter.output.result(search.isoc());
 
-    // 4. Pictures of the ISOC and of the search.
+    // 4. Pictures of the ISOC and of the search, and the report.
     if let Some(pictures) = &pictures {
-        let started = std::time::Instant::now();
-        let isoc = search.isoc();
         let bar = Progress::new(0, "rows", "the ISOC pictures");
         let report = |done: u64, total: u64| bar.set_total(done, total);
-        let records = &reporter.records;
-        pool.install(|| pictures.write(&dir, &binding, records, isoc, Some(&report)))?;
+        let (records, isoc) = (&reporter.records, search.isoc());
+        let line = pool.install(|| pictures.write(&dir, &binding, records, isoc, Some(&report)))?;
         bar.finish();
-        let (n, plots) = (isoc.members().len(), binding.space.variables().len());
-        let secs = started.elapsed().as_secs_f64();
-        eprintln!("{n} ISOC pictures and {plots} search plots in {secs:.1} s");
+        eprintln!("{line}");
     }
     if let Some(scene) = &report_scene {
-        let (records, isoc) = (reporter.records.clone(), search.isoc().clone());
-        let folder = SolveFolder {
-            dir: dir.clone(),
-            records,
-            isoc,
-            result: result.clone(),
-        };
-        let grid = Some(args.report.grid(problem.seed, max_bounces));
-        let req = requirement.as_ref();
-        let report = SolveReport {
-            problem: &problem,
-            binding: &binding,
-            scene,
-            folder: &folder,
-            requirement: req,
-            grid,
-        };
-        let written = pool.install(|| report.write())?;
-        written.no_plan.iter().for_each(|n| eprintln!("note: {n}"));
-        eprintln!("{} in {:.1} s", written.path.display(), written.seconds);
+        let folder = SolveFolder::new(&dir, reporter.records.clone(), search.isoc(), &result);
+        let report = SolveReport::new(&problem, &binding, scene, &folder);
+        let report = report.with(requirement.as_ref(), grid);
+        eprintln!("{}", pool.install(|| report.write())?.lines());
     }
 
     // 5. Report.
@@ -208,52 +182,6 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         Outcome::Interrupted => ExitCode::from(130),
         _ => ExitCode::SUCCESS,
     })
-}
-
-/// Forwards the search's reports to the files and the progress bar, and Ctrl-C to the
-/// search.
-struct Reporter<'b> {
-    output: Output<'b>,
-    bar: Progress,
-    /// Every evaluation so far, for search.png.
-    records: Vec<Record>,
-    refused: u64,
-}
-
-impl Observer for Reporter<'_> {
-    fn evaluated(&mut self, record: &Record, isoc: &Isoc, changed: bool) -> std::io::Result<()> {
-        self.output.evaluated(record, isoc, changed)?;
-        self.records.push(record.clone());
-        if let Some(best) = isoc.best() {
-            let i = best.estimate.interval(isoc.z());
-            self.bar.message(format!(
-                "best {} lx [{}, {}], {} indistinguishable",
-                significant(best.estimate.mean),
-                significant(i.low),
-                significant(i.high),
-                isoc.members().len()
-            ));
-        }
-        Ok(())
-    }
-
-    fn iteration(&mut self, iteration: u64) {
-        self.bar.set(iteration);
-    }
-
-    fn refused(&mut self, iteration: u64, why: &str) {
-        self.output.refused(iteration, why);
-        if self.refused == 0 {
-            eprintln!(
-                "warning: candidate {iteration} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
-            );
-        }
-        self.refused += 1;
-    }
-
-    fn should_stop(&mut self) -> bool {
-        STOP.load(Ordering::Relaxed)
-    }
 }
 
 #[cfg(test)]

@@ -118,7 +118,7 @@ fn solve_resume_refuse_and_replace() {
     std::fs::write(out.join("isoc-99.png"), b"stale").unwrap();
 
     let err = run(args(&out)).unwrap_err();
-    assert!(err.chain().any(|e| e.is::<InputError>()), "{err:#}");
+    assert!(crate::is_input(&err), "{err:#}");
     assert!(format!("{err:#}").contains("--force"), "{err:#}");
     assert_eq!(
         rows(&out),
@@ -155,7 +155,7 @@ fn solve_resume_refuse_and_replace() {
         text.contains("seed 99") && text.contains("cannot resume"),
         "{text}"
     );
-    assert!(err.chain().any(|e| e.is::<InputError>()), "{text}");
+    assert!(crate::is_input(&err), "{text}");
     assert_eq!(rows(&out), second);
 
     let mut replace = args(&out);

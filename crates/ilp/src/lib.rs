@@ -16,7 +16,8 @@
 //! - [`PhotonEvaluator`]: the objective by photon tracing.
 //! - The files of a run, one typed schema each, read and written by the same struct:
 //!   [`SolutionRow`] (`solutions.csv`), [`ResultFile`] (`result.json`), [`RunFile`]
-//!   (`run.json`), kept by [`Output`] as the search goes.
+//!   (`run.json`), kept by [`Output`] as the search goes; [`Recorder`], the observer a
+//!   command gives the search (the files, the records, what to show).
 //! - [`visits`]: what the search visited, for its plots.
 //!
 //! ```
@@ -70,11 +71,11 @@ pub use history::{Axes, Role, Visit, visits};
 pub use invlight_scene::Diagnostic;
 pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};
 pub use isoc::{Admission, Isoc, Member};
-pub use member::MemberRef;
+pub use member::{MemberRef, configured_scene};
 pub use output::{
-    FolderLock, ObjectiveInfo, Output, OutputError, RESULT_SCHEMA, RUN_FILES, RUN_SCHEMA,
-    ResultEstimate, ResultFile, ResultMember, ResultValue, Run, RunFile, SolutionRow, Solutions,
-    Start, csv_header, csv_line, is_run_picture,
+    FolderLock, ObjectiveInfo, Output, OutputError, Progress, RESULT_SCHEMA, RUN_FILES, RUN_SCHEMA,
+    Recorder, ResultEstimate, ResultFile, ResultMember, ResultValue, Run, RunFile, SolutionRow,
+    Solutions, Start, csv_header, csv_line, is_run_picture,
 };
 pub use photons::PhotonEvaluator;
 pub use problem::{

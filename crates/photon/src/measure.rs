@@ -36,6 +36,15 @@ pub enum Estimator {
 }
 
 impl Estimator {
+    /// The estimator a command's `--arrivals-only` flag asks for.
+    pub fn arrivals_only(flag: bool) -> Estimator {
+        if flag {
+            Estimator::ArrivalsOnly
+        } else {
+            Estimator::Connected
+        }
+    }
+
     /// `connected` or `arrivals`, as outputs name it.
     pub fn name(self) -> &'static str {
         match self {

@@ -3,7 +3,9 @@
 //! with a requirement at a stated confidence, and every cell's value.
 
 use crate::html::{Page, escape, figure, table};
-use invlight_render::{Compliance, IlluminanceMap, MapPlan, Requirement, Verdict, plain};
+use invlight_render::{
+    Compliance, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
+};
 use invlight_scene::Vec3;
 use invlight_stats::{Confidence, significant};
 
@@ -206,44 +208,65 @@ pub fn grid_section(
 pub struct MapPage<'a> {
     /// The grid.
     pub map: &'a IlluminanceMap,
-    /// The surface's name.
-    pub surface: &'a str,
+    /// Its `--json` report: the surface, the estimator, the confidence, the seconds.
+    pub report: &'a MapReport,
+    /// The scene file.
+    pub scene: String,
     /// The scene's up axis: a horizontal grid is drawn as seen from above.
     pub up: Vec3,
-    /// The scene file.
-    pub scene: &'a str,
-    /// Confidence of the intervals and the verdict.
-    pub confidence: Confidence,
     /// What the grid must meet, if anything.
     pub requirement: Option<&'a Requirement>,
-    /// How departures were counted (`connected` or `arrivals`).
-    pub estimator: &'a str,
-    /// Seconds the map took.
-    pub seconds: f64,
 }
 
-impl MapPage<'_> {
+impl<'a> MapPage<'a> {
+    /// The page of `map` (reported as `report`) of a surface of the scene file `scene`
+    /// whose up axis is `up`, checked against `requirement`.
+    pub fn new(
+        map: &'a IlluminanceMap,
+        report: &'a MapReport,
+        scene: String,
+        up: Vec3,
+        requirement: Option<&'a Requirement>,
+    ) -> MapPage<'a> {
+        MapPage {
+            map,
+            report,
+            scene,
+            up,
+            requirement,
+        }
+    }
+
+    /// Writes the page to `path` (atomically).
+    pub fn write(&self, path: &std::path::Path) -> Result<(), crate::ReportError> {
+        let html = self.html()?;
+        invlight_scene::write_atomically(path, |w| std::io::Write::write_all(w, html.as_bytes()))
+            .map_err(|e| crate::ReportError::Io(path.to_path_buf(), e))
+    }
+
     /// The page's HTML.
     pub fn html(&self) -> Result<String, invlight_render::ChartError> {
+        let r = self.report;
+        let confidence = Confidence::new(r.confidence).unwrap_or_default();
         let mut page = Page::new(
-            &format!("Illuminance on {}", self.surface),
-            &format!("{} — invlight {}", self.scene, env!("CARGO_PKG_VERSION")),
+            &format!("Illuminance on {}", r.surface.as_str()),
+            &format!("{} — invlight {}", &self.scene, env!("CARGO_PKG_VERSION")),
         );
         let s = self.map.summary();
-        let i = self.map.mean.interval(self.confidence.z());
+        let i = self.map.mean.interval(confidence.z());
         let mut answer = format!(
             "<div class=\"answer\"><p><b>{}</b> gets <b>{} lx</b> on average [{}, {}] at {} % confidence; Emin {} lx, Emax {} lx, U0 {:.2}.</p>",
-            escape(self.surface),
+            escape(r.surface.as_str()),
             significant(s.eavg),
             significant(i.low),
             significant(i.high),
-            plain(self.confidence.level() * 100.0),
+            plain(confidence.level() * 100.0),
             significant(s.emin),
             significant(s.emax),
             s.u0
         );
         if let Some(r) = self.requirement {
-            let c = self.map.compliance(r, self.confidence);
+            let c = self.map.compliance(r, confidence);
             answer += &format!(
                 "<p>{}: <span class=\"{}\">{}</span></p>",
                 escape(&requirement_words(r)),
@@ -254,12 +277,12 @@ impl MapPage<'_> {
         answer += "</div>";
         page.section("The answer", &answer);
         page.section(
-            &format!("Light on {}", self.surface),
+            &format!("Light on {}", r.surface.as_str()),
             &grid_section(
                 self.map,
                 self.up,
-                self.surface,
-                self.confidence,
+                r.surface.as_str(),
+                confidence,
                 self.requirement,
             )?,
         );
@@ -268,8 +291,8 @@ impl MapPage<'_> {
             &format!(
                 "<p>{} photons traced ({} estimator: each departure connected to a point on the surface unless “arrivals”), every arrival on either side and at every bounce counted; each cell's standard error from the spread of the stratified photon groups. {:.1} s.</p>",
                 self.map.photons,
-                escape(self.estimator),
-                self.seconds
+                escape(&r.estimator),
+                r.seconds
             ),
         );
         Ok(page.finish())

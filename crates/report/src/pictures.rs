@@ -100,7 +100,7 @@ impl Pictures {
     /// and plots the search over `records` into `search.png` (the first variable) and
     /// `search-<id>.png`. All members share the first one's exposure, so a brighter
     /// configuration looks brighter. `progress(done, total)` counts rows of the ISOC
-    /// pictures.
+    /// pictures. Returns what was written, in words, with the seconds it took.
     pub fn write(
         &self,
         dir: &Path,
@@ -108,7 +108,8 @@ impl Pictures {
         records: &[Record],
         isoc: &Isoc,
         progress: Option<&(dyn Fn(u64, u64) + Sync)>,
-    ) -> Result<(), PictureError> {
+    ) -> Result<String, PictureError> {
+        let started = std::time::Instant::now();
         let io = |e| PictureError::Io(dir.to_path_buf(), e);
         for entry in std::fs::read_dir(dir).map_err(io)? {
             let entry = entry.map_err(io)?;
@@ -185,6 +186,11 @@ impl Pictures {
                 .write(&path)
                 .map_err(|e| PictureError::Save(path, e))?;
         }
-        Ok(())
+        Ok(format!(
+            "{} ISOC pictures and {} search plots in {:.1} s",
+            members.len(),
+            binding.space.variables().len(),
+            started.elapsed().as_secs_f64()
+        ))
     }
 }

@@ -61,6 +61,21 @@ impl From<ChartError> for ReportError {
     }
 }
 
+impl GridOptions {
+    /// `photons` photons traced with `seed` and the bounce cap `max_bounces`, the cells
+    /// at EN 12464-1's spacing.
+    pub fn en(photons: u64, seed: u64, max_bounces: u32) -> GridOptions {
+        GridOptions {
+            trace: TraceSettings {
+                photons,
+                seed,
+                max_bounces,
+            },
+            spacing: GridSpacing::Auto,
+        }
+    }
+}
+
 /// What a solve left: its evaluations, the ISOC they make, result.json.
 pub struct SolveFolder {
     /// The folder.
@@ -74,6 +89,16 @@ pub struct SolveFolder {
 }
 
 impl SolveFolder {
+    /// The folder `dir` of a run that has just ended with these records, ISOC and result.
+    pub fn new(dir: &Path, records: Vec<Record>, isoc: &Isoc, result: &ResultFile) -> Self {
+        SolveFolder {
+            dir: dir.to_path_buf(),
+            records,
+            isoc: isoc.clone(),
+            result: result.clone(),
+        }
+    }
+
     /// Reads `dir`'s solutions.csv and result.json, written for `problem` bound as
     /// `binding`; the ISOC is rebuilt by replaying the rows, as `--resume` does.
     pub fn read(
@@ -164,7 +189,60 @@ pub struct Written {
     pub no_plan: Option<String>,
 }
 
-impl SolveReport<'_> {
+impl Written {
+    /// What a command prints of it: the notes, then the page and its seconds.
+    pub fn lines(&self) -> String {
+        let notes = self.no_plan.iter().map(|n| format!("note: {n}\n"));
+        let page = format!("{} in {:.1} s", self.path.display(), self.seconds);
+        notes.collect::<String>() + &page
+    }
+}
+
+impl<'a> SolveReport<'a> {
+    /// The report of `folder`, a run of `problem` bound to `scene` as `binding`, with
+    /// no requirement and no grid.
+    pub fn new(
+        problem: &'a Problem,
+        binding: &'a Binding,
+        scene: &'a Scene,
+        folder: &'a SolveFolder,
+    ) -> SolveReport<'a> {
+        SolveReport {
+            problem,
+            binding,
+            scene,
+            folder,
+            requirement: None,
+            grid: None,
+        }
+    }
+
+    /// The same report checking `requirement` on the objective's grid measured as
+    /// `grid` says.
+    pub fn with(self, requirement: Option<&'a Requirement>, grid: GridOptions) -> Self {
+        SolveReport {
+            requirement,
+            grid: Some(grid),
+            ..self
+        }
+    }
+
+    /// Rebuilds the report of the run in `dir` of `problem` (as
+    /// [`SolveFolder::problem`] reads it) from its files, with the scene loaded as the
+    /// run loaded it, and writes it.
+    pub fn rebuild(
+        dir: &Path,
+        problem: &Problem,
+        mut scene: Scene,
+        requirement: Option<&Requirement>,
+        grid: GridOptions,
+    ) -> Result<Written, ReportError> {
+        let binding = Binding::new(problem, &mut scene).map_err(ReportError::Folder)?;
+        let folder = SolveFolder::read(dir, problem, &binding)?;
+        let report = SolveReport::new(problem, &binding, &scene, &folder);
+        report.with(requirement, grid).write()
+    }
+
     /// Writes `report.html` into the run's folder (atomically).
     pub fn write(&self) -> Result<Written, ReportError> {
         let started = Instant::now();

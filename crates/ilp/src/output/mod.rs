@@ -10,11 +10,13 @@
 //! complete: no half row, no temporary file, no truncated `result.json`.
 
 mod lock;
+mod recorder;
 mod result;
 mod run;
 mod solutions;
 
 pub use lock::FolderLock;
+pub use recorder::{Progress, Recorder};
 pub use result::{
     ObjectiveInfo, RESULT_SCHEMA, ResultEstimate, ResultFile, ResultMember, ResultValue,
 };
