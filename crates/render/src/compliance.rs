@@ -17,7 +17,7 @@
 //! - **Em.** The surface's mean Ē is measured as one estimate with its own standard
 //!   error ([`IlluminanceMap::mean`]): the cells' estimates come from the same photons
 //!   and are correlated, so the spread of the cells says nothing of Ē's error. The
-//!   maintained value is MF·Ē (MF the maintenance factor, EN 12464-1 §4.9 / CIE 97), its
+//!   maintained value is MF·Ē (MF the maintenance factor of EN 12464-1 and CIE 97:2005), its
 //!   bounds MF·(Ē ∓ z·σ) with z = Φ⁻¹(1 − α/k). *Meets* when the lower bound is ≥ Em,
 //!   *fails* when the upper bound is below it, else *cannot tell*.
 //! - **U0.** Emin over noisy cells is biased low (a minimum picks the cells that came out
