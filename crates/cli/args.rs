@@ -209,17 +209,27 @@ pub struct ReportArgs {
     /// Maintenance factor in (0, 1]: maintained values are MF × the computed ones.
     #[arg(long, default_value_t = 1.0, value_name = "MF")]
     pub maintenance_factor: f64,
-    /// Photons of the objective surface's grid in report.html.
-    #[arg(long, default_value_t = 1_000_000, value_name = "N")]
-    pub report_photons: u64,
+}
+
+/// How report.html measures the objective surface's grid.
+#[derive(Args, Debug, Clone, Default)]
+pub struct GridArgs {
+    /// Photons of the objective surface's grid in report.html [default: 1 000 000].
+    #[arg(long, value_name = "N")]
+    pub report_photons: Option<u64>,
 }
 
 impl ReportArgs {
-    /// The requirement asked for (if any), and the objective's grid at EN 12464-1's
-    /// spacing traced with `seed` and `max_bounces`.
-    pub fn report(&self, seed: u64, bounces: u32) -> anyhow::Result<(Option<Requirement>, Grid)> {
+    /// The requirement asked for, if any.
+    pub fn requirement(&self) -> anyhow::Result<Option<Requirement>> {
         let (t, mf) = (self.task.as_deref(), self.maintenance_factor);
-        let requirement = Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?;
-        Ok((requirement, Grid::en(self.report_photons, seed, bounces)))
+        Ok(Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?)
+    }
+}
+
+impl GridArgs {
+    /// The grid at EN 12464-1's spacing, traced with `seed` and the bounce cap `bounces`.
+    pub fn grid(&self, seed: u64, bounces: u32) -> Grid {
+        Grid::en(self.report_photons.unwrap_or(1_000_000), seed, bounces)
     }
 }

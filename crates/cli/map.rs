@@ -62,14 +62,9 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let pool = args.trace.pool()?;
     let start = Instant::now();
     let accel = Accel::new(&scene);
-    let (requirement, _) = args.require.report(trace.seed, trace.max_bounces)?;
-    let bad = |e| {
-        InputError(format!(
-            "{}: surface '{}': {e}",
-            path.display(),
-            args.surface
-        ))
-    };
+    let requirement = args.require.requirement()?;
+    let (file, name) = (path.display(), &args.surface);
+    let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let settings = MapSettings {
         cell: args.grid.cell(&scene, surface).map_err(bad)?,
         trace,

@@ -56,13 +56,8 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     let m = pool.install(|| measure(&scene, &accel, &ids, &settings, estimator, Some(&report)));
     bar.finish();
     let seconds = start.elapsed().as_secs_f64();
-    let report = m.report(
-        &args.surfaces,
-        confidence,
-        &settings,
-        estimator,
-        (seconds, build_seconds),
-    );
+    let times = (seconds, build_seconds);
+    let report = m.report(&args.surfaces, confidence, &settings, estimator, times);
     if args.json {
         crate::print_json(&report)?;
     } else {

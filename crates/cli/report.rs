@@ -1,7 +1,7 @@
 //! `invlight report DIR`: rebuilds a solve's report.html from its folder's files
 //! ([`invlight_report::SolveReport`]).
 
-use crate::args::{LoadArgs, ReportArgs};
+use crate::args::{GridArgs, LoadArgs, ReportArgs};
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{SolveFolder, SolveReport};
 use std::path::PathBuf;
@@ -18,6 +18,8 @@ pub struct ReportCommandArgs {
     #[command(flatten)]
     pub report: ReportArgs,
     #[command(flatten)]
+    pub grid: GridArgs,
+    #[command(flatten)]
     pub load: LoadArgs,
 }
 
@@ -25,7 +27,8 @@ pub struct ReportCommandArgs {
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
     let problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
     let bounces = problem.max_bounces.unwrap_or(DEFAULT_MAX_BOUNCES);
-    let (requirement, grid) = args.report.report(problem.seed, bounces)?;
+    let requirement = args.report.requirement()?;
+    let grid = args.grid.grid(problem.seed, bounces);
     let scene = args.load.load_problem(&problem)?;
     let written = SolveReport::rebuild(&args.dir, &problem, scene, requirement.as_ref(), grid)?;
     crate::print(&(written.lines() + "\n"))?;

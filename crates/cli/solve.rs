@@ -6,7 +6,7 @@
 //! plotted (`search.png`) and all of it reported in `report.html`.
 
 use crate::InputError;
-use crate::args::{LoadArgs, ReportArgs, TraceArgs};
+use crate::args::{GridArgs, LoadArgs, ReportArgs, TraceArgs};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
@@ -64,6 +64,8 @@ pub struct SolveArgs {
     pub no_report: bool,
     #[command(flatten)]
     pub report: ReportArgs,
+    #[command(flatten)]
+    pub grid: GridArgs,
 }
 
 /// Runs `invlight solve`.
@@ -96,7 +98,8 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         })
         .transpose()?;
     let settings = problem.settings();
-    let (requirement, grid) = args.report.report(problem.seed, max_bounces)?;
+    let requirement = args.report.requirement()?;
+    let grid = args.grid.grid(problem.seed, max_bounces);
     let report_scene = (!args.no_report).then(|| scene.clone());
 
     // 2. The output folder: a fresh run, or the rows of the one it continues.
@@ -106,12 +109,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags)
         .with_context(|| format!("the output folder {}", dir.display()))?;
     run.notes.iter().for_each(|n| eprintln!("note: {n}"));
-    let Run {
-        mut search,
-        output,
-        records,
-        ..
-    } = run;
+    let (mut search, output, records) = (run.search, run.output, run.records);
 
     // 3. Search until done or Ctrl-C. The first Ctrl-C stops before the next candidate;
     // a second one exits at once, which is safe too: every row is flushed as written

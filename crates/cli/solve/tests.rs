@@ -30,7 +30,9 @@ fn args(out: &Path) -> SolveArgs {
             em: None,
             u0: None,
             maintenance_factor: 1.0,
-            report_photons: 20_000,
+        },
+        grid: GridArgs {
+            report_photons: Some(20_000),
         },
     }
 }
