@@ -67,8 +67,8 @@ pub struct RenderArgs {
     /// photon map) instead of rendering it, with a legend bar in lux on the right.
     #[arg(long, alias = "false-color")]
     pub false_colour: bool,
-    /// Top of the false-colour scale, lx (default: the 99th percentile of what is seen,
-    /// rounded up).
+    /// Top of the false-colour scale, lx (default: the 99th percentile of what is seen;
+    /// its bottom is the least seen).
     #[arg(long, value_name = "LX", requires = "false_colour", value_parser = positive::<f64>)]
     pub max_lux: Option<f64>,
 }

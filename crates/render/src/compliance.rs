@@ -367,6 +367,12 @@ pub fn assess(
         } else {
             f64::INFINITY
         };
+        // No cell the surface mostly covers: no Emin, nothing to tell.
+        let (low, high) = if cells.is_empty() {
+            (0.0, f64::INFINITY)
+        } else {
+            (low, high)
+        };
         criteria.push(Criterion {
             name: "U0",
             required: u,
@@ -500,6 +506,55 @@ mod tests {
         assert!((r.criteria[0].level - 0.975).abs() < 1e-12);
         assert!((r.criteria[1].level - (1.0 - 0.05 / 20.0)).abs() < 1e-12);
         assert_eq!(r.verdict, Verdict::Meets);
+    }
+
+    #[test]
+    fn a_grid_leaves_its_slivers_out_of_emin() {
+        use crate::map::MapCell;
+        use glam::Vec3;
+        // 2 × 1 cells of 1 m²: a full one at 520 ± 5 lx and a sliver (0.1 m² of the
+        // surface) whose estimate, 100 lx on few photons, must not decide U0.
+        let cell = |c: u32, area: f64, e: Estimate| {
+            Some(MapCell {
+                index: (c, 0),
+                centre: Vec3::new(c as f32 + 0.5, 0.5, 0.0),
+                area,
+                estimate: e,
+                hits: 100,
+            })
+        };
+        let map = IlluminanceMap {
+            origin: Vec3::ZERO,
+            u: Vec3::X,
+            v: Vec3::Y,
+            columns: 2,
+            rows: 1,
+            cell_u: 1.0,
+            cell_v: 1.0,
+            cells: vec![
+                cell(0, 1.0, est(520.0, 5.0)),
+                cell(1, 0.1, est(100.0, 60.0)),
+            ],
+            photons: 1 << 20,
+            mean: est(482.0, 5.0),
+        };
+        assert_eq!(map.emin_cells().len(), 1);
+        let office = Requirement::of_task(task("office").unwrap(), 1.0);
+        let r = map.compliance(&office, Confidence::DEFAULT);
+        // Em: 482 ± 5 lx fails 500; U0 = 520/482 meets 0.6; the grid fails.
+        assert_eq!(r.criteria[0].verdict, Verdict::Fails);
+        assert_eq!(r.criteria[1].verdict, Verdict::Meets);
+        assert_eq!(r.verdict, Verdict::Fails);
+        // A grid of slivers alone has no Emin: U0 cannot be told, never met by default.
+        let slivers = IlluminanceMap {
+            cells: vec![
+                cell(0, 0.2, est(520.0, 5.0)),
+                cell(1, 0.1, est(100.0, 60.0)),
+            ],
+            ..map
+        };
+        let r = slivers.compliance(&office, Confidence::DEFAULT);
+        assert_eq!(r.criteria[1].verdict, Verdict::CannotTell);
     }
 
     #[test]
