@@ -12,13 +12,15 @@ run's files go to a temporary folder. Exit status 0 when every check passes.
 The regions are the geometric arguments of the READMEs, with margins of about one cell:
 the check is on the ISOC's best member, which the search returns first. office-target's
 check also measures that member again with other photons (`invlight measure --config`)
-and checks its constraints hold.
+and checks its constraints hold. Each example's report.html must be written and
+reference nothing outside itself.
 """
 
 import argparse
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -115,7 +117,8 @@ def main():
                 continue
             out = os.path.join(tmp, name)
             cmd = command + ["solve", os.path.join("examples", name, "problem.xml"),
-                             "--output", out, "--json", "--no-images"] + ([] if args.full else budget)
+                             "--output", out, "--json", "--no-images",
+                             "--report-photons", "200000"] + ([] if args.full else budget)
             start = time.monotonic()
             run = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
             seconds = time.monotonic() - start
@@ -124,6 +127,14 @@ def main():
                 failed += 1
                 continue
             result = json.loads(run.stdout)
+            # Every example's report.html is built, self-contained (issue 17).
+            report = os.path.join(out, "report.html")
+            page = open(report, encoding="utf-8").read() if os.path.exists(report) else ""
+            outside = re.findall(r"""(?:src|href)=["'](?!data:|#)[^"']*|url\((?!data:)|@import""", page)
+            if not page or outside:
+                print("FAIL %s: report.html %s" % (name, "missing" if not page else "references %s" % outside[:3]))
+                failed += 1
+                continue
             if not result["isoc"]:
                 print("FAIL %s: no feasible configuration" % name)
                 failed += 1

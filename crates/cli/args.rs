@@ -6,8 +6,10 @@
 use crate::InputError;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use invlight_ilp::{MemberRef, Problem};
+use invlight_ilp::{Problem, configured_scene};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photons_traced};
+use invlight_render::Requirement;
+use invlight_report::GridOptions as Grid;
 use invlight_scene::{LoadOptions, Scene, UpAxis};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -125,27 +127,11 @@ pub struct SceneArgs {
 impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
-        let ext = self.scene.extension().map(|e| e.to_ascii_lowercase());
-        if ext.is_none_or(|e| e != "xml") {
-            if self.config.is_some() {
-                return Err(InputError(format!(
-                    "--config applies a solve's configuration to the scene of its problem file; {} is not a problem file (.xml)",
-                    self.scene.display()
-                ))
-                .into());
-            }
-            let scene = invlight_scene::load(&self.scene, &self.load.options())?;
-            return self.load.fits(scene, &self.scene);
-        }
-        let problem = Problem::read(&self.scene)?;
-        let mut scene = self.load.load_problem(&problem)?;
-        if let Some(config) = &self.config {
-            let member: MemberRef = config
-                .parse()
-                .map_err(|e| InputError(format!("--config {config}: {e}")))?;
-            member.apply(&problem, &mut scene)?;
-        }
-        Ok(scene)
+        let (path, options) = (&self.scene, self.load.options());
+        let file = || self.load.fits(invlight_scene::load(path, &options)?, path);
+        configured_scene(path, self.config.as_deref(), file, |p| {
+            self.load.load_problem(p)
+        })
     }
 }
 
@@ -227,5 +213,46 @@ impl TraceArgs {
             .num_threads(self.threads.unwrap_or(0))
             .build()
             .context("starting the worker threads")
+    }
+}
+
+/// What the report checks a grid against (EN 12464-1), and how it measures the grid.
+#[derive(Args, Debug, Clone)]
+pub struct ReportArgs {
+    /// An EN 12464-1:2021 task whose Em and U0 the grid must meet: office, filing,
+    /// meeting, drawing, corridor, classroom or board.
+    #[arg(long, value_name = "NAME")]
+    pub task: Option<String>,
+    /// Required maintained mean illuminance, lx (replaces the task's).
+    #[arg(long, value_name = "LX", value_parser = positive::<f64>)]
+    pub em: Option<f64>,
+    /// Required uniformity Emin/Eavg (replaces the task's).
+    #[arg(long, value_name = "U0", value_parser = positive::<f64>)]
+    pub u0: Option<f64>,
+    /// Maintenance factor in (0, 1]: maintained values are MF × the computed ones.
+    #[arg(long, default_value_t = 1.0, value_name = "MF")]
+    pub maintenance_factor: f64,
+}
+
+/// How report.html measures the objective surface's grid.
+#[derive(Args, Debug, Clone, Default)]
+pub struct GridArgs {
+    /// Photons of the objective surface's grid in report.html [default: 1 000 000].
+    #[arg(long, value_name = "N")]
+    pub report_photons: Option<u64>,
+}
+
+impl ReportArgs {
+    /// The requirement asked for, if any.
+    pub fn requirement(&self) -> anyhow::Result<Option<Requirement>> {
+        let (t, mf) = (self.task.as_deref(), self.maintenance_factor);
+        Ok(Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?)
+    }
+}
+
+impl GridArgs {
+    /// The grid at EN 12464-1's spacing, traced with `seed` and the bounce cap `bounces`.
+    pub fn grid(&self, seed: u64, bounces: u32) -> Grid {
+        Grid::en(self.report_photons.unwrap_or(1_000_000), seed, bounces)
     }
 }

@@ -6,6 +6,7 @@ mod map;
 mod measure;
 mod progress;
 mod render;
+mod report;
 mod scene;
 mod solve;
 
@@ -40,17 +41,17 @@ enum Command {
     /// docs/problem-file.md). Results are written as they are found.
     ///
     /// The output folder gets solutions.csv (one row per photon trace), result.json (the
-    /// best configurations, rewritten whenever they change) and run.json (the settings,
-    /// which --resume checks). Ctrl-C stops cleanly with exit status 130; --resume
-    /// continues from solutions.csv. A folder holding an earlier run is refused unless
-    /// --resume or --force is given. At the end, isoc-01.png, isoc-02.png, … render the
-    /// ISOC's configurations from the scene's camera and search.png plots the
-    /// configurations evaluated.
+    /// best configurations) and run.json (the settings --resume checks). Ctrl-C stops
+    /// cleanly with exit status 130; --resume continues. An earlier run is refused unless
+    /// --resume or --force is given. At the end isoc-NN.png render the ISOC, search.png
+    /// plots the search and report.html reports it all in one page.
     Solve(solve::SolveArgs),
+    /// Rebuild a solve's report.html from its output folder.
+    Report(report::ReportCommandArgs),
     /// Render a picture from a scene camera by photon mapping, or a false-colour
     /// illuminance picture with a lux scale.
     Render(render::RenderArgs),
-    /// Illuminance on a regular grid over a planar surface (CSV and a heat map), with
+    /// Illuminance on a regular grid over a planar surface (CSV and a plan), with
     /// Emin, Eavg, Emax and uniformity U0 as lighting standards ask.
     Map(map::MapArgs),
 }
@@ -82,12 +83,25 @@ pub fn print_json(value: &impl serde::Serialize) -> anyhow::Result<()> {
     print(&(serde_json::to_string_pretty(value)? + "\n"))
 }
 
+/// Whether `err` was caused by what the user gave us (a file, a name, a value, an
+/// occupied output folder): exit code 2, as for clap's own usage errors; anything else
+/// that fails (writing output) is 1.
+pub fn is_input(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| {
+        e.is::<InputError>()
+            || e.is::<invlight_scene::Diagnostic>()
+            || e.downcast_ref::<invlight_ilp::OutputError>()
+                .is_some_and(|e| e.is_input())
+    })
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Measure(args) => measure::run(args),
         Command::Scene(args) => scene::run(args),
         Command::Solve(args) => solve::run(args),
+        Command::Report(args) => report::run(args),
         Command::Render(args) => render::run(args),
         Command::Map(args) => map::run(args),
     };
@@ -102,12 +116,7 @@ fn main() -> ExitCode {
                 return ExitCode::SUCCESS;
             }
             eprintln!("error: {err:#}");
-            // Bad input (a file, a name, a value) is exit code 2, as for clap's own
-            // usage errors; anything else that fails (writing output) is 1.
-            let input = err
-                .chain()
-                .any(|e| e.is::<InputError>() || e.is::<invlight_scene::Diagnostic>());
-            ExitCode::from(if input { 2 } else { 1 })
+            ExitCode::from(if is_input(&err) { 2 } else { 1 })
         }
     }
 }

@@ -3,13 +3,13 @@
 //! ([`invlight_render::illuminance_map`]).
 
 use crate::InputError;
-use crate::args::{SceneArgs, TraceArgs, positive};
+use crate::args::{ReportArgs, SceneArgs, TraceArgs};
 use crate::progress::Progress;
 use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, photons_traced};
-use invlight_render::{MapSettings, illuminance_map, nice_ceil};
-use invlight_report::file_safe;
+use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
+use invlight_report::{MapPage, file_safe};
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -23,9 +23,10 @@ pub struct MapArgs {
     /// The planar surface to map, by name. `invlight scene FILE` lists the names.
     #[arg(long, short = 's', value_name = "NAME")]
     pub surface: String,
-    /// Largest cell side, m. A side of length L gets ⌈L/grid⌉ equal cells.
-    #[arg(long, default_value_t = 0.25, value_name = "M", value_parser = positive::<f32>)]
-    pub grid: f32,
+    /// Largest cell side, m: a side of length L gets ⌈L/grid⌉ equal cells; `auto` spaces
+    /// them as EN 12464-1 does, p = 0.2·5^log10(d) for the surface's side d.
+    #[arg(long, default_value = "0.25", value_name = "M|auto")]
+    pub grid: GridSpacing,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals in the cells. By default every photon departure
@@ -34,13 +35,16 @@ pub struct MapArgs {
     /// with smaller errors.
     #[arg(long)]
     pub arrivals_only: bool,
-    /// Top of the heat map's colour scale, lx (default: the largest cell, rounded up).
-    #[arg(long, value_name = "LX", value_parser = positive::<f64>)]
-    pub max_lux: Option<f64>,
     /// Prefix of the files written: PREFIX.csv (one row per cell) and PREFIX.png (the
-    /// heat map with its scale). Default: map-SURFACE in the current directory.
+    /// plan with isolux lines). Default: map-SURFACE in the current directory.
     #[arg(long, short = 'o', value_name = "PREFIX")]
     pub output: Option<PathBuf>,
+    /// Also write this page: the plan, the figures, every cell and the compliance with
+    /// --task or --em/--u0, in one self-contained HTML file.
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    #[command(flatten)]
+    pub require: ReportArgs,
     /// Print one JSON object (surface, cells, points with mean/low/high, emin, eavg,
     /// emax, u0) instead of a summary.
     #[arg(long)]
@@ -58,27 +62,20 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let pool = args.trace.pool()?;
     let start = Instant::now();
     let accel = Accel::new(&scene);
+    let requirement = args.require.requirement()?;
+    let (file, name) = (path.display(), &args.surface);
+    let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let settings = MapSettings {
-        cell: args.grid,
+        cell: args.grid.cell(&scene, surface).map_err(bad)?,
         trace,
-        estimator: if args.arrivals_only {
-            Estimator::ArrivalsOnly
-        } else {
-            Estimator::Connected
-        },
+        estimator: Estimator::arrivals_only(args.arrivals_only),
     };
     let total = photons_traced(trace.photons).unwrap_or(trace.photons);
     let bar = Progress::new(total, "photons", "this map");
     let report = |done: u64| bar.set(done);
     let map = pool
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))
-        .map_err(|e| {
-            InputError(format!(
-                "{}: surface '{}': {e}",
-                path.display(),
-                args.surface
-            ))
-        })?;
+        .map_err(bad)?;
     bar.finish();
     let seconds = start.elapsed().as_secs_f64();
     let report = map.report(&args.surface, &settings, confidence, seconds);
@@ -91,8 +88,13 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let png_path = prefix.with_extension("png");
     map.write_csv(&csv_path, confidence)
         .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", csv_path.display()))?;
-    let max = args.max_lux.unwrap_or_else(|| nice_ceil(report.emax));
-    save_image(&map.image(max), &png_path)?;
+    let plan = MapPlan::new(&map, &args.surface, confidence).from_above(scene.up);
+    let plan = plan.image()?.0;
+    save_image(&plan, &png_path)?;
+    if let Some(html) = &args.report {
+        let file = path.display().to_string();
+        MapPage::new(&map, &report, file, scene.up, requirement.as_ref()).write(html)?;
+    }
 
     if args.json {
         crate::print_json(&report)?;

@@ -55,11 +55,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     // faster than a top level over overlapping instances (BENCHMARKS.md).
     let accel = Accel::with_movable(&scene, &[]);
     let build_seconds = start.elapsed().as_secs_f64();
-    let estimator = if args.arrivals_only {
-        Estimator::ArrivalsOnly
-    } else {
-        Estimator::Connected
-    };
+    let estimator = Estimator::arrivals_only(args.arrivals_only);
     let total = photons_traced(settings.photons).unwrap_or(settings.photons);
     let bar = Progress::new(total, "photons", "this measurement");
     let report = |done: u64| bar.set(done);
@@ -73,16 +69,8 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
         (&settings, estimator),
         (seconds, build_seconds),
     );
-    for s in &report.surfaces {
-        if let Some(share) = s.much_from_behind() {
-            eprintln!(
-                "warning: '{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front): add --side front if only the front counts",
-                s.name,
-                100.0 * share,
-                invlight_stats::significant(s.back),
-                invlight_stats::significant(s.front)
-            );
-        }
+    for w in report.surfaces.iter().filter_map(|s| s.warning()) {
+        eprintln!("warning: {w}");
     }
     if args.json {
         crate::print_json(&report)?;

@@ -57,7 +57,7 @@ impl Progress {
                 eprintln!(
                     "warning: {} will take about {} at this pace ({} of {} done in {:.0} s); Ctrl-C stops it",
                     self.what,
-                    human(expected),
+                    invlight_stats::hours_or_days(expected),
                     done,
                     self.total,
                     spent.as_secs_f64()
@@ -80,15 +80,5 @@ impl Progress {
     /// Removes the bar.
     pub fn finish(&self) {
         self.bar.finish_and_clear();
-    }
-}
-
-/// "3.2 hours", "12 days".
-fn human(d: Duration) -> String {
-    let h = d.as_secs_f64() / 3600.0;
-    if h < 48.0 {
-        format!("{h:.1} hours")
-    } else {
-        format!("{:.0} days", h / 24.0)
     }
 }

@@ -67,8 +67,8 @@ pub struct RenderArgs {
     /// photon map) instead of rendering it, with a legend bar in lux on the right.
     #[arg(long, alias = "false-color")]
     pub false_colour: bool,
-    /// Top of the false-colour scale, lx (default: the 99th percentile of what is seen,
-    /// rounded up).
+    /// Top of the false-colour scale, lx (default: the 99th percentile of what is seen;
+    /// its bottom is the least seen).
     #[arg(long, value_name = "LX", requires = "false_colour", value_parser = positive::<f64>)]
     pub max_lux: Option<f64>,
 }
@@ -77,7 +77,7 @@ pub struct RenderArgs {
 pub fn save_image(image: &invlight_render::RgbImage, path: &Path) -> anyhow::Result<()> {
     save_picture(image, path).map_err(|e| match e {
         SaveError::Format(_) => InputError(format!("{}: {e}", path.display())).into(),
-        SaveError::Io(e) => anyhow::anyhow!("cannot write {}: {e}", path.display()),
+        e => anyhow::anyhow!("cannot write {}: {e}", path.display()),
     })
 }
 
@@ -120,7 +120,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
             compensation: args.exposure,
         })
     };
-    let picture = pool.install(|| renderer.picture(&view, &look, Some(&report)));
+    let picture = pool.install(|| renderer.picture(&view, &look, Some(&report)))?;
     bar.finish();
     let pixel_seconds = pixels_start.elapsed().as_secs_f64();
     save_image(&picture, &args.output)?;

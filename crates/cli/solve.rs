@@ -2,20 +2,18 @@
 //! photon-traced estimates ([`invlight_ilp::Search`]), and reports the ISOC. The files
 //! (`solutions.csv`, `result.json`, `run.json`) are written as the search goes; Ctrl-C
 //! stops it cleanly (exit 130) and `--resume` continues it. At the end (also after
-//! Ctrl-C) every ISOC member is rendered (`isoc-NN.png`) and the visited
-//! configurations plotted (`search.png`).
+//! Ctrl-C) every ISOC member is rendered (`isoc-NN.png`), the visited configurations
+//! plotted (`search.png`) and all of it reported in `report.html`.
 
 use crate::InputError;
-use crate::args::{LoadArgs, TraceArgs};
+use crate::args::{GridArgs, LoadArgs, ReportArgs, TraceArgs};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
-    Binding, ObjectiveInfo, Observer, Outcome, Output, PhotonEvaluator, Problem, Record, Run,
-    Standing,
+    Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
 };
 use invlight_photon::DEFAULT_MAX_BOUNCES;
-use invlight_report::Pictures;
-use invlight_stats::significant;
+use invlight_report::{Pictures, SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -61,6 +59,13 @@ pub struct SolveArgs {
     /// Write neither the ISOC pictures nor search.png.
     #[arg(long)]
     pub no_images: bool,
+    /// Write no report.html.
+    #[arg(long)]
+    pub no_report: bool,
+    #[command(flatten)]
+    pub report: ReportArgs,
+    #[command(flatten)]
+    pub grid: GridArgs,
 }
 
 /// Runs `invlight solve`.
@@ -88,31 +93,30 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let pictures = (!args.no_images)
         .then(|| {
             let (w, n) = (args.image_width, args.image_photons);
-            Pictures::new(&scene, w, n, problem.seed, max_bounces)
-                .map_err(|e| InputError(format!("--image-width: {e}")))
+            Pictures::new(
+                &scene,
+                &ObjectiveInfo::of(&problem),
+                w,
+                n,
+                problem.seed,
+                max_bounces,
+            )
+            .map_err(|e| InputError(format!("--image-width: {e}")))
         })
         .transpose()?;
     let settings = problem.settings();
+    let requirement = args.report.requirement()?;
+    let grid = args.grid.grid(problem.seed, max_bounces);
+    let report_scene = (!args.no_report).then(|| scene.clone());
 
     // 2. The output folder: a fresh run, or the rows of the one it continues.
     let dir = args.output.clone().unwrap_or(problem.output.clone());
     let info = ObjectiveInfo::of(&problem);
     let flags = (args.resume, args.force);
-    let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags).map_err(|e| {
-        let what = format!("the output folder {}: {e}", dir.display());
-        if e.is_input() {
-            anyhow::Error::new(InputError(what))
-        } else {
-            anyhow::anyhow!(what)
-        }
-    })?;
+    let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags)
+        .with_context(|| format!("the output folder {}", dir.display()))?;
     run.notes.iter().for_each(|n| eprintln!("note: {n}"));
-    let Run {
-        mut search,
-        output,
-        records,
-        ..
-    } = run;
+    let (mut search, output, records) = (run.search, run.output, run.records);
 
     // 3. Search until done or Ctrl-C. The first Ctrl-C stops before the next candidate;
     // a second one exits at once, which is safe too: every row is flushed as written
@@ -129,64 +133,42 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     });
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
     bar.set(search.iteration());
-    let unit = match problem.goal.unit() {
-        "" => String::new(),
-        u => format!(" {u}"),
-    };
-    let mut reporter = Reporter {
-        output,
-        bar,
-        records,
-        refused: 0,
-        unit,
-    };
+    let mut reporter = Recorder::new(output, records, &STOP, |p| match p {
+        Shown::Best(line) => bar.message(line),
+        Shown::Iteration(i) => bar.set(i),
+        Shown::FirstRefusal(i, why) => eprintln!(
+            "warning: candidate {i} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
+        ),
+    });
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;
-    reporter.bar.finish();
+    bar.finish();
     reporter
         .output
         .write_result(search.standing())
         .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
     let result = reporter.output.result(search.standing());
-    for side in eval.first_sides() {
-        if side.back_share() > 0.1 {
-            eprintln!(
-                "warning: '{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front, at the first configuration): add side=\"front\" where it is named if only the front counts",
-                side.name,
-                100.0 * side.back_share(),
-                significant(side.back.mean),
-                significant(side.front.mean)
-            );
-        }
+    for w in eval.first_sides().iter().filter_map(|s| s.warning()) {
+        eprintln!("warning: {w}");
     }
 
-    // 4. Pictures of the ISOC (or of the configurations closest to feasible) and of the
-    // search.
+    // 4. Pictures of the ISOC and of the search, and the report.
     if let Some(pictures) = &pictures {
-        let started = std::time::Instant::now();
-        let isoc = search.isoc();
-        let members: Vec<_> = if isoc.members().is_empty() {
-            search
-                .standing()
-                .closest
-                .iter()
-                .map(|(_, m)| m.config.clone())
-                .collect()
-        } else {
-            isoc.best_first().iter().map(|m| m.config.clone()).collect()
-        };
         let bar = Progress::new(0, "rows", "the ISOC pictures");
         let report = |done: u64, total: u64| bar.set_total(done, total);
         let records = &reporter.records;
-        pool.install(|| pictures.write(&dir, &binding, &members, records, isoc, Some(&report)))?;
+        let line = pool.install(|| {
+            pictures.write(&dir, &binding, records, search.standing(), Some(&report))
+        })?;
         bar.finish();
-        let plots = binding.space.variables().len();
-        let secs = started.elapsed().as_secs_f64();
-        eprintln!(
-            "{} ISOC pictures and {plots} search plots in {secs:.1} s",
-            members.len()
-        );
+        eprintln!("{line}");
+    }
+    if let Some(scene) = &report_scene {
+        let folder = SolveFolder::new(&dir, reporter.records.clone(), search.standing(), &result);
+        let report = SolveReport::new(&problem, &binding, scene, &folder);
+        let report = report.with(requirement.as_ref(), grid);
+        eprintln!("{}", pool.install(|| report.write())?.lines());
     }
 
     // 5. Report.
@@ -213,67 +195,6 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         Outcome::Interrupted => ExitCode::from(130),
         _ => ExitCode::SUCCESS,
     })
-}
-
-/// Forwards the search's reports to the files and the progress bar, and Ctrl-C to the
-/// search.
-struct Reporter<'b> {
-    output: Output<'b>,
-    bar: Progress,
-    /// Every evaluation so far, for search.png.
-    records: Vec<Record>,
-    refused: u64,
-    /// The goal's unit, with a space before it.
-    unit: String,
-}
-
-impl Observer for Reporter<'_> {
-    fn evaluated(
-        &mut self,
-        record: &Record,
-        standing: Standing<'_>,
-        changed: bool,
-    ) -> std::io::Result<()> {
-        self.output.evaluated(record, standing, changed)?;
-        self.records.push(record.clone());
-        let isoc = standing.isoc;
-        if let Some(best) = isoc.best() {
-            let goal = &best.evaluation.goal;
-            let i = goal.interval(isoc.z());
-            self.bar.message(format!(
-                "best {}{} [{}, {}], {} indistinguishable",
-                significant(goal.mean),
-                self.unit,
-                significant(i.low),
-                significant(i.high),
-                isoc.members().len()
-            ));
-        } else if let Some((v, _)) = standing.closest.first() {
-            self.bar.message(format!(
-                "none feasible yet; the closest is {} % short",
-                significant(100.0 * v)
-            ));
-        }
-        Ok(())
-    }
-
-    fn iteration(&mut self, iteration: u64) {
-        self.bar.set(iteration);
-    }
-
-    fn refused(&mut self, iteration: u64, why: &str) {
-        self.output.refused(iteration, why);
-        if self.refused == 0 {
-            eprintln!(
-                "warning: candidate {iteration} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
-            );
-        }
-        self.refused += 1;
-    }
-
-    fn should_stop(&mut self) -> bool {
-        STOP.load(Ordering::Relaxed)
-    }
 }
 
 #[cfg(test)]

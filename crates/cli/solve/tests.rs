@@ -24,6 +24,16 @@ fn args(out: &Path) -> SolveArgs {
         image_width: 64,
         image_photons: 2000,
         no_images: true,
+        no_report: true,
+        report: ReportArgs {
+            task: None,
+            em: None,
+            u0: None,
+            maintenance_factor: 1.0,
+        },
+        grid: GridArgs {
+            report_photons: Some(20_000),
+        },
     }
 }
 
@@ -71,7 +81,16 @@ fn solve_resume_refuse_and_replace() {
     let out = dir.path().join("out");
     let mut first_args = args(&out);
     first_args.no_images = false;
+    first_args.no_report = false;
+    first_args.report.task = Some("office".into());
     assert_eq!(run(first_args).unwrap(), ExitCode::SUCCESS);
+    // The report: the answer, the desk's grid and its compliance stated.
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        page.contains("Light on Desk") && page.contains("EN 12464-1:2021"),
+        "{page:.2000}"
+    );
+    assert!(invlight_report::external_references(&page).is_empty());
     let first = rows(&out);
     assert_eq!(
         first[0],
@@ -80,17 +99,28 @@ fn solve_resume_refuse_and_replace() {
     let result = ResultFile::read(&out.join("result.json")).unwrap();
     assert_eq!(result.evaluations, first.len() as u64 - 1);
     assert_eq!(result.objective.surface.as_deref(), Some("Desk"));
-    // The lamp room has no camera: the default view is 4:3, 64×48 pixels.
+    // The lamp room has no camera: the default view is 4:3, 64×48 pixels, and a
+    // caption under it.
     let mut expected: Vec<_> = (1..=result.isoc.len())
-        .map(|k| (format!("isoc-{k:02}.png"), (64, 48)))
+        .map(|k| format!("isoc-{k:02}.png"))
         .collect();
-    expected.push(("search.png".to_string(), invlight_render::PLOT_SIZE));
-    assert_eq!(pngs(&out), expected);
+    expected.push("search.png".to_string());
+    let got = pngs(&out);
+    assert_eq!(
+        got.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
+        expected
+    );
+    for (name, (w, h)) in got {
+        match name.as_str() {
+            "search.png" => assert_eq!((w, h), invlight_render::PLOT_SIZE),
+            _ => assert!(w == 64 && h > 48, "{name}: {w}×{h}"),
+        }
+    }
     // A picture of a larger earlier ISOC must not survive the next run's pictures.
     std::fs::write(out.join("isoc-99.png"), b"stale").unwrap();
 
     let err = run(args(&out)).unwrap_err();
-    assert!(err.chain().any(|e| e.is::<InputError>()), "{err:#}");
+    assert!(crate::is_input(&err), "{err:#}");
     assert!(format!("{err:#}").contains("--force"), "{err:#}");
     assert_eq!(
         rows(&out),
@@ -127,7 +157,7 @@ fn solve_resume_refuse_and_replace() {
         text.contains("seed 99") && text.contains("cannot resume"),
         "{text}"
     );
-    assert!(err.chain().any(|e| e.is::<InputError>()), "{text}");
+    assert!(crate::is_input(&err), "{text}");
     assert_eq!(rows(&out), second);
 
     let mut replace = args(&out);

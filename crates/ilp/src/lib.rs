@@ -22,7 +22,8 @@
 //!   an arrangement from one trace.
 //! - The files of a run, one typed schema each, read and written by the same struct:
 //!   [`SolutionRow`] (`solutions.csv`), [`ResultFile`] (`result.json`), [`RunFile`]
-//!   (`run.json`), kept by [`Output`] as the search goes.
+//!   (`run.json`), kept by [`Output`] as the search goes; [`Recorder`], the observer a
+//!   command gives the search (the files, the records, what to show).
 //! - [`visits`]: what the search visited, for its plots.
 //!
 //! ```
@@ -82,11 +83,11 @@ pub use intention::{
 pub use invlight_scene::Diagnostic;
 pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};
 pub use isoc::{Admission, Isoc, Member};
-pub use member::MemberRef;
+pub use member::{MemberRef, configured_scene};
 pub use output::{
-    ConstraintInfo, FolderLock, ObjectiveInfo, Output, OutputError, RESULT_SCHEMA, RUN_FILES,
-    RUN_SCHEMA, ResultConstraint, ResultEstimate, ResultFile, ResultMember, ResultValue, Run,
-    RunFile, SolutionRow, Solutions, Start, csv_header, csv_line, is_run_picture,
+    ConstraintInfo, FolderLock, ObjectiveInfo, Output, OutputError, Progress, RESULT_SCHEMA,
+    RUN_FILES, RUN_SCHEMA, Recorder, ResultConstraint, ResultEstimate, ResultFile, ResultMember,
+    ResultValue, Run, RunFile, SolutionRow, Solutions, Start, csv_header, csv_line, is_run_picture,
 };
 pub use photons::{EvaluationError, PhotonEvaluator, SideSplit};
 pub use problem::{Anchor, PlacementSpec, Problem, SceneRef, VariableKind, VariableSpec};

@@ -6,7 +6,7 @@ use crate::binding::Binding;
 use crate::output::ResultFile;
 use crate::problem::Problem;
 use invlight_scene::{Diagnostic, Scene};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// `RESULT#K`, or `RESULT` for member 1 (the highest mean).
@@ -52,4 +52,38 @@ impl MemberRef {
         binding.apply(scene, &config);
         Ok(())
     }
+}
+
+/// The scene `path` names, read the same way by `render`, `measure` and `map`: a scene
+/// file, loaded by `file`; or a problem file (`.xml`), whose scene `problem` loads, with
+/// member `config` (`RESULT#K`) of one of its solves applied. `config` with a scene
+/// file is refused: only a problem binds the variables a configuration sets.
+pub fn configured_scene<E: From<Diagnostic>>(
+    path: &Path,
+    config: Option<&str>,
+    file: impl FnOnce() -> Result<Scene, E>,
+    problem: impl FnOnce(&Problem) -> Result<Scene, E>,
+) -> Result<Scene, E> {
+    let xml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    if !xml {
+        return match config {
+            Some(_) => Err(Diagnostic::new(
+                path,
+                "--config applies a solve's configuration to the scene of its problem file; this is not a problem file (.xml)",
+            )
+            .into()),
+            None => file(),
+        };
+    }
+    let read = Problem::read(path)?;
+    let mut scene = problem(&read)?;
+    if let Some(config) = config {
+        let member: MemberRef = config
+            .parse()
+            .map_err(|e| Diagnostic::new(path, format!("--config {config}: {e}")))?;
+        member.apply(&read, &mut scene)?;
+    }
+    Ok(scene)
 }

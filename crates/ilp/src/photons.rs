@@ -42,6 +42,21 @@ pub struct SideSplit {
 }
 
 impl SideSplit {
+    /// The warning a surface counted on both sides deserves when more than a tenth of
+    /// its light arrives on its back, with both figures.
+    pub fn warning(&self) -> Option<String> {
+        let share = self.back_share();
+        (share > 0.1).then(|| {
+            format!(
+                "'{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front, at the first configuration): add side=\"front\" where it is named if only the front counts, or side=\"back\" if its triangles face away from the room",
+                self.name,
+                100.0 * share,
+                invlight_stats::significant(self.back.mean),
+                invlight_stats::significant(self.front.mean)
+            )
+        })
+    }
+
     /// The back's share of the surface's light (0 when it has none).
     pub fn back_share(&self) -> f64 {
         let total = self.front.mean + self.back.mean;

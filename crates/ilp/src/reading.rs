@@ -192,6 +192,29 @@ impl Reading {
         Ok(self.grids.len() - 1)
     }
 
+    /// The surface the goal is about, if it is about one.
+    pub fn goal_surface(&self) -> Option<SurfaceId> {
+        self.surface_of(&self.goal)
+    }
+
+    /// The surface a quantity is read on, if any.
+    pub fn surface_of(&self, q: &Quantity) -> Option<SurfaceId> {
+        match *q {
+            Quantity::Mean { target, .. } => Some(self.surfaces[target]),
+            Quantity::Uniformity { grid } | Quantity::MinPoint { grid } => {
+                Some(self.surfaces[self.grids[grid].target])
+            }
+            Quantity::Power => None,
+        }
+    }
+
+    /// The surface a report draws the light on: the goal's, else the first
+    /// constraint's (a least-power problem's desk).
+    pub fn plan_surface(&self) -> Option<SurfaceId> {
+        self.goal_surface()
+            .or_else(|| self.constraints.iter().find_map(|q| self.surface_of(q)))
+    }
+
     /// The grids on `scene` as it is now (a measured surface may have moved); an error
     /// names the surface whose grid cannot be laid.
     pub fn grid_requests(&self, scene: &Scene) -> Result<Vec<GridRequest>, (String, GridError)> {

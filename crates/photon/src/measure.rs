@@ -39,6 +39,15 @@ pub enum Estimator {
 }
 
 impl Estimator {
+    /// The estimator a command's `--arrivals-only` flag asks for.
+    pub fn arrivals_only(flag: bool) -> Estimator {
+        if flag {
+            Estimator::ArrivalsOnly
+        } else {
+            Estimator::Connected
+        }
+    }
+
     /// `connected` or `arrivals`, as outputs name it.
     pub fn name(self) -> &'static str {
         match self {
@@ -419,6 +428,19 @@ impl SurfaceReport {
         let total = self.front + self.back;
         let share = if total > 0.0 { self.back / total } else { 0.0 };
         (self.side == "both" && share > 0.1).then_some(share)
+    }
+
+    /// The warning [`SurfaceReport::much_from_behind`] deserves, with both figures.
+    pub fn warning(&self) -> Option<String> {
+        self.much_from_behind().map(|share| {
+            format!(
+                "'{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front): add --side front if only the front counts, or --side back if its triangles face away from the room",
+                self.name,
+                100.0 * share,
+                invlight_stats::significant(self.back),
+                invlight_stats::significant(self.front)
+            )
+        })
     }
 }
 

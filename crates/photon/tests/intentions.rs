@@ -6,24 +6,17 @@
 
 mod common;
 
-use common::{Z, assert_near, point, rect};
+use common::{Z, assert_near, point, rect, rect_solid_angle};
 use invlight_photon::{
     Components, Estimator, GridRequest, Request, Side, SurfaceGrid, TraceSettings, measure_with,
 };
 use invlight_scene::{Mat4, Material, Scene, Vec3};
 use invlight_trace::Accel;
 
-/// The solid angle of [x1, x2] × [y1, y2] of a plane at distance h, seen from the
-/// point above the origin.
-fn omega(h: f64, (x1, x2): (f64, f64), (y1, y2): (f64, f64)) -> f64 {
-    let f = |x: f64, y: f64| (x * y / (h * (x * x + y * y + h * h).sqrt())).atan();
-    f(x2, y2) - f(x1, y2) - f(x2, y1) + f(x1, y1)
-}
-
 /// Mean illuminance over [x1, x2] × [y1, y2] of z = 0 from `cd` candela at `l`.
 fn on_rect(l: [f64; 3], cd: f64, (x1, x2): (f64, f64), (y1, y2): (f64, f64)) -> f64 {
     let area = (x2 - x1) * (y2 - y1);
-    cd * omega(l[2], (x1 - l[0], x2 - l[0]), (y1 - l[1], y2 - l[1])) / area
+    cd * rect_solid_angle(x1 - l[0], x2 - l[0], y1 - l[1], y2 - l[1], l[2]) / area
 }
 
 /// A black 1 m × 1 m floor on z = 0 facing up (+Z), named "Floor".

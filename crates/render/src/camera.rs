@@ -69,6 +69,22 @@ impl View {
         Some(View::from_camera(&camera, aspect))
     }
 
+    /// Where the world point `p` appears on a `width` × `height` image, pixels from
+    /// the top-left corner: the inverse of [`View::ray`]; `None` behind the camera.
+    pub fn pixel(&self, p: Vec3, width: u32, height: u32) -> Option<(f32, f32)> {
+        let d = p - self.origin;
+        let z = d.dot(self.forward);
+        if z <= 1e-6 {
+            return None;
+        }
+        let x = d.dot(self.right) / (z * self.tan_half * self.aspect);
+        let y = d.dot(self.up) / (z * self.tan_half);
+        Some((
+            0.5 * (x + 1.0) * width as f32,
+            0.5 * (1.0 - y) * height as f32,
+        ))
+    }
+
     /// The ray through the image point (`sx`, `sy`), both in [0, 1], `sy` = 0 at the top.
     #[inline]
     pub fn ray(&self, sx: f32, sy: f32) -> Ray {
@@ -101,6 +117,11 @@ mod tests {
         assert!((top - Vec3::new(0.0, 1.0, -1.0).normalize()).length() < 1e-6);
         let right = view.ray(1.0, 0.5).dir;
         assert!((right - Vec3::new(2.0, 0.0, -1.0).normalize()).length() < 1e-6);
+        // A point on the ray through a pixel projects back onto that pixel.
+        let r = view.ray(0.25, 0.75);
+        let (x, y) = view.pixel(r.origin + r.dir * 3.0, 200, 100).unwrap();
+        assert!((x - 50.0).abs() < 1e-3 && (y - 75.0).abs() < 1e-3);
+        assert!(view.pixel(Vec3::new(0.0, 0.0, 1.0), 200, 100).is_none());
     }
 
     #[test]

@@ -14,22 +14,36 @@
 //!   false colour with a legend in lux.
 //! - [`illuminance_map`]: mean illuminance over the cells of a grid on a planar surface,
 //!   each with its confidence interval, and Emin, Eavg, Emax, U0 (EN 12464-1).
-//! - [`SearchPlot`]: what a search visited, drawn as `search.png`.
+//! - [`assess`], [`Compliance`]: whether a grid meets Em and U0 (EN 12464-1:2021 tasks in
+//!   [`TASKS`], its grid rule [`en_grid_spacing`]) with a stated confidence: meets,
+//!   fails, or cannot tell at this photon count.
+//! - [`SearchPlot`], [`ConvergencePlot`], [`MapPlan`]: what a search visited (a plan in
+//!   world metres, a sun chart, a value plot), how it converged, and an illuminance grid
+//!   as a plan with isolux lines — drawn with `plotters` as SVG or as pictures, in the
+//!   embedded DejaVu Sans, coloured by viridis over the data's range ([`ColourScale`]).
 #![deny(missing_docs)]
 
 mod camera;
-mod draw;
+mod chart;
+mod colour_map;
+mod compliance;
 mod false_colour;
 mod integrator;
 mod map;
 mod photon_map;
 mod picture;
+mod plan;
 mod plot;
 mod tonemap;
 
 pub use camera::View;
-pub use draw::{legend_width, nice_ceil, scale_colour};
-pub use false_colour::{auto_max, false_colour};
+pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
+pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
+pub use compliance::{
+    Compliance, Criterion, GridSpacing, Requirement, TASKS, Task, Verdict, assess, en_grid_spacing,
+    en_grid_spacing_for, plain, task,
+};
+pub use false_colour::{auto_scale, false_colour, legend_width};
 /// The `image` crate the pictures are made with, so callers can save them without
 /// depending on it themselves.
 pub use image;
@@ -39,12 +53,16 @@ pub use integrator::{
 };
 pub use map::{
     IlluminanceMap, MAX_CELLS, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
-    MapSummary, illuminance_map,
+    MapSummary, illuminance_map, surface_extent,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{
     Look, MAX_PIXELS, MapFigures, PictureSettings, Renderer, SaveError, ViewError, choose_view,
     picture_format, save_picture,
 };
-pub use plot::{Mark, PLOT_SIZE, PlotKind, PlotPoint, SearchPlot, draw_search_plot};
+pub use plan::{MapPlan, PLAN_WIDTH, isolines, seen_from};
+pub use plot::{
+    ConvergencePlot, ConvergencePoint, Frame, Mark, PLOT_SIZE, PlanAxis, PlanFrame, PlotKind,
+    PlotPoint, SearchPlot,
+};
 pub use tonemap::{Exposure, ToneMap, log_average, srgb_encode, tone_map};

@@ -15,9 +15,7 @@
 //! Photons are traced by `invlight_photon::trace_chunks`, each chunk tallied on its own
 //! and the tallies added in chunk order: the grid is the same on any number of threads.
 
-use crate::draw;
 use glam::{Vec2, Vec3};
-use image::RgbImage;
 use invlight_photon::{
     Departure, Emitters, Estimator, GroupTallies, PathVisitor, Sampler, Tally, Targets,
     TraceSettings, photons_traced, trace_chunks,
@@ -118,6 +116,12 @@ pub struct IlluminanceMap {
     pub cells: Vec<Option<MapCell>>,
     /// Photons emitted: the settings' count rounded up to whole stratified groups.
     pub photons: u64,
+    /// The mean illuminance over the whole surface with its standard error: tallied
+    /// from the same photons as one more cell covering all the others, exactly as
+    /// `invlight_photon::measure` measures the surface. Its mean is the cells'
+    /// area-weighted mean; its standard error is that mean's, which the cells' own
+    /// errors cannot give, as they come from the same photons and are correlated.
+    pub mean: Estimate,
 }
 
 /// The figures of EN 12464-1 for a grid.
@@ -212,6 +216,13 @@ fn plane_of(scene: &Scene, surface: SurfaceId) -> Result<Plane, MapError> {
     })
 }
 
+/// The sides (along the grid's u and v) of the rectangle a planar surface's grid
+/// covers, m: what EN 12464-1's grid rule is applied to.
+pub fn surface_extent(scene: &Scene, surface: SurfaceId) -> Result<(f32, f32), MapError> {
+    let plane = plane_of(scene, surface)?;
+    Ok((plane.size.x, plane.size.y))
+}
+
 /// Area of the part of triangle `t` inside the rectangle [lo, hi] (Sutherland–Hodgman
 /// clipping, then the shoelace formula).
 fn clipped_area(t: &[Vec2; 3], lo: Vec2, hi: Vec2) -> f64 {
@@ -256,6 +267,8 @@ struct Grid<'a> {
     inv_cell: Vec2,
     columns: u32,
     rows: u32,
+    /// The tally of the whole surface, after the cells'.
+    whole: u32,
 }
 
 impl Grid<'_> {
@@ -284,6 +297,7 @@ impl PathVisitor for CellTally<'_> {
         {
             let cell = self.grid.cell(c.point);
             self.tallies.add(cell as u32, c.lumens);
+            self.tallies.add(self.grid.whole, c.lumens);
         }
     }
 
@@ -299,7 +313,9 @@ impl PathVisitor for CellTally<'_> {
             None => 1.0,
         };
         let c = self.grid.cell(at.point);
-        self.tallies.arrive(c as u32, (luminance(power) * w) as f64);
+        let lumens = (luminance(power) * w) as f64;
+        self.tallies.arrive(c as u32, lumens);
+        self.tallies.arrive(self.grid.whole, lumens);
     }
 
     #[inline]
@@ -361,8 +377,9 @@ pub fn illuminance_map(
         inv_cell: Vec2::ONE / cell,
         columns,
         rows,
+        whole: n_cells as u32,
     };
-    let mut totals = vec![Tally::default(); n_cells];
+    let mut totals = vec![Tally::default(); n_cells + 1];
     let emitters = Emitters::new(scene);
     // Whole stratified groups, as for surfaces: each cell's standard error comes from the
     // spread of the group totals.
@@ -381,7 +398,7 @@ pub fn illuminance_map(
         || CellTally {
             grid: &grid,
             connect: (settings.estimator == Estimator::Connected).then_some((&whole, accel)),
-            tallies: GroupTallies::new(n_cells),
+            tallies: GroupTallies::new(n_cells + 1),
         },
         |part| part.tallies.add_to(&mut totals),
         progress,
@@ -407,7 +424,10 @@ pub fn illuminance_map(
             })
         })
         .collect();
+    let area: f64 = areas.iter().sum();
+    let mean = totals[n_cells].estimate(area, photons, emitters.total_flux());
     Ok(IlluminanceMap {
+        mean,
         origin: plane.origin,
         u: plane.u,
         v: plane.v,
@@ -458,6 +478,9 @@ pub struct MapReport {
     pub emin: f64,
     /// Area-weighted mean.
     pub eavg: f64,
+    /// Standard error of Eavg: that of the whole surface's estimate
+    /// ([`IlluminanceMap::mean`]).
+    pub eavg_std_error: f64,
     /// Largest cell mean.
     pub emax: f64,
     /// Emin / Eavg.
@@ -581,6 +604,7 @@ impl IlluminanceMap {
             points,
             emin: summary.emin,
             eavg: summary.eavg,
+            eavg_std_error: self.mean.std_error,
             emax: summary.emax,
             u0: summary.u0,
         }
@@ -611,29 +635,6 @@ impl IlluminanceMap {
             emax,
             u0: if eavg > 0.0 { emin / eavg } else { 0.0 },
         }
-    }
-
-    /// A heat map: each cell a square block in the scale colour of its mean (rows
-    /// upwards, so v points up as on a plan), uncovered cells dark grey, and the legend
-    /// from 0 to `max_lux` on the right. Blocks are sized so the grid is about 600
-    /// pixels on its longer side.
-    pub fn image(&self, max_lux: f64) -> RgbImage {
-        let side = (600 / self.columns.max(self.rows)).clamp(2, 64);
-        let (w, h) = (self.columns * side, self.rows * side);
-        let scale = crate::false_colour::text_scale(h.max(240));
-        let mut out = RgbImage::new(w + draw::legend_width(scale), h.max(240));
-        for (i, cell) in self.cells.iter().enumerate() {
-            let (c, r) = (i as u32 % self.columns, i as u32 / self.columns);
-            let colour = match cell {
-                Some(cell) => draw::scale_colour((cell.estimate.mean / max_lux) as f32),
-                None => [48, 48, 48],
-            };
-            let y = (self.rows - 1 - r) * side;
-            draw::fill_rect(&mut out, (c * side) as i32, y as i32, side, side, colour);
-        }
-        let height = out.height();
-        draw::legend(&mut out, w as i32, 0, height, max_lux, "lx", scale);
-        out
     }
 }
 

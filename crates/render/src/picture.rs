@@ -4,7 +4,7 @@
 //! render the same scene differently.
 
 use crate::camera::View;
-use crate::false_colour::{auto_max, false_colour};
+use crate::false_colour::{auto_scale, false_colour};
 use crate::integrator::{
     AreaLights, IlluminanceImage, Image, Integrator, RenderSettings, render, render_illuminance,
 };
@@ -157,7 +157,7 @@ pub enum Look {
     /// Tone-mapped to sRGB ([`crate::tone_map`]).
     Tone(ToneMap),
     /// The illuminance seen through each pixel in false colour, the scale's top at the
-    /// given lux (`None`: the 99th percentile of what is seen, rounded up).
+    /// given lux (`None`: the 99th percentile of what is seen).
     FalseColour(Option<f64>),
 }
 
@@ -286,13 +286,12 @@ impl<'s> Renderer<'s> {
         view: &View,
         look: &Look,
         progress: Option<&(dyn Fn(u64) + Sync)>,
-    ) -> RgbImage {
+    ) -> Result<RgbImage, crate::ChartError> {
         match look {
-            Look::Tone(tone) => tone_map(&self.radiance(view, progress), tone),
+            Look::Tone(tone) => Ok(tone_map(&self.radiance(view, progress), tone)),
             Look::FalseColour(max) => {
                 let lux = self.illuminance(view, progress);
-                let max = max.unwrap_or_else(|| auto_max(&lux.lux));
-                false_colour(&lux, max)
+                false_colour(&lux, &auto_scale(&lux.lux, *max))
             }
         }
     }
@@ -314,6 +313,8 @@ pub enum SaveError {
     Format(String),
     /// Encoding or writing failed.
     Io(std::io::Error),
+    /// A chart could not be drawn.
+    Chart(crate::ChartError),
 }
 
 impl fmt::Display for SaveError {
@@ -324,6 +325,7 @@ impl fmt::Display for SaveError {
                 "cannot write pictures of type '{ext}', expected .png, .jpg or .jpeg"
             ),
             SaveError::Io(e) => write!(f, "{e}"),
+            SaveError::Chart(e) => write!(f, "{e}"),
         }
     }
 }

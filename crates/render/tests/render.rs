@@ -6,8 +6,8 @@ use glam::{Mat4, Vec3};
 use invlight_photon::{Estimator, TraceSettings};
 use invlight_render::{
     AreaLights, IlluminanceImage, Image, Integrator, MapError, MapSettings, Mark, Paths, PhotonMap,
-    PhotonSettings, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store, View, illuminance_map,
-    render, render_illuminance,
+    PhotonSettings, PlanAxis, PlanFrame, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store,
+    View, illuminance_map, render, render_illuminance,
 };
 use invlight_scene::{
     Camera, Light, LightKind, Material, MaterialId, Mesh, PhotometricSystem, Photometry, Scene,
@@ -512,9 +512,16 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
     assert!((summary.eavg - total / 4.0).abs() < 1e-9 * total);
     assert!((summary.u0 - summary.emin / summary.eavg).abs() < 1e-12);
     assert!(summary.emin <= summary.eavg && summary.eavg <= summary.emax);
-    // The heat map has the grid and the legend.
-    let img = map.image(invlight_render::nice_ceil(summary.emax));
-    assert_eq!(img.width(), 4 * 64 + invlight_render::legend_width(1));
+    // The whole surface's estimate is the cells' area-weighted mean, with an error no
+    // larger than the cells' own (it pools their photons).
+    assert!((map.mean.mean - summary.eavg).abs() < 1e-9 * summary.eavg);
+    let worst = map
+        .cells
+        .iter()
+        .flatten()
+        .map(|c| c.estimate.std_error)
+        .fold(0.0, f64::max);
+    assert!(map.mean.std_error > 0.0 && map.mean.std_error < worst);
 }
 
 #[test]
@@ -565,17 +572,34 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
     assert_eq!((a.columns, a.rows), (8, 8));
 }
 
+/// Pixels of `img` above `bottom` whose colour is within 8 of `c` on every channel.
+fn pixels_like(img: &image::RgbImage, c: [u8; 3], bottom: u32) -> Vec<(u32, u32)> {
+    img.enumerate_pixels()
+        .filter(|(_, y, p)| *y < bottom && (0..3).all(|k| (p.0[k] as i32 - c[k] as i32).abs() <= 8))
+        .map(|(x, y, _)| (x, y))
+        .collect()
+}
+
 #[test]
-fn search_plots_are_written_at_their_size() {
-    let dir = std::env::temp_dir().join(format!("invlight-plot-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn search_plots_put_points_where_their_world_coordinates_say() {
+    let dir = tempfile::tempdir().unwrap();
     let mut rng = Pcg32::new(5, 0);
     let mut points = Vec::new();
     for i in 0..40 {
-        let (u, v) = (rng.uniform() as f64 * 3.0, rng.uniform() as f64 * 2.0);
-        let mean = 100.0 + 50.0 * u;
+        let (x, y) = (
+            1.0 + rng.uniform() as f64 * 3.0,
+            1.0 + rng.uniform() as f64 * 2.0,
+        );
+        let mean = 100.0 + 50.0 * (x - 1.0);
+        let cell = vec![
+            [x - 0.05, y - 0.05],
+            [x + 0.05, y - 0.05],
+            [x + 0.05, y + 0.05],
+            [x - 0.05, y + 0.05],
+        ];
         points.push(PlotPoint {
-            coords: [u, v],
+            at: [x, y],
+            cell,
             mean,
             low: mean - 5.0,
             high: mean + 5.0,
@@ -585,41 +609,94 @@ fn search_plots_are_written_at_their_size() {
                 7 => Mark::Invalid,
                 _ => Mark::Visited,
             },
-            isoc: i == 30 || i == 31,
+            isoc: false,
         });
     }
-    let plots = [
-        PlotKind::Position {
-            width: 3.0,
-            height: 2.0,
+    // One ISOC member at a known place: (2.5, 2.0) m.
+    points[30].at = [2.5, 2.0];
+    points[30].isoc = true;
+    let axis = |name: &str| PlanAxis {
+        name: name.into(),
+        sign: 1.0,
+    };
+    let plan = PlanFrame {
+        axes: [axis("x"), axis("y")],
+        room: Some([[0.0, 0.0], [6.0, 4.0]]),
+        target: vec![[[2.0, 1.5], [3.0, 1.5], [2.5, 2.5]]],
+        range: [[1.0, 1.0], [4.0, 1.0], [4.0, 3.0], [1.0, 3.0]],
+        rectangle: None,
+        moved: "Cone centre".into(),
+        target_name: "Cone".into(),
+    };
+    let kinds = [
+        PlotKind::Plan(Box::new(plan)),
+        PlotKind::Sky {
+            north: "−z".into()
         },
-        PlotKind::Direction,
-        PlotKind::Value { min: 0.0, max: 3.0 },
+        PlotKind::Value { min: 0.0, max: 5.0 },
     ];
-    for (k, kind) in plots.into_iter().enumerate() {
+    for (k, kind) in kinds.into_iter().enumerate() {
         let plot = SearchPlot {
+            title: "search".into(),
             kind,
-            cell: [0.15, 0.1],
-            points: points
-                .iter()
-                .map(|p| PlotPoint {
-                    coords: if k == 1 {
-                        [p.coords[1] * 45.0, p.coords[0] * 120.0]
-                    } else {
-                        p.coords
-                    },
-                    ..*p
-                })
-                .collect(),
+            unit: "lx".into(),
+            cap: (k == 2).then_some(240.0),
+            points: points.clone(),
         };
-        let path = dir.join(format!("search-{k}.png"));
+        let path = dir.path().join(format!("search-{k}.png"));
         plot.write(&path).unwrap();
-        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
         let img = image::open(&path).unwrap().to_rgb8();
         assert_eq!(img.dimensions(), invlight_render::PLOT_SIZE);
-        // The cells, the path and the ISOC rings leave many distinct colours.
-        let magenta = img.pixels().filter(|p| p.0 == [255, 0, 255]).count();
-        assert!(magenta > 20, "plot {k}: {magenta} ISOC pixels");
+        assert!(plot.svg().unwrap().starts_with("<svg"));
+        // The colour bar runs over the valid means' range, not a rounded one.
+        let scale = plot.scale();
+        let valid: Vec<f64> = points
+            .iter()
+            .filter(|p| p.mark != Mark::Invalid)
+            .map(|p| p.mean)
+            .collect();
+        assert_eq!(
+            scale.min,
+            valid.iter().cloned().fold(f64::INFINITY, f64::min)
+        );
+        assert_eq!(
+            scale.max,
+            valid.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        );
+        let bar_x = invlight_render::PLOT_SIZE.0 - 100;
+        let column: Vec<[u8; 3]> = (0..img.height())
+            .map(|y| img.get_pixel(bar_x, y).0)
+            .collect();
+        for end in [invlight_render::viridis(0.0), invlight_render::viridis(1.0)] {
+            assert!(
+                column
+                    .iter()
+                    .any(|c| (0..3).all(|i| (c[i] as i32 - end[i] as i32).abs() <= 3)),
+                "plot {k}: the bar lacks the colour {end:?} of an end of the data's range"
+            );
+        }
+        if k != 0 {
+            continue;
+        }
+        // The ISOC ring is centred on the pixel of (2.5, 2.0) m, and a metre is as
+        // long across as up the page.
+        let (_, frame) = plot.image().unwrap();
+        let red = pixels_like(&img, [214, 39, 40], invlight_render::PLOT_SIZE.1 - 40);
+        assert!(red.len() > 20, "{} ISOC pixels", red.len());
+        let cx = red.iter().map(|p| p.0 as f64).sum::<f64>() / red.len() as f64;
+        let cy = red.iter().map(|p| p.1 as f64).sum::<f64>() / red.len() as f64;
+        let (px, py) = frame.pixel(2.5, 2.0);
+        assert!(
+            (cx - px as f64).abs() <= 1.5 && (cy - py as f64).abs() <= 1.5,
+            "ring at ({cx}, {cy}), expected ({px}, {py})"
+        );
+        let per_m_x = (frame.columns.1 - frame.columns.0) as f64 / (frame.x.1 - frame.x.0);
+        let per_m_y = (frame.rows.0 - frame.rows.1) as f64 / (frame.y.1 - frame.y.0);
+        assert!(
+            (per_m_x / per_m_y - 1.0).abs() < 0.01,
+            "{per_m_x} vs {per_m_y} px/m"
+        );
+        // The room's corners are inside the frame.
+        assert!(frame.x.0 <= 0.0 && frame.x.1 >= 6.0 && frame.y.0 <= 0.0 && frame.y.1 >= 4.0);
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -4,11 +4,24 @@
 //!
 //! - [`Pictures`]: every ISOC member rendered from the scene's camera with photon
 //!   mapping (`isoc-NN.png`, as the thesis' tool showed each optimal configuration,
-//!   §2.6.3), and a plot per variable of the configurations the search visited
-//!   (`search.png`, the thesis' figures 5.6, 5.8, 5.11).
+//!   §2.6.3), captioned, and a plot per variable of the configurations the search
+//!   visited (`search.png`, the thesis' figures 5.6, 5.8, 5.11) in world terms.
+//! - [`SolveReport`]: `report.html`, one self-contained page for a client — the problem
+//!   in words, the answer first, the ISOC gallery, the plots, the objective's plan with
+//!   isolux lines and its compliance with a requirement at a stated confidence, every
+//!   member in a table, and the time taken; [`MapPage`] the same for one grid.
 //! - [`file_safe`]: a name as a file name.
 #![deny(missing_docs)]
 
+mod describe;
+mod html;
+mod map_page;
 mod pictures;
+mod plots;
+mod solve_page;
 
+pub use html::{Page, external_references};
+pub use map_page::MapPage;
 pub use pictures::{PictureError, Pictures, file_safe};
+pub use plots::{convergence, search_plot};
+pub use solve_page::{GridOptions, ReportError, SolveFolder, SolveReport, Written};

@@ -1,11 +1,14 @@
 //! The pictures of a solve: the ISOC members rendered, the search plotted.
 
-use invlight_ilp::{Axes, Binding, Configuration, Isoc, Record, Role, is_run_picture, visits};
+use crate::describe::{self, compass, subject};
+use crate::plots::search_plot;
+use invlight_ilp::{Binding, ObjectiveInfo, Record, Standing, VariableValue, is_run_picture};
 use invlight_render::{
-    Exposure, Mark, PictureSettings, PlotKind, PlotPoint, Renderer, SaveError, SearchPlot, ToneMap,
-    View, ViewError, choose_view, log_average, save_picture, tone_map,
+    Exposure, PictureSettings, Renderer, SaveError, ToneMap, View, ViewError, captioned,
+    choose_view, log_average, save_picture, tone_map,
 };
 use invlight_scene::Scene;
+use invlight_stats::significant;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -50,17 +53,20 @@ impl std::error::Error for PictureError {}
 /// five-member ISOC takes seconds, not minutes.
 pub struct Pictures {
     scene: Scene,
+    objective: ObjectiveInfo,
     view: View,
     settings: PictureSettings,
 }
 
 impl Pictures {
-    /// Pictures `width` pixels wide (the height from the camera's aspect) of `scene`,
+    /// Pictures `width` pixels wide (the height from the camera's aspect) of `scene`
+    /// (captioned with the goal's value, `objective` as result.json gives it),
     /// before the search changes it, with photon maps of `photons` photons, traced with
     /// `seed` (the same for every member, so that their differences are the
     /// configurations', not the noise's) and `max_bounces`.
     pub fn new(
         scene: &Scene,
+        objective: &ObjectiveInfo,
         width: u32,
         photons: u64,
         seed: u64,
@@ -70,6 +76,7 @@ impl Pictures {
             choose_view(scene, None, width, None).map_err(PictureError::View)?;
         Ok(Pictures {
             scene: scene.clone(),
+            objective: objective.clone(),
             view,
             settings: PictureSettings {
                 width,
@@ -87,20 +94,23 @@ impl Pictures {
         })
     }
 
-    /// Renders `members` (the ISOC in result.json's order) into `dir/isoc-NN.png` after
-    /// removing every picture of an earlier one, and plots the search over `records`
-    /// into `search.png` (the first variable) and `search-<id>.png`. All members share
-    /// the first one's exposure, so a brighter configuration looks brighter.
-    /// `progress(done, total)` counts rows of the ISOC pictures.
+    /// Renders the ISOC's members (highest mean first, result.json's order) into
+    /// `dir/isoc-NN.png` after removing every picture of an earlier run, each captioned
+    /// with its number, its estimate and where what moved is (circled on the picture),
+    /// and plots the search over `records` into `search.png` (the first variable) and
+    /// `search-<id>.png`. All members share the first one's exposure, so a brighter
+    /// configuration looks brighter. `progress(done, total)` counts rows of the ISOC
+    /// pictures. Returns what was written, in words, with the seconds it took.
     pub fn write(
         &self,
         dir: &Path,
         binding: &Binding,
-        members: &[Configuration],
         records: &[Record],
-        isoc: &Isoc,
+        standing: Standing<'_>,
         progress: Option<&(dyn Fn(u64, u64) + Sync)>,
-    ) -> Result<(), PictureError> {
+    ) -> Result<String, PictureError> {
+        let isoc = standing.isoc;
+        let started = std::time::Instant::now();
         let io = |e| PictureError::Io(dir.to_path_buf(), e);
         for entry in std::fs::read_dir(dir).map_err(io)? {
             let entry = entry.map_err(io)?;
@@ -111,12 +121,20 @@ impl Pictures {
         let save = |image, path: PathBuf| {
             save_picture(&image, &path).map_err(|e| PictureError::Save(path, e))
         };
+        let chart = |path: &Path, e| PictureError::Save(path.to_path_buf(), SaveError::Chart(e));
+        // The ISOC best first; when no configuration met the constraints, the closest.
+        let members = match isoc.best_first() {
+            m if m.is_empty() => standing.closest.iter().map(|(_, m)| m).collect(),
+            m => m,
+        };
         let mut scene = self.scene.clone();
         let rows = self.settings.height as u64;
         let total = rows * members.len() as u64;
         let mut exposure = None;
-        for (k, config) in members.iter().enumerate() {
-            binding.apply(&mut scene, config);
+        let start = binding.values(&binding.initial);
+        let compass = compass(&self.scene);
+        for (k, member) in members.iter().enumerate() {
+            binding.apply(&mut scene, &member.config);
             let renderer = Renderer::new(&scene, &self.settings, None);
             let report = |done: u64| {
                 if let Some(p) = progress {
@@ -131,10 +149,48 @@ impl Pictures {
                 exposure,
                 compensation: 0.0,
             };
-            save(
-                tone_map(&image, &tone),
-                dir.join(format!("isoc-{:02}.png", k + 1)),
-            )?;
+            let goal = &member.evaluation.goal;
+            let interval = goal.interval(isoc.z());
+            let on = self
+                .objective
+                .surface
+                .as_ref()
+                .map_or(String::new(), |s| format!(" on {s}"));
+            let which = if isoc.members().is_empty() {
+                "Closest to feasible"
+            } else {
+                "ISOC member"
+            };
+            let mut lines = vec![format!(
+                "{which} {} of {}: {}{} [{}, {}]{on}",
+                k + 1,
+                members.len(),
+                significant(goal.mean),
+                self.objective.unit_suffix(),
+                significant(interval.low),
+                significant(interval.high),
+            )];
+            let mut marks = Vec::new();
+            let values = binding.values(&member.config);
+            for ((spec, value), from) in binding.specs.iter().zip(&values).zip(&start) {
+                let moved = describe::moved(from, value);
+                let moved = moved.split(" (Δ").next().unwrap_or_default();
+                let what = describe::value(value, compass.as_ref());
+                lines.push(format!("{} {what}, {moved}", subject(spec)));
+                if let VariableValue::Position { anchor, .. } = value {
+                    let p = anchor.as_vec3();
+                    if let Some(px) = self
+                        .view
+                        .pixel(p, self.settings.width, self.settings.height)
+                    {
+                        marks.push((px, spec.id.clone()));
+                    }
+                }
+            }
+            let path = dir.join(format!("isoc-{:02}.png", k + 1));
+            let picture =
+                captioned(&tone_map(&image, &tone), &lines, &marks).map_err(|e| chart(&path, e))?;
+            save(picture, path)?;
         }
         for (i, v) in binding.space.variables().iter().enumerate() {
             let name = match i {
@@ -142,39 +198,15 @@ impl Pictures {
                 _ => format!("search-{}.png", file_safe(&v.id)),
             };
             let path = dir.join(name);
-            search_plot(binding, i, records, isoc)
+            search_plot(&self.scene, binding, self.objective.cap, i, records, isoc)
                 .write(&path)
                 .map_err(|e| PictureError::Save(path, e))?;
         }
-        Ok(())
-    }
-}
-
-/// The plot of variable `i`'s visits.
-fn search_plot(binding: &Binding, i: usize, records: &[Record], isoc: &Isoc) -> SearchPlot {
-    let (axes, cell, visited) = visits(binding, i, records, isoc);
-    SearchPlot {
-        kind: match axes {
-            Axes::Placement { width, height } => PlotKind::Position { width, height },
-            Axes::Direction => PlotKind::Direction,
-            Axes::Value { min, max } => PlotKind::Value { min, max },
-        },
-        cell,
-        points: visited
-            .into_iter()
-            .map(|p| PlotPoint {
-                coords: p.coords,
-                mean: p.mean,
-                low: p.low,
-                high: p.high,
-                mark: match p.role {
-                    Role::Start => Mark::Start,
-                    Role::Improvement => Mark::Improvement,
-                    Role::Visited => Mark::Visited,
-                    Role::Invalid => Mark::Invalid,
-                },
-                isoc: p.isoc,
-            })
-            .collect(),
+        Ok(format!(
+            "{} ISOC pictures and {} search plots in {:.1} s",
+            members.len(),
+            binding.space.variables().len(),
+            started.elapsed().as_secs_f64()
+        ))
     }
 }

@@ -19,9 +19,26 @@ pub fn significant(x: f64) -> String {
     }
 }
 
+/// A long duration in words: "3.2 hours" below two days, "12 days" above.
+pub fn hours_or_days(d: std::time::Duration) -> String {
+    let h = d.as_secs_f64() / 3600.0;
+    if h < 48.0 {
+        format!("{h:.1} hours")
+    } else {
+        format!("{:.0} days", h / 24.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_durations_in_words() {
+        use std::time::Duration;
+        assert_eq!(hours_or_days(Duration::from_secs(11_520)), "3.2 hours");
+        assert_eq!(hours_or_days(Duration::from_secs(12 * 86_400)), "12 days");
+    }
 
     #[test]
     fn four_significant_digits() {

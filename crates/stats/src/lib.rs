@@ -39,6 +39,6 @@ pub use channels::ChannelSums;
 pub use distribution::Distribution1D;
 pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
-pub use format::significant;
+pub use format::{hours_or_days, significant};
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
 pub use rng::{Pcg32, SplitMix64, mix};

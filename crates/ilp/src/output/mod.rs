@@ -10,11 +10,13 @@
 //! complete: no half row, no temporary file, no truncated `result.json`.
 
 mod lock;
+mod recorder;
 mod result;
 mod run;
 mod solutions;
 
 pub use lock::FolderLock;
+pub use recorder::{Progress, Recorder};
 pub use result::{
     ConstraintInfo, ObjectiveInfo, RESULT_SCHEMA, ResultConstraint, ResultEstimate, ResultFile,
     ResultMember, ResultValue,
@@ -259,6 +261,11 @@ impl<'b> Output<'b> {
             z_one_sided: settings.confidence.z_one_sided(),
             _lock: lock,
         })
+    }
+
+    /// The goal, as `result.json` gives it.
+    pub fn objective(&self) -> &ObjectiveInfo {
+        &self.objective
     }
 
     /// Seconds since the run (first) started.

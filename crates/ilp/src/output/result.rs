@@ -40,6 +40,21 @@ pub struct ObjectiveInfo {
     /// `targetRadiance`'s illuminance, lx.
     #[serde(default)]
     pub target: Option<f64>,
+    /// The problem file solved (absolute), so that `invlight report DIR` can rebuild
+    /// the report from the folder alone. Optional and absent in folders written before
+    /// it was recorded: readers of this schema version read either.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub problem: Option<std::path::PathBuf>,
+}
+
+impl ObjectiveInfo {
+    /// The goal's unit with a space before it (nothing for a ratio), for numbers.
+    pub fn unit_suffix(&self) -> String {
+        match self.unit.as_str() {
+            "" => String::new(),
+            u => format!(" {u}"),
+        }
+    }
 }
 
 fn maximize_radiance() -> String {
@@ -68,11 +83,12 @@ impl ObjectiveInfo {
                 Goal::Target { lux, .. } => Some(*lux),
                 _ => None,
             },
+            problem: std::fs::canonicalize(&problem.path).ok(),
         }
     }
 
-    /// The goal in words, for tables: "the mean illuminance of 'Desk'".
-    fn words(&self) -> String {
+    /// The goal in words, for tables and pages: "the most light of 'Desk'".
+    pub fn words(&self) -> String {
         let on = |what: &str| match (&self.surface, self.side.as_str()) {
             (Some(s), "both") => format!("{what} of '{s}'"),
             (Some(s), side) => format!("{what} of '{s}' ({side})"),

@@ -77,6 +77,7 @@ fn info() -> ObjectiveInfo {
         unit: "lx".into(),
         cap: Some(9.5),
         target: None,
+        problem: None,
     }
 }
 

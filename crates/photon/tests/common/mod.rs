@@ -1,5 +1,6 @@
 //! Scene pieces and closed forms shared by the photon tests (`closed_forms.rs`,
-//! `connections.rs`).
+//! `connections.rs`, `photometry.rs`, `intentions.rs`); each test binary uses a part.
+#![allow(dead_code)]
 
 use invlight_scene::{Light, LightKind, Mat4, Material, MaterialId, Mesh, Scene, Vec2, Vec3};
 use invlight_stats::Estimate;

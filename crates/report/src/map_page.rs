@@ -1,0 +1,315 @@
+//! The page of one illuminance grid (`invlight map --report`), and the grid section the
+//! solve report shares: the plan with isolux lines, Emin/Eavg/Emax/U0, the compliance
+//! with a requirement at a stated confidence, and every cell's value.
+
+use crate::html::{Page, escape, figure, table};
+use invlight_render::{
+    Compliance, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
+};
+use invlight_scene::Vec3;
+use invlight_stats::{Confidence, significant};
+
+/// The most cells listed in a page's table; a larger grid points to its CSV.
+const MAX_TABLE_CELLS: usize = 600;
+
+fn verdict_class(v: Verdict) -> &'static str {
+    match v {
+        Verdict::Meets => "meets",
+        Verdict::Fails => "fails",
+        Verdict::CannotTell => "cannot",
+    }
+}
+
+/// What a requirement asks, in words: "EN 12464-1:2021 'Offices: writing, …':
+/// Em ≥ 500 lx, U0 ≥ 0.60, maintenance factor 0.8".
+pub fn requirement_words(r: &Requirement) -> String {
+    let mut parts = Vec::new();
+    if let Some(em) = r.em {
+        parts.push(format!("Em ≥ {} lx", plain(em)));
+    }
+    if let Some(u0) = r.u0 {
+        parts.push(format!("U0 ≥ {u0:.2}"));
+    }
+    parts.push(format!(
+        "maintenance factor {}",
+        plain(r.maintenance_factor)
+    ));
+    match &r.task {
+        Some(t) => format!(
+            "EN 12464-1:2021, “{}” (--task {}): {}",
+            t.description,
+            t.name,
+            parts.join(", ")
+        ),
+        None => parts.join(", "),
+    }
+}
+
+/// The compliance as HTML: the grid's sentence, then a row per criterion.
+pub fn compliance_html(c: &Compliance) -> String {
+    let pct = format!("{} %", plain(c.confidence * 100.0));
+    let sentence = match c.verdict {
+        Verdict::Meets => format!(
+            "The grid <span class=\"meets\">meets</span> {} with {pct} confidence.",
+            escape(&requirement_words(&c.requirement))
+        ),
+        Verdict::Fails => format!(
+            "The grid <span class=\"fails\">fails</span> {} with {pct} confidence.",
+            escape(&requirement_words(&c.requirement))
+        ),
+        Verdict::CannotTell => format!(
+            "<span class=\"cannot\">Cannot tell</span> at this photon count whether the grid meets {} — trace more photons.",
+            escape(&requirement_words(&c.requirement))
+        ),
+    };
+    let rows: Vec<Vec<String>> = c
+        .criteria
+        .iter()
+        .map(|k| {
+            let (value, bounds) = match k.name {
+                "Em" => (
+                    format!("{} lx", significant(k.value)),
+                    format!(
+                        "{} to {} lx",
+                        significant(k.bounds.0),
+                        significant(k.bounds.1)
+                    ),
+                ),
+                _ => (
+                    format!("{:.3}", k.value),
+                    format!(
+                        "{:.3} to {}",
+                        k.bounds.0,
+                        if k.bounds.1.is_finite() {
+                            format!("{:.3}", k.bounds.1)
+                        } else {
+                            "∞".into()
+                        }
+                    ),
+                ),
+            };
+            vec![
+                k.name.to_string(),
+                if k.name == "Em" {
+                    format!("≥ {} lx", plain(k.required))
+                } else {
+                    format!("≥ {:.2}", k.required)
+                },
+                value,
+                bounds,
+                format!("{} %", plain(100.0 * k.level)),
+                format!(
+                    "<span class=\"{}\">{}</span>",
+                    verdict_class(k.verdict),
+                    escape(&k.sentence(c.confidence))
+                ),
+            ]
+        })
+        .collect();
+    format!(
+        "<p>{sentence}</p>\n{}<p class=\"sub\">Em is the maintained mean (maintenance factor × the surface's mean, whose standard error is the whole surface's own estimate). Each bound is one-sided at the level shown: the run's error rate is split between the criteria, and U0's among the grid's cells (Bonferroni), with an error bound that holds whatever the cells' correlation (see invlight_render::compliance). The cells are means over the grid's cells, centred on its points.</p>\n",
+        table(
+            &[
+                "criterion",
+                "required",
+                "estimate",
+                "bounds",
+                "each bound at",
+                "verdict"
+            ],
+            &rows
+        )
+    )
+}
+
+/// The grid section: the plan, the figures, the compliance when asked, the cells.
+pub fn grid_section(
+    map: &IlluminanceMap,
+    up: Vec3,
+    title: &str,
+    confidence: Confidence,
+    requirement: Option<&Requirement>,
+) -> Result<String, invlight_render::ChartError> {
+    let plan = MapPlan::new(map, title, confidence).from_above(up);
+    let s = map.summary();
+    let i = map.mean.interval(confidence.z());
+    let mut out = figure(
+        &plan.svg()?,
+        &format!(
+            "{}: each cell in the colour of its mean illuminance (viridis over the cells' range, {}–{} lx), isolux lines at {} lx.",
+            escape(title),
+            significant(plan.scale().min),
+            significant(plan.scale().max),
+            plan.levels()
+                .iter()
+                .map(|l| plain(*l))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    );
+    out += &format!(
+        "<dl><dt>Eavg</dt><dd>{} lx [{}, {}] ({} % interval)</dd><dt>Emin</dt><dd>{} lx</dd><dt>Emax</dt><dd>{} lx</dd><dt>U0 = Emin/Eavg</dt><dd>{:.3}</dd><dt>Grid</dt><dd>{} × {} cells of {} × {} m, {} photons</dd></dl>\n",
+        significant(s.eavg),
+        significant(i.low),
+        significant(i.high),
+        plain(confidence.level() * 100.0),
+        significant(s.emin),
+        significant(s.emax),
+        s.u0,
+        map.columns,
+        map.rows,
+        significant(map.cell_u as f64),
+        significant(map.cell_v as f64),
+        map.photons
+    );
+    if let Some(r) = requirement {
+        out += &compliance_html(&map.compliance(r, confidence));
+    }
+    let rows = map.csv_rows(confidence);
+    if rows.len() <= MAX_TABLE_CELLS {
+        let cells: Vec<Vec<String>> = rows
+            .iter()
+            .map(|r| {
+                vec![
+                    format!("{}, {}", r.column, r.row),
+                    format!("({:.2}, {:.2}, {:.2})", r.x, r.y, r.z),
+                    significant(r.mean),
+                    significant(r.low),
+                    significant(r.high),
+                    format!("{:.3}", r.area),
+                ]
+            })
+            .collect();
+        out += &format!(
+            "<details><summary>Every cell's value ({} cells)</summary>{}</details>\n",
+            rows.len(),
+            table(
+                &[
+                    "cell (column, row)",
+                    "centre (m)",
+                    "mean (lx)",
+                    "low",
+                    "high",
+                    "area (m²)"
+                ],
+                &cells
+            )
+        );
+    } else {
+        out += &format!(
+            "<p>{} cells: their values are in the grid's CSV.</p>\n",
+            rows.len()
+        );
+    }
+    Ok(out)
+}
+
+/// The page of `invlight map --report`.
+pub struct MapPage<'a> {
+    /// The grid.
+    pub map: &'a IlluminanceMap,
+    /// Its `--json` report: the surface, the estimator, the confidence, the seconds.
+    pub report: &'a MapReport,
+    /// The scene file.
+    pub scene: String,
+    /// The scene's up axis: a horizontal grid is drawn as seen from above.
+    pub up: Vec3,
+    /// What the grid must meet, if anything.
+    pub requirement: Option<&'a Requirement>,
+}
+
+impl<'a> MapPage<'a> {
+    /// The page of `map` (reported as `report`) of a surface of the scene file `scene`
+    /// whose up axis is `up`, checked against `requirement`.
+    pub fn new(
+        map: &'a IlluminanceMap,
+        report: &'a MapReport,
+        scene: String,
+        up: Vec3,
+        requirement: Option<&'a Requirement>,
+    ) -> MapPage<'a> {
+        MapPage {
+            map,
+            report,
+            scene,
+            up,
+            requirement,
+        }
+    }
+
+    /// Writes the page to `path` (atomically).
+    pub fn write(&self, path: &std::path::Path) -> Result<(), crate::ReportError> {
+        let html = self.html()?;
+        invlight_scene::write_atomically(path, |w| std::io::Write::write_all(w, html.as_bytes()))
+            .map_err(|e| crate::ReportError::Io(path.to_path_buf(), e))
+    }
+
+    /// The page's HTML.
+    pub fn html(&self) -> Result<String, invlight_render::ChartError> {
+        let r = self.report;
+        let confidence = Confidence::new(r.confidence).unwrap_or_default();
+        let mut page = Page::new(
+            &format!("Illuminance on {}", r.surface.as_str()),
+            &format!("{} — invlight {}", &self.scene, env!("CARGO_PKG_VERSION")),
+        );
+        let s = self.map.summary();
+        let i = self.map.mean.interval(confidence.z());
+        let mut answer = format!(
+            "<div class=\"answer\"><p><b>{}</b> gets <b>{} lx</b> on average [{}, {}] at {} % confidence; Emin {} lx, Emax {} lx, U0 {:.2}.</p>",
+            escape(r.surface.as_str()),
+            significant(s.eavg),
+            significant(i.low),
+            significant(i.high),
+            plain(confidence.level() * 100.0),
+            significant(s.emin),
+            significant(s.emax),
+            s.u0
+        );
+        if let Some(r) = self.requirement {
+            let c = self.map.compliance(r, confidence);
+            answer += &format!(
+                "<p>{}: <span class=\"{}\">{}</span></p>",
+                escape(&requirement_words(r)),
+                verdict_class(c.verdict),
+                escape(&c.verdict.to_string())
+            );
+        }
+        answer += "</div>";
+        page.section("The answer", &answer);
+        page.section(
+            &format!("Light on {}", r.surface.as_str()),
+            &grid_section(
+                self.map,
+                self.up,
+                r.surface.as_str(),
+                confidence,
+                self.requirement,
+            )?,
+        );
+        page.section(
+            "How it was measured",
+            &format!(
+                "<p>{} photons traced ({} estimator: each departure connected to a point on the surface unless “arrivals”), every arrival on either side and at every bounce counted; each cell's standard error from the spread of the stratified photon groups. {:.1} s.</p>",
+                self.map.photons,
+                escape(&r.estimator),
+                r.seconds
+            ),
+        );
+        Ok(page.finish())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requirements_read_as_the_norm_states_them() {
+        let r = Requirement::of_task(invlight_render::task("office").unwrap(), 0.8);
+        let w = requirement_words(&r);
+        assert!(
+            w.contains("Em ≥ 500 lx") && w.contains("U0 ≥ 0.60") && w.contains("0.8"),
+            "{w}"
+        );
+    }
+}

@@ -1,0 +1,248 @@
+//! The search's plots from its records: [`search_plot`] turns a variable's visits
+//! (`invlight_ilp::visits`) into world terms — a placement as a plan in world metres
+//! with the room, the target and the rectangle; a sun direction as elevation and
+//! compass azimuth — and [`convergence`] follows the configuration the search stood on.
+
+use crate::describe::{compass, subject};
+use glam::DVec3;
+use invlight_ilp::{Axes, Binding, Domain, Goal, Isoc, Record, Role, Verdict, visits};
+use invlight_render::{
+    ConvergencePlot, ConvergencePoint, Mark, PlanAxis, PlanFrame, PlotKind, PlotPoint, SearchPlot,
+};
+use invlight_scene::Scene;
+
+/// The most triangles of the target drawn on a plan; past it, its bounding box.
+const MAX_TARGET_TRIANGLES: usize = 20_000;
+
+/// How a plane is seen on a plan: the two world axes kept and their signs.
+struct Projection {
+    keep: [usize; 2],
+    sign: [f64; 2],
+}
+
+impl Projection {
+    /// The plan of a plane of normal `n` in a scene whose up axis is `up`: a horizontal
+    /// plane is seen from above, any other from the side its normal points to; the page
+    /// shows the two world axes least aligned with the viewing direction, the vertical
+    /// one flipped when needed so that the page is not seen mirrored.
+    fn new(n: DVec3, up: DVec3) -> Projection {
+        let view = if n.dot(up).abs() > 0.7 { up } else { n };
+        let drop = (0..3)
+            .max_by(|&a, &b| view[a].abs().total_cmp(&view[b].abs()))
+            .unwrap_or(2);
+        let keep: Vec<usize> = (0..3).filter(|&k| k != drop).collect();
+        let (h, v) = (keep[0], keep[1]);
+        let mut eh = DVec3::ZERO;
+        eh[h] = 1.0;
+        let mut ev = DVec3::ZERO;
+        ev[v] = 1.0;
+        let flip = eh.cross(ev)[drop] * view[drop] < 0.0;
+        Projection {
+            keep: [h, v],
+            sign: [1.0, if flip { -1.0 } else { 1.0 }],
+        }
+    }
+
+    fn at(&self, p: DVec3) -> [f64; 2] {
+        [
+            self.sign[0] * p[self.keep[0]],
+            self.sign[1] * p[self.keep[1]],
+        ]
+    }
+
+    fn axes(&self) -> [PlanAxis; 2] {
+        let names = ["x", "y", "z"];
+        [0, 1].map(|k| PlanAxis {
+            name: names[self.keep[k]].to_string(),
+            sign: self.sign[k],
+        })
+    }
+}
+
+fn mark(role: Role) -> Mark {
+    match role {
+        Role::Start => Mark::Start,
+        Role::Improvement => Mark::Improvement,
+        Role::Visited => Mark::Visited,
+        Role::Invalid => Mark::Invalid,
+    }
+}
+
+/// The plot of variable `i`'s visits over `records`, in world terms; `scene` is the
+/// scene as bound (for the room, the target and the compass), `cap` the objective's.
+pub fn search_plot(
+    scene: &Scene,
+    binding: &Binding,
+    cap: Option<f64>,
+    i: usize,
+    records: &[Record],
+    isoc: &Isoc,
+) -> SearchPlot {
+    let (axes, cell, visited) = visits(binding, i, records, isoc);
+    let spec = &binding.specs[i];
+    let domain = &binding.space.variables()[i].domain;
+    let points = |at: &dyn Fn([f64; 2]) -> ([f64; 2], Vec<[f64; 2]>)| -> Vec<PlotPoint> {
+        visited
+            .iter()
+            .map(|v| {
+                let (at, cell) = at(v.coords);
+                PlotPoint {
+                    at,
+                    cell,
+                    mean: v.mean,
+                    low: v.low,
+                    high: v.high,
+                    mark: mark(v.role),
+                    isoc: v.isoc,
+                }
+            })
+            .collect()
+    };
+    let title = format!("What the search tried for {}", subject(spec));
+    let (kind, points) = match (axes, domain) {
+        (Axes::Placement { width, height }, Domain::Parallelogram(r)) => {
+            let initial = binding.values(&binding.initial);
+            let offset = match initial[i] {
+                invlight_ilp::VariableValue::Position { point, anchor } => anchor - point,
+                _ => DVec3::ZERO,
+            };
+            let n = r.e1.cross(r.e2).normalize_or_zero();
+            let up = scene.up.as_dvec3().normalize_or_zero();
+            let proj = Projection::new(n, up);
+            let world = |s: f64, t: f64| r.a + r.e1 * s + r.e2 * t;
+            let (w, h) = (width.max(1e-12), height.max(1e-12));
+            let (ds, dt) = (0.5 * cell[0] / w, 0.5 * cell[1] / h);
+            let pts = points(&|c| {
+                let (s, t) = (c[0] / w, c[1] / h);
+                let corners = [(-ds, -dt), (ds, -dt), (ds, dt), (-ds, dt)]
+                    .map(|(a, b)| proj.at(world(s + a, t + b) + offset))
+                    .to_vec();
+                (proj.at(world(s, t) + offset), corners)
+            });
+            let corners = |o: DVec3| {
+                [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+                    .map(|(s, t)| proj.at(world(s, t) + o))
+            };
+            let room = scene.bounds().map(|(lo, hi)| {
+                let (a, b) = (proj.at(lo.as_dvec3()), proj.at(hi.as_dvec3()));
+                [
+                    [a[0].min(b[0]), a[1].min(b[1])],
+                    [a[0].max(b[0]), a[1].max(b[1])],
+                ]
+            });
+            let mut target = Vec::new();
+            let plan = binding.reading.plan_surface();
+            let instances = plan.map_or(&[][..], |s| &scene.surfaces[s].instances[..]);
+            let count: usize = instances
+                .iter()
+                .map(|&k| scene.world_triangles(k).count())
+                .sum();
+            if count <= MAX_TARGET_TRIANGLES {
+                for &k in instances {
+                    target.extend(
+                        scene
+                            .world_triangles(k)
+                            .map(|t| t.corners.map(|c| proj.at(c.as_dvec3()))),
+                    );
+                }
+            }
+            let plan = PlanFrame {
+                axes: proj.axes(),
+                room,
+                target,
+                range: corners(offset),
+                rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
+                moved: subject(spec),
+                target_name: plan.map_or(String::new(), |s| scene.surfaces[s].name.clone()),
+            };
+            (PlotKind::Plan(Box::new(plan)), pts)
+        }
+        (Axes::Direction, Domain::Hemisphere(hemi)) => {
+            let compass = compass(scene);
+            let (dt, dp) = (0.5 * cell[0], 0.5 * cell[1]);
+            let angles = |theta: f64, phi: f64| {
+                let d = hemi.direction(
+                    (phi / 360.0).rem_euclid(1.0),
+                    (theta / 90.0).clamp(0.0, 1.0),
+                );
+                compass
+                    .as_ref()
+                    .map(|c| crate::describe::sun_angles(c, d))
+                    .map_or([phi, 90.0 - theta], |(el, az)| [az, el])
+            };
+            let pts = points(&|c| {
+                let centre = angles(c[0], c[1]);
+                let corners = [(-dt, -dp), (dt, -dp), (dt, dp), (-dt, dp)]
+                    .map(|(a, b)| {
+                        let mut q = angles(c[0] + a, c[1] + b);
+                        // Keep a cell whole across north: azimuths near its centre's.
+                        q[0] = centre[0] + (q[0] - centre[0] + 180.0).rem_euclid(360.0) - 180.0;
+                        q
+                    })
+                    .to_vec();
+                (centre, corners)
+            });
+            let north = compass.as_ref().map_or("φ = 0".to_string(), |c| {
+                let n = c.north();
+                let k = (0..3)
+                    .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                    .unwrap_or(0);
+                let sign = if n[k] < 0.0 { "−" } else { "+" };
+                format!("{sign}{}", ["x", "y", "z"][k])
+            });
+            (PlotKind::Sky { north }, pts)
+        }
+        (Axes::Value { min, max }, _) => {
+            (PlotKind::Value { min, max }, points(&|c| (c, Vec::new())))
+        }
+        // A domain and axes that disagree cannot come out of `visits`.
+        (_, _) => (PlotKind::Value { min: 0.0, max: 1.0 }, Vec::new()),
+    };
+    SearchPlot {
+        title,
+        kind,
+        unit: goal_unit(&binding.goal),
+        cap,
+        points,
+    }
+}
+
+/// The best configuration so far against the photons traced: the search's start and
+/// each improvement it moved to (a fast estimate's refinement with N is the move), then
+/// the final ISOC's best member (re-measured with N when the strategy says so).
+pub fn convergence(records: &[Record], isoc: &Isoc, goal: &Goal) -> ConvergencePlot {
+    let z = isoc.z();
+    let mut photons = 0u64;
+    let mut points = Vec::new();
+    let mut push = |photons: u64, e: &invlight_ilp::Estimate| {
+        let i = e.interval(z);
+        points.push(ConvergencePoint {
+            photons,
+            mean: e.mean,
+            low: i.low,
+            high: i.high,
+        });
+    };
+    for r in records {
+        photons += r.evaluation.goal.samples;
+        if matches!(r.verdict, Verdict::Initial | Verdict::Better) {
+            push(photons, &r.evaluation.goal);
+        }
+    }
+    if let Some(best) = isoc.best() {
+        push(photons, &best.evaluation.goal);
+    }
+    ConvergencePlot {
+        title: "Convergence: the best configuration so far".into(),
+        unit: goal_unit(goal),
+        points,
+    }
+}
+
+/// The unit a plot labels the goal's values with: lx, lm, or U0 for a uniformity.
+pub fn goal_unit(goal: &Goal) -> String {
+    match goal.unit() {
+        "" => "U0".into(),
+        u => u.into(),
+    }
+}

@@ -1,0 +1,597 @@
+//! `report.html` of a solve: one page a lighting designer can hand a client — the
+//! answer first (the best configuration, its value and interval, what moved, in world
+//! coordinates), the problem in words, the ISOC as a gallery of captioned renders, the
+//! search and convergence plots, the objective surface's plan with isolux lines and its
+//! compliance, a table of every member, and the time it all took.
+
+use crate::describe::{self, compass, subject};
+use crate::html::{Page, escape, figure, img_png, table};
+use crate::map_page::{grid_section, requirement_words};
+use crate::plots::{convergence, search_plot};
+use invlight_ilp::{
+    Binding, Confidence, Diagnostic, Isoc, Member, Problem, Record, ResultFile, RunFile, Search,
+    Solutions, Standing, Strategy,
+};
+use invlight_photon::{Estimator, TraceSettings};
+use invlight_render::{
+    ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map, plain,
+};
+use invlight_scene::Scene;
+use invlight_stats::significant;
+use invlight_trace::Accel;
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why a report cannot be made.
+#[derive(Debug)]
+pub enum ReportError {
+    /// A run file is missing or unreadable.
+    Folder(Diagnostic),
+    /// A chart could not be drawn.
+    Chart(ChartError),
+    /// The page could not be written.
+    Io(PathBuf, std::io::Error),
+}
+
+impl fmt::Display for ReportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReportError::Folder(d) => write!(f, "{d}"),
+            ReportError::Chart(e) => write!(f, "{e}"),
+            ReportError::Io(p, e) => write!(f, "cannot write {}: {e}", p.display()),
+        }
+    }
+}
+
+impl std::error::Error for ReportError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ReportError::Folder(d) => Some(d),
+            ReportError::Chart(e) => Some(e),
+            ReportError::Io(_, e) => Some(e),
+        }
+    }
+}
+
+impl From<ChartError> for ReportError {
+    fn from(e: ChartError) -> Self {
+        ReportError::Chart(e)
+    }
+}
+
+impl GridOptions {
+    /// `photons` photons traced with `seed` and the bounce cap `max_bounces`, the cells
+    /// at EN 12464-1's spacing.
+    pub fn en(photons: u64, seed: u64, max_bounces: u32) -> GridOptions {
+        GridOptions {
+            trace: TraceSettings {
+                photons,
+                seed,
+                max_bounces,
+            },
+            spacing: GridSpacing::Auto,
+        }
+    }
+}
+
+/// What a solve left: its evaluations, the ISOC they make, result.json.
+pub struct SolveFolder {
+    /// The folder.
+    pub dir: PathBuf,
+    /// Every evaluation, in order.
+    pub records: Vec<Record>,
+    /// The final ISOC.
+    pub isoc: Isoc,
+    /// The configurations closest to meeting the constraints, least violation first.
+    pub closest: Vec<(f64, Member)>,
+    /// result.json.
+    pub result: ResultFile,
+}
+
+impl SolveFolder {
+    /// The folder `dir` of a run that has just ended with these records, standing and
+    /// result.
+    pub fn new(
+        dir: &Path,
+        records: Vec<Record>,
+        standing: Standing<'_>,
+        result: &ResultFile,
+    ) -> Self {
+        SolveFolder {
+            dir: dir.to_path_buf(),
+            records,
+            isoc: standing.isoc.clone(),
+            closest: standing.closest.to_vec(),
+            result: result.clone(),
+        }
+    }
+
+    /// What the page shows: the ISOC best first, or when no configuration met the
+    /// constraints the closest ones (the pictures' order either way).
+    pub fn members(&self) -> Vec<&Member> {
+        match self.isoc.best_first() {
+            m if m.is_empty() => self.closest.iter().map(|(_, m)| m).collect(),
+            m => m,
+        }
+    }
+
+    /// Reads `dir`'s solutions.csv and result.json, written for `problem` bound as
+    /// `binding`; the ISOC is rebuilt by replaying the rows, as `--resume` does.
+    pub fn read(
+        dir: &Path,
+        problem: &Problem,
+        binding: &Binding,
+    ) -> Result<SolveFolder, ReportError> {
+        let rows =
+            Solutions::read(&dir.join("solutions.csv"), binding).map_err(ReportError::Folder)?;
+        let mut search = Search::new(&binding.space, problem.settings(), &binding.initial);
+        search.replay(&rows.records);
+        let result = ResultFile::read(&dir.join("result.json")).map_err(ReportError::Folder)?;
+        Ok(SolveFolder::new(
+            dir,
+            rows.records,
+            search.standing(),
+            &result,
+        ))
+    }
+}
+
+impl SolveFolder {
+    /// The problem solved in `dir`: the file `path`, else the one its result.json
+    /// records, with the settings its run.json records (a solve's command-line
+    /// overrides of photons, seed, confidence, bounces), so that replaying its rows
+    /// rebuilds its ISOC.
+    pub fn problem(dir: &Path, path: Option<&Path>) -> Result<Problem, ReportError> {
+        let folder = ReportError::Folder;
+        let path = match path {
+            Some(p) => p.to_path_buf(),
+            None => {
+                let json = dir.join("result.json");
+                let result = ResultFile::read(&json).map_err(folder)?;
+                result.objective.problem.ok_or_else(|| {
+                    folder(
+                        Diagnostic::new(&json, "it does not record its problem file")
+                            .with_hint("give it with --problem FILE"),
+                    )
+                })?
+            }
+        };
+        let mut problem = Problem::read(&path).map_err(folder)?;
+        if let Some(run) = RunFile::read(dir).map_err(folder)? {
+            problem.seed = run.seed;
+            problem.photons = run.photons;
+            problem.fast_quality = run.fast_quality;
+            problem.max_bounces = Some(run.max_bounces);
+            problem.strategy = Strategy::parse(&run.strategy).unwrap_or(problem.strategy);
+            problem.confidence = Confidence::new(run.confidence).unwrap_or(problem.confidence);
+        }
+        Ok(problem)
+    }
+}
+
+/// How the objective surface's grid is measured for the report.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridOptions {
+    /// Photons, seed and bounce cap of the grid's trace.
+    pub trace: TraceSettings,
+    /// The cell size.
+    pub spacing: GridSpacing,
+}
+
+/// A solve's report, ready to write.
+pub struct SolveReport<'a> {
+    /// The problem as solved (command-line overrides applied).
+    pub problem: &'a Problem,
+    /// It bound to its scene.
+    pub binding: &'a Binding,
+    /// The scene as bound, before any configuration is applied.
+    pub scene: &'a Scene,
+    /// The run's files.
+    pub folder: &'a SolveFolder,
+    /// What the objective surface must meet, if anything.
+    pub requirement: Option<&'a Requirement>,
+    /// The objective's grid, or `None` to leave it out.
+    pub grid: Option<GridOptions>,
+}
+
+/// What writing a report did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// The page.
+    pub path: PathBuf,
+    /// Seconds it took, the grid's trace included.
+    pub seconds: f64,
+    /// Why the objective has no plan, when it has none.
+    pub no_plan: Option<String>,
+}
+
+impl Written {
+    /// What a command prints of it: the notes, then the page and its seconds.
+    pub fn lines(&self) -> String {
+        let notes = self.no_plan.iter().map(|n| format!("note: {n}\n"));
+        let page = format!("{} in {:.1} s", self.path.display(), self.seconds);
+        notes.collect::<String>() + &page
+    }
+}
+
+impl<'a> SolveReport<'a> {
+    /// The report of `folder`, a run of `problem` bound to `scene` as `binding`, with
+    /// no requirement and no grid.
+    pub fn new(
+        problem: &'a Problem,
+        binding: &'a Binding,
+        scene: &'a Scene,
+        folder: &'a SolveFolder,
+    ) -> SolveReport<'a> {
+        SolveReport {
+            problem,
+            binding,
+            scene,
+            folder,
+            requirement: None,
+            grid: None,
+        }
+    }
+
+    /// The same report checking `requirement` on the objective's grid measured as
+    /// `grid` says.
+    pub fn with(self, requirement: Option<&'a Requirement>, grid: GridOptions) -> Self {
+        SolveReport {
+            requirement,
+            grid: Some(grid),
+            ..self
+        }
+    }
+
+    /// Rebuilds the report of the run in `dir` of `problem` (as
+    /// [`SolveFolder::problem`] reads it) from its files, with the scene loaded as the
+    /// run loaded it, and writes it.
+    pub fn rebuild(
+        dir: &Path,
+        problem: &Problem,
+        mut scene: Scene,
+        requirement: Option<&Requirement>,
+        grid: GridOptions,
+    ) -> Result<Written, ReportError> {
+        let binding = Binding::new(problem, &mut scene).map_err(ReportError::Folder)?;
+        let folder = SolveFolder::read(dir, problem, &binding)?;
+        let report = SolveReport::new(problem, &binding, &scene, &folder);
+        report.with(requirement, grid).write()
+    }
+
+    /// Writes `report.html` into the run's folder (atomically).
+    pub fn write(&self) -> Result<Written, ReportError> {
+        let started = Instant::now();
+        let (html, no_plan) = self.html()?;
+        let path = self.folder.dir.join("report.html");
+        invlight_scene::write_atomically(&path, |w| w.write_all(html.as_bytes()))
+            .map_err(|e| ReportError::Io(path.clone(), e))?;
+        Ok(Written {
+            path,
+            seconds: started.elapsed().as_secs_f64(),
+            no_plan,
+        })
+    }
+
+    /// The page, and why the objective has no plan when it has none.
+    pub fn html(&self) -> Result<(String, Option<String>), ReportError> {
+        let (p, b, f) = (self.problem, self.binding, self.folder);
+        let goal = &f.result.objective;
+        let unit = goal.unit_suffix();
+        let plan_surface = b.reading.plan_surface();
+        let surface = plan_surface.map_or(String::new(), |s| self.scene.surfaces[s].name.clone());
+        let level = plain(p.confidence.level() * 100.0);
+        let name = p
+            .path
+            .file_name()
+            .map_or("problem".into(), |n| n.to_string_lossy().to_string());
+        let mut page = Page::new(
+            &format!("{} — {name}", capitalised(&goal.words())),
+            &format!(
+                "invlight {} report of {}",
+                env!("CARGO_PKG_VERSION"),
+                p.path.display()
+            ),
+        );
+        let compass = compass(self.scene);
+        let start = b.values(&b.initial);
+        let members = f.members();
+        let feasible = !f.isoc.members().is_empty();
+        let z_one_sided = p.confidence.z_one_sided();
+
+        // 1. The answer.
+        let answer = match members.first() {
+            Some(best) => {
+                let e = &best.evaluation.goal;
+                let i = e.interval(f.isoc.z());
+                let opening = if feasible {
+                    format!(
+                        "{} is <b>{}{unit}</b> [{}, {}] ({level} % confidence) when:",
+                        escape(&capitalised(&goal.words())),
+                        significant(e.mean),
+                        significant(i.low),
+                        significant(i.high)
+                    )
+                } else {
+                    format!(
+                        "No configuration tried meets every constraint at {level} % confidence. The closest gives {}{unit} [{}, {}] when:",
+                        significant(e.mean),
+                        significant(i.low),
+                        significant(i.high)
+                    )
+                };
+                let mut s = format!("<div class=\"answer\"><p>{opening}</p><ul>");
+                for ((spec, v), from) in b.specs.iter().zip(b.values(&best.config)).zip(&start) {
+                    s += &format!(
+                        "<li>{} is {} — {} from where the scene has it ({})</li>",
+                        escape(&subject(spec)),
+                        escape(&describe::value(&v, compass.as_ref())),
+                        escape(&describe::moved(from, &v)),
+                        escape(&describe::value(from, compass.as_ref()))
+                    );
+                }
+                s += "</ul>";
+                s += &constraint_list(b, best, f.isoc.z(), z_one_sided);
+                s += &match (feasible, members.len()) {
+                    (false, n) => format!("<p>The {n} configurations that came closest are shown below.</p>"),
+                    (true, 1) => format!("<p>It is better, at {level} % confidence, than every other configuration tried.</p>"),
+                    (true, n) => format!("<p>{} other configurations cannot be told apart from it at {level} % confidence (the ISOC, thesis §3.3.4); each is better than every configuration left out. All are shown below.</p>", n - 1),
+                };
+                s + "</div>"
+            }
+            None => "<div class=\"answer\"><p>No configuration could be ranked: every one tried was invalid.</p></div>".into(),
+        };
+        page.section("The answer", &answer);
+
+        // 2. The problem in words.
+        let mut words = String::from("<dl>");
+        words += &format!(
+            "<dt>Scene</dt><dd>{}</dd>",
+            escape(&p.scene.path.display().to_string())
+        );
+        words += &format!("<dt>Goal</dt><dd>{}</dd>", escape(&goal.words()));
+        if let Some(cap) = goal.cap {
+            words += &format!(
+                "<dt>Cap</dt><dd>its mean illuminance must not exceed {} lx</dd>",
+                plain(cap)
+            );
+        }
+        for c in &f.result.constraints {
+            let sign = if c.bound == "maxLux" { "≤" } else { "≥" };
+            let cu = if c.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", c.unit)
+            };
+            words += &format!(
+                "<dt>Constraint</dt><dd>{} ({}, {} side{}) {sign} {}{cu}, held at {level} % confidence (one-sided)</dd>",
+                escape(&c.surface),
+                escape(&c.bound),
+                escape(&c.side),
+                if c.side == "both" { "s" } else { "" },
+                plain(c.limit)
+            );
+        }
+        for (i, spec) in b.specs.iter().enumerate() {
+            words += &format!(
+                "<dt>Variable {}</dt><dd>{} ({}) within {}</dd>",
+                i + 1,
+                escape(&subject(spec)),
+                spec.kind.name(),
+                escape(&describe::range(b, i))
+            );
+        }
+        words += &format!(
+            "<dt>Photons</dt><dd>{} per full evaluation, {} % of that for a first look (fastEvaluationQuality), strategy {}</dd><dt>Confidence</dt><dd>{level} %: intervals and comparisons</dd><dt>Budget</dt><dd>{} candidates, seed {}</dd>",
+            p.photons,
+            plain(p.fast_quality * 100.0),
+            p.strategy.name(),
+            p.max_iterations,
+            p.seed
+        );
+        if let Some(r) = self.requirement {
+            words += &format!(
+                "<dt>Requirement</dt><dd>{}</dd>",
+                escape(&requirement_words(r))
+            );
+        }
+        words += "</dl>";
+        page.section("The problem", &words);
+
+        // 3. The ISOC as captioned renders.
+        let mut gallery = String::new();
+        for (k, m) in members.iter().enumerate() {
+            let file = f.dir.join(format!("isoc-{:02}.png", k + 1));
+            let Ok(bytes) = std::fs::read(&file) else {
+                continue;
+            };
+            let i = m.evaluation.goal.interval(f.isoc.z());
+            let what: Vec<String> = b
+                .specs
+                .iter()
+                .zip(b.values(&m.config))
+                .map(|(spec, v)| {
+                    format!(
+                        "{} {}",
+                        subject(spec),
+                        describe::value(&v, compass.as_ref())
+                    )
+                })
+                .collect();
+            gallery += &figure(
+                &img_png(&bytes, &format!("ISOC member {}", k + 1)),
+                &escape(&format!(
+                    "{}. {}{unit} [{}, {}]: {}",
+                    k + 1,
+                    significant(m.evaluation.goal.mean),
+                    significant(i.low),
+                    significant(i.high),
+                    what.join("; ")
+                )),
+            );
+        }
+        if gallery.is_empty() {
+            gallery = "<p>No renders in the folder (the solve ran with --no-images).</p>".into();
+        } else {
+            gallery = format!(
+                "<p>Each member rendered from the scene's camera, best first, at one exposure (a brighter picture is a brighter configuration); the moved thing circled.</p><div class=\"gallery\">{gallery}</div>"
+            );
+        }
+        page.section("The best configurations (ISOC)", &gallery);
+
+        // 4. The search.
+        let mut search = String::new();
+        for i in 0..b.specs.len() {
+            let plot = search_plot(self.scene, b, goal.cap, i, &f.records, &f.isoc);
+            search += &figure(
+                &plot.svg()?,
+                "Every evaluated cell in the colour of its mean (viridis over the evaluated range); the start (square), the improvements in order (line), the ISOC (red rings).",
+            );
+        }
+        let conv = convergence(&f.records, &f.isoc, &b.goal);
+        search += &figure(
+            &conv.svg()?,
+            &format!(
+                "The best configuration so far (line) and its {level} % interval (band) against the photons traced; the last step is the final ISOC's best."
+            ),
+        );
+        page.section("The search", &search);
+
+        // 5. The objective's plan.
+        let mut no_plan = None;
+        if let (Some(g), Some(best), Some(target)) = (self.grid, members.first(), plan_surface) {
+            let mut scene = self.scene.clone();
+            b.apply(&mut scene, &best.config);
+            let started = Instant::now();
+            let map = g.spacing.cell(&scene, target).and_then(|cell| {
+                let settings = MapSettings {
+                    cell,
+                    trace: g.trace,
+                    estimator: Estimator::Connected,
+                };
+                illuminance_map(&scene, &Accel::new(&scene), target, &settings, None)
+            });
+            match map {
+                Ok(map) => {
+                    let mut s = grid_section(
+                        &map,
+                        self.scene.up,
+                        &format!("{surface} in the best configuration"),
+                        p.confidence,
+                        self.requirement,
+                    )?;
+                    s += &format!(
+                        "<p class=\"sub\">Traced for this report in {:.1} s.</p>",
+                        started.elapsed().as_secs_f64()
+                    );
+                    page.section(&format!("Light on {surface}"), &s);
+                }
+                Err(e) => {
+                    let why = match e {
+                        MapError::NotPlanar { .. } => {
+                            format!("{surface} is not planar, so it has no plan or grid ({e})")
+                        }
+                        e => format!("no grid on {surface}: {e}"),
+                    };
+                    let mut s = format!("<p>{}.</p>", escape(&why));
+                    if self.requirement.is_some() {
+                        s += "<p>The requirement cannot be checked without a grid.</p>";
+                    }
+                    page.section(&format!("Light on {surface}"), &s);
+                    no_plan = Some(why);
+                }
+            }
+        }
+
+        // 6. Every member.
+        let mean = format!(
+            "{}{}",
+            goal.sense,
+            if unit.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", goal.unit)
+            }
+        );
+        let mut header = vec!["#", mean.as_str(), "low", "high", "σ", "photons"];
+        let ids: Vec<String> = b.specs.iter().map(subject).collect();
+        header.extend(ids.iter().map(String::as_str));
+        let rows: Vec<Vec<String>> = members
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let e = &m.evaluation.goal;
+                let i = e.interval(f.isoc.z());
+                let mut row = vec![
+                    (k + 1).to_string(),
+                    significant(e.mean),
+                    significant(i.low),
+                    significant(i.high),
+                    significant(e.std_error),
+                    e.samples.to_string(),
+                ];
+                row.extend(
+                    b.values(&m.config)
+                        .iter()
+                        .map(|v| escape(&describe::value(v, compass.as_ref()))),
+                );
+                row
+            })
+            .collect();
+        let title = if feasible {
+            "Every member of the ISOC"
+        } else {
+            "The configurations closest to meeting the constraints"
+        };
+        page.section(title, &table(&header, &rows));
+
+        // 7. Time.
+        let photons: u64 = f.records.iter().map(|r| r.evaluation.goal.samples).sum();
+        let r = &f.result;
+        page.section(
+            "How long it took",
+            &format!(
+                "<p>{} evaluations ({} candidates refused untraced), {} photons traced in {:.1} s of search. The renders, plots and this page came after.</p>",
+                r.evaluations, r.refused, photons, r.seconds
+            ),
+        );
+        Ok((page.finish(), no_plan))
+    }
+}
+
+/// `s` with its first letter capitalised.
+fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    c.next().map_or(String::new(), |f| {
+        f.to_uppercase().collect::<String>() + c.as_str()
+    })
+}
+
+/// A member's constraints as a list: each estimate with its interval, the bound and the
+/// verdict (one-sided at `z_one_sided`).
+fn constraint_list(b: &Binding, m: &Member, z: f64, z_one_sided: f64) -> String {
+    if b.constraints.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from("<ul>");
+    for (c, e) in b.constraints.iter().zip(&m.evaluation.constraints) {
+        let i = e.interval(z);
+        let unit = match c.unit() {
+            "" => String::new(),
+            u => format!(" {u}"),
+        };
+        let sign = if c.bound.is_lower() { "≥" } else { "≤" };
+        s += &format!(
+            "<li>{}: {}{unit} [{}, {}], {sign} {}{unit}: <b>{}</b></li>",
+            escape(&c.label()),
+            significant(e.mean),
+            significant(i.low),
+            significant(i.high),
+            significant(c.bound.limit()),
+            c.verdict(e, z_one_sided).name()
+        );
+    }
+    s + "</ul>"
+}
