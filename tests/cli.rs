@@ -1439,6 +1439,38 @@ mod intentions {
             !text(&o.stderr).contains("warning"),
             "a side named: no warning"
         );
+        // `map` counts sides as `measure` does, warns alike, and spaces by EN 12464-1.
+        let dir = tempfile::tempdir().unwrap();
+        let prefix = dir.path().join("floor");
+        let map = |side: &str| {
+            invlight([
+                OsStr::new("map"),
+                data("gltf/room_area.gltf").as_os_str(),
+                OsStr::new("-s"),
+                OsStr::new("Floor"),
+                OsStr::new("--side"),
+                OsStr::new(side),
+                OsStr::new("--grid"),
+                OsStr::new("auto"),
+                OsStr::new("-n"),
+                OsStr::new("20000"),
+                OsStr::new("-o"),
+                prefix.as_os_str(),
+                OsStr::new("--json"),
+            ])
+        };
+        let (both, front) = (map("both"), map("front"));
+        assert!(both.status.success() && front.status.success());
+        assert!(text(&both.stderr).contains("'Floor' receives 100 % of its light on its back"));
+        assert!(!text(&front.stderr).contains("warning"));
+        let (both, front): (Value, Value) = (
+            serde_json::from_slice(&both.stdout).unwrap(),
+            serde_json::from_slice(&front.stdout).unwrap(),
+        );
+        assert!(f64_of(&both["eavg"]) > 0.0 && f64_of(&front["eavg"]) == 0.0);
+        assert_eq!(front["side"], "front");
+        let (d, cell) = (f64_of(&both["cell"]), both["cells"].clone());
+        assert!(d > 0.0 && d <= 10.0, "EN 12464-1's spacing, {d} m, for {cell}");
     }
 }
 

@@ -3,7 +3,7 @@
 //! ([`invlight_render::illuminance_map`]).
 
 use crate::InputError;
-use crate::args::{ReportArgs, SceneArgs, TraceArgs};
+use crate::args::{ReportArgs, SceneArgs, SideArg, TraceArgs};
 use crate::progress::Progress;
 use crate::render::save_image;
 use clap::Args;
@@ -27,6 +27,10 @@ pub struct MapArgs {
     /// them as EN 12464-1 does, p = 0.2·5^log10(d) for the surface's side d.
     #[arg(long, default_value = "0.25", value_name = "M|auto")]
     pub grid: GridSpacing,
+    /// The side of the surface that counts: the front (the side its area-weighted
+    /// counter-clockwise normal faces, a floor's top), the back, or both.
+    #[arg(long, value_enum, default_value_t = SideArg::Both)]
+    pub side: SideArg,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals in the cells. By default every photon departure
@@ -66,7 +70,8 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let settings = MapSettings {
-        cell: args.grid.cell(&scene, surface).map_err(bad)?,
+        spacing: args.grid,
+        side: args.side.into(),
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
     };
@@ -77,6 +82,9 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))
         .map_err(bad)?;
     bar.finish();
+    map.warning(&args.surface)
+        .into_iter()
+        .for_each(|w| eprintln!("warning: {w}"));
     let seconds = start.elapsed().as_secs_f64();
     let report = map.report(&args.surface, &settings, confidence, seconds);
 

@@ -194,24 +194,25 @@ impl Reading {
 
     /// The surface the goal is about, if it is about one.
     pub fn goal_surface(&self) -> Option<SurfaceId> {
-        self.surface_of(&self.goal)
+        self.surface_of(&self.goal).map(|(s, _)| s)
     }
 
-    /// The surface a quantity is read on, if any.
-    pub fn surface_of(&self, q: &Quantity) -> Option<SurfaceId> {
+    /// The surface a quantity is read on, if any, with the side it counts.
+    pub fn surface_of(&self, q: &Quantity) -> Option<(SurfaceId, Side)> {
         match *q {
-            Quantity::Mean { target, .. } => Some(self.surfaces[target]),
+            Quantity::Mean { target, side } => Some((self.surfaces[target], side)),
             Quantity::Uniformity { grid } | Quantity::MinPoint { grid } => {
-                Some(self.surfaces[self.grids[grid].target])
+                let g = &self.grids[grid];
+                Some((self.surfaces[g.target], g.side))
             }
             Quantity::Power => None,
         }
     }
 
-    /// The surface a report draws the light on: the goal's, else the first
-    /// constraint's (a least-power problem's desk).
-    pub fn plan_surface(&self) -> Option<SurfaceId> {
-        self.goal_surface()
+    /// The surface a report draws the light on, with the side it counts: the goal's,
+    /// else the first constraint's (a least-power problem's desk).
+    pub fn plan_surface(&self) -> Option<(SurfaceId, Side)> {
+        self.surface_of(&self.goal)
             .or_else(|| self.constraints.iter().find_map(|q| self.surface_of(q)))
     }
 

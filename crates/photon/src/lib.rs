@@ -68,8 +68,8 @@ pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_tr
 pub use estimator::{GROUP, GroupTallies, MIN_GROUPS, MIN_PHOTONS, Tally, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
 pub use measure::{
-    Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, measure,
-    measure_with,
+    Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, behind_warning,
+    measure, measure_with, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use sampler::{GroupKeys, Sampler};

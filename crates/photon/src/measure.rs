@@ -422,26 +422,38 @@ pub struct SurfaceReport {
 
 impl SurfaceReport {
     /// The back's share of the surface's light when more than a tenth of it arrives
-    /// there, the side a designer rarely means (a ceiling lit from above, a desk from
-    /// below): worth a warning when both sides are counted.
+    /// there and both sides are counted ([`much_from_behind`]).
     pub fn much_from_behind(&self) -> Option<f64> {
-        let total = self.front + self.back;
-        let share = if total > 0.0 { self.back / total } else { 0.0 };
-        (self.side == "both" && share > 0.1).then_some(share)
+        much_from_behind(&self.side, self.front, self.back)
     }
 
-    /// The warning [`SurfaceReport::much_from_behind`] deserves, with both figures.
+    /// The warning [`SurfaceReport::much_from_behind`] deserves ([`behind_warning`]).
     pub fn warning(&self) -> Option<String> {
-        self.much_from_behind().map(|share| {
-            format!(
-                "'{}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front): add --side front if only the front counts, or --side back if its triangles face away from the room",
-                self.name,
-                100.0 * share,
-                invlight_stats::significant(self.back),
-                invlight_stats::significant(self.front)
-            )
-        })
+        behind_warning(&self.name, &self.side, self.front, self.back)
     }
+}
+
+/// The back's share of a surface's light (`front` and `back` mean illuminances, lx)
+/// when more than a tenth of it arrives there and `side` is `both`: the side a designer
+/// rarely means (a ceiling lit from above, a desk from below), worth a warning.
+pub fn much_from_behind(side: &str, front: f64, back: f64) -> Option<f64> {
+    let total = front + back;
+    let share = if total > 0.0 { back / total } else { 0.0 };
+    (side == "both" && share > 0.1).then_some(share)
+}
+
+/// The warning for surface `name` counted on `side` when [`much_from_behind`], with
+/// both figures and the flag that picks a side (`--side`, the same in `measure` and
+/// `map`).
+pub fn behind_warning(name: &str, side: &str, front: f64, back: f64) -> Option<String> {
+    much_from_behind(side, front, back).map(|share| {
+        format!(
+            "'{name}' receives {:.0} % of its light on its back ({} lx on its back, {} lx on its front): add --side front if only the front counts, or --side back if its triangles face away from the room",
+            100.0 * share,
+            invlight_stats::significant(back),
+            invlight_stats::significant(front)
+        )
+    })
 }
 
 /// `invlight measure --json`: a measurement with its settings and costs.

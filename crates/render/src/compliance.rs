@@ -33,7 +33,7 @@
 //!
 //! The cells are the means over the cells of the grid (centred on its points), not
 //! values at the points; a cell mean smooths the light within it, so with cells larger
-//! than the norm's spacing ([`en_grid_spacing`]) Emin can come out high. Cells the
+//! than the norm's spacing (`invlight_photon::en12464_spacing`) Emin can come out high. Cells the
 //! surface covers less than half of are left out of Emin, as [`IlluminanceMap::summary`]
 //! leaves them out.
 
@@ -110,21 +110,6 @@ pub fn task(name: &str) -> Option<&'static Task> {
     TASKS.iter().find(|t| t.name == name)
 }
 
-/// The grid spacing of EN 12464-1 (2011 §4.4; the 2021 edition keeps the formula):
-/// p = 0.2 · 5^log10(d) m for a side d m, at most 10 m.
-pub fn en_grid_spacing(d: f64) -> f64 {
-    (0.2 * 5f64.powf(d.max(1e-6).log10())).min(10.0)
-}
-
-/// The spacing for an area of sides `a` and `b`, m: the rule on the longer side, or on
-/// the shorter when the longer is at least twice it (a corridor gets a spacing fit for
-/// its width, not its length).
-pub fn en_grid_spacing_for(a: f64, b: f64) -> f64 {
-    let (long, short) = if a >= b { (a, b) } else { (b, a) };
-    let d = if long >= 2.0 * short { short } else { long };
-    en_grid_spacing(d)
-}
-
 /// What a grid must meet.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Requirement {
@@ -183,47 +168,6 @@ impl Requirement {
             task,
             maintenance_factor,
         }))
-    }
-}
-
-/// A grid's cell size as asked: metres, or EN 12464-1's spacing for the surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum GridSpacing {
-    /// `auto`: [`en_grid_spacing_for`] the surface's sides.
-    Auto,
-    /// The largest cell side, m.
-    Metres(f32),
-}
-
-impl std::str::FromStr for GridSpacing {
-    type Err = String;
-    fn from_str(s: &str) -> Result<GridSpacing, String> {
-        if s == "auto" {
-            return Ok(GridSpacing::Auto);
-        }
-        match s.parse::<f32>() {
-            Ok(m) if m > 0.0 && m.is_finite() => Ok(GridSpacing::Metres(m)),
-            _ => Err(format!(
-                "'{s}' is neither 'auto' nor a positive length in metres"
-            )),
-        }
-    }
-}
-
-impl GridSpacing {
-    /// The cell side for `surface` of `scene`, m.
-    pub fn cell(
-        self,
-        scene: &invlight_scene::Scene,
-        surface: invlight_scene::SurfaceId,
-    ) -> Result<f32, crate::MapError> {
-        match self {
-            GridSpacing::Metres(m) => Ok(m),
-            GridSpacing::Auto => {
-                let (w, h) = crate::map::surface_extent(scene, surface)?;
-                Ok(en_grid_spacing_for(w as f64, h as f64) as f32)
-            }
-        }
     }
 }
 
@@ -537,6 +481,10 @@ mod tests {
             ],
             photons: 1 << 20,
             mean: est(482.0, 5.0),
+            u0: est(1.08, 0.02),
+            spacing: 1.0,
+            side: invlight_photon::Side::Both,
+            front_back: (482.0, 0.0),
         };
         assert_eq!(map.emin_cells().len(), 1);
         let office = Requirement::of_task(task("office").unwrap(), 1.0);
@@ -573,24 +521,5 @@ mod tests {
                 .contains("office")
         );
         assert!(Requirement::from_flags(None, Some(500.0), None, 1.5).is_err());
-        assert_eq!("auto".parse::<GridSpacing>(), Ok(GridSpacing::Auto));
-        assert_eq!("0.5".parse::<GridSpacing>(), Ok(GridSpacing::Metres(0.5)));
-        assert!("-1".parse::<GridSpacing>().is_err());
-    }
-
-    #[test]
-    fn the_en_grid_gives_the_published_spacings() {
-        // EN 12464-1 tabulates the rule rounded: 1 m → 0.2, 5 m → 0.6 (0.617),
-        // 10 m → 1, 50 m → 3 (3.09), 100 m → 5 m.
-        let round = |p: f64| (p * 10.0).round() / 10.0;
-        assert!((en_grid_spacing(1.0) - 0.2).abs() < 1e-12);
-        assert_eq!(round(en_grid_spacing(5.0)), 0.6);
-        assert!((en_grid_spacing(10.0) - 1.0).abs() < 1e-12);
-        assert_eq!(round(en_grid_spacing(50.0)), 3.1);
-        assert!((en_grid_spacing(100.0) - 5.0).abs() < 1e-12);
-        assert_eq!(en_grid_spacing(10_000.0), 10.0);
-        // A 20 m × 2 m corridor is spaced for its 2 m width.
-        assert!((en_grid_spacing_for(20.0, 2.0) - en_grid_spacing(2.0)).abs() < 1e-12);
-        assert!((en_grid_spacing_for(4.0, 3.0) - en_grid_spacing(4.0)).abs() < 1e-12);
     }
 }

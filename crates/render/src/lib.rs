@@ -15,7 +15,7 @@
 //! - [`illuminance_map`]: mean illuminance over the cells of a grid on a planar surface,
 //!   each with its confidence interval, and Emin, Eavg, Emax, U0 (EN 12464-1).
 //! - [`assess`], [`Compliance`]: whether a grid meets Em and U0 (EN 12464-1:2021 tasks in
-//!   [`TASKS`], its grid rule [`en_grid_spacing`]) with a stated confidence: meets,
+//!   [`TASKS`], its grid rule `invlight_photon::en12464_spacing`) with a stated confidence: meets,
 //!   fails, or cannot tell at this photon count.
 //! - [`SearchPlot`], [`ConvergencePlot`], [`MapPlan`]: what a search visited (a plan in
 //!   world metres, a sun chart, a value plot), how it converged, and an illuminance grid
@@ -40,8 +40,7 @@ pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
 pub use compliance::{
-    Compliance, Criterion, GridSpacing, Requirement, TASKS, Task, Verdict, assess, en_grid_spacing,
-    en_grid_spacing_for, plain, task,
+    Compliance, Criterion, Requirement, TASKS, Task, Verdict, assess, plain, task,
 };
 pub use false_colour::{auto_scale, false_colour, legend_width};
 /// The `image` crate the pictures are made with, so callers can save them without
@@ -52,8 +51,8 @@ pub use integrator::{
     AreaLights, IlluminanceImage, Image, Integrator, RenderSettings, render, render_illuminance,
 };
 pub use map::{
-    IlluminanceMap, MAX_CELLS, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
-    MapSummary, illuminance_map, surface_extent,
+    GridSpacing, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
+    MapSummary, illuminance_map,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{

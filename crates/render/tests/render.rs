@@ -3,11 +3,11 @@
 //! that do not depend on the number of threads; the plot files.
 
 use glam::{Mat4, Vec3};
-use invlight_photon::{Estimator, TraceSettings};
+use invlight_photon::{Estimator, GridError, Side, TraceSettings};
 use invlight_render::{
-    AreaLights, IlluminanceImage, Image, Integrator, MapError, MapSettings, Mark, Paths, PhotonMap,
-    PhotonSettings, PlanAxis, PlanFrame, PlotKind, PlotPoint, RenderSettings, SearchPlot, Store,
-    View, illuminance_map, render, render_illuminance,
+    AreaLights, GridSpacing, IlluminanceImage, Image, Integrator, MapError, MapSettings, Mark,
+    Paths, PhotonMap, PhotonSettings, PlanAxis, PlanFrame, PlotKind, PlotPoint, RenderSettings,
+    SearchPlot, Store, View, illuminance_map, render, render_illuminance,
 };
 use invlight_scene::{
     Camera, Light, LightKind, Material, MaterialId, Mesh, PhotometricSystem, Photometry, Scene,
@@ -461,7 +461,8 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
     let mut last = None;
     for estimator in [Estimator::ArrivalsOnly, Estimator::Connected] {
         let settings = MapSettings {
-            cell: 0.5,
+            spacing: GridSpacing::Metres(0.5),
+            side: Side::Both,
             trace: TraceSettings {
                 photons: 400_000,
                 seed: 11,
@@ -522,6 +523,42 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
         .map(|c| c.estimate.std_error)
         .fold(0.0, f64::max);
     assert!(map.mean.std_error > 0.0 && map.mean.std_error < worst);
+    // U0's interval covers the ratio of the exact least cell to the exact mean.
+    let exact_cells: Vec<f64> = map
+        .cells
+        .iter()
+        .flatten()
+        .map(|c| {
+            let corner = c.centre - (map.u + map.v) * 0.25;
+            exact(corner.x as f64, corner.y as f64)
+        })
+        .collect();
+    let exact_u0 = exact_cells.iter().copied().fold(f64::INFINITY, f64::min)
+        / (exact_cells.iter().sum::<f64>() / 16.0);
+    assert!(
+        (map.u0.mean - exact_u0).abs() < 4.0 * map.u0.std_error && map.u0.std_error < 0.05,
+        "U0 {} ± {} vs {exact_u0}",
+        map.u0.mean,
+        map.u0.std_error
+    );
+    // All the light arrives on the floor's front: its back reads nothing, so no warning.
+    assert!(map.front_back.1 == 0.0 && map.warning("Floor").is_none());
+    let floor = scene.surface("Floor").unwrap();
+    let back = MapSettings {
+        spacing: GridSpacing::Auto,
+        side: Side::Back,
+        trace: TraceSettings {
+            photons: 20_000,
+            seed: 11,
+            max_bounces: 4,
+        },
+        estimator: Estimator::Connected,
+    };
+    let back = illuminance_map(&scene, &accel, floor, &back, None).unwrap();
+    assert_eq!(back.mean.mean, 0.0);
+    // EN 12464-1 spaces a 2 m square by 0.2·5^log10(2) = 0.325 m: 7 × 7 cells.
+    assert_eq!((back.columns, back.rows), (7, 7));
+    assert!((back.spacing - 0.2 * 5f32.powf(2f32.log10())).abs() < 1e-6);
 }
 
 #[test]
@@ -532,7 +569,8 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
     scene.add_instance("Box", cube, Mat4::IDENTITY);
     let accel = Accel::new(&scene);
     let settings = MapSettings {
-        cell: 0.25,
+        spacing: GridSpacing::Metres(0.25),
+        side: Side::Both,
         trace: TraceSettings {
             photons: 1000,
             seed: 1,
@@ -548,7 +586,7 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
             &settings,
             None
         ),
-        Err(MapError::NotPlanar { .. })
+        Err(MapError::Grid(GridError::NotPlanar { .. }))
     ));
     let room = small_room();
     let accel = Accel::new(&room);

@@ -132,7 +132,7 @@ pub fn search_plot(
             });
             let mut target = Vec::new();
             let plan = binding.reading.plan_surface();
-            let instances = plan.map_or(&[][..], |s| &scene.surfaces[s].instances[..]);
+            let instances = plan.map_or(&[][..], |(s, _)| &scene.surfaces[s].instances[..]);
             let count: usize = instances
                 .iter()
                 .map(|&k| scene.world_triangles(k).count())
@@ -153,7 +153,7 @@ pub fn search_plot(
                 range: corners(offset),
                 rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
                 moved: subject(spec),
-                target_name: plan.map_or(String::new(), |s| scene.surfaces[s].name.clone()),
+                target_name: plan.map_or(String::new(), |(s, _)| scene.surfaces[s].name.clone()),
             };
             (PlotKind::Plan(Box::new(plan)), pts)
         }

@@ -12,7 +12,7 @@ use invlight_ilp::{
     Binding, Confidence, Diagnostic, Isoc, Member, Problem, Record, ResultFile, RunFile, Search,
     Solutions, Standing, Strategy,
 };
-use invlight_photon::{Estimator, TraceSettings};
+use invlight_photon::{Estimator, GridError, TraceSettings};
 use invlight_render::{
     ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map, plain,
 };
@@ -281,7 +281,8 @@ impl<'a> SolveReport<'a> {
         let goal = &f.result.objective;
         let unit = goal.unit_suffix();
         let plan_surface = b.reading.plan_surface();
-        let surface = plan_surface.map_or(String::new(), |s| self.scene.surfaces[s].name.clone());
+        let surface =
+            plan_surface.map_or(String::new(), |(s, _)| self.scene.surfaces[s].name.clone());
         let level = plain(p.confidence.level() * 100.0);
         let name = p
             .path
@@ -461,18 +462,19 @@ impl<'a> SolveReport<'a> {
 
         // 5. The objective's plan.
         let mut no_plan = None;
-        if let (Some(g), Some(best), Some(target)) = (self.grid, members.first(), plan_surface) {
+        if let (Some(g), Some(best), Some((target, side))) =
+            (self.grid, members.first(), plan_surface)
+        {
             let mut scene = self.scene.clone();
             b.apply(&mut scene, &best.config);
             let started = Instant::now();
-            let map = g.spacing.cell(&scene, target).and_then(|cell| {
-                let settings = MapSettings {
-                    cell,
-                    trace: g.trace,
-                    estimator: Estimator::Connected,
-                };
-                illuminance_map(&scene, &Accel::new(&scene), target, &settings, None)
-            });
+            let settings = MapSettings {
+                spacing: g.spacing,
+                side,
+                trace: g.trace,
+                estimator: Estimator::Connected,
+            };
+            let map = illuminance_map(&scene, &Accel::new(&scene), target, &settings, None);
             match map {
                 Ok(map) => {
                     let mut s = grid_section(
@@ -490,7 +492,7 @@ impl<'a> SolveReport<'a> {
                 }
                 Err(e) => {
                     let why = match e {
-                        MapError::NotPlanar { .. } => {
+                        MapError::Grid(GridError::NotPlanar { .. }) => {
                             format!("{surface} is not planar, so it has no plan or grid ({e})")
                         }
                         e => format!("no grid on {surface}: {e}"),
