@@ -1470,7 +1470,10 @@ mod intentions {
         assert!(f64_of(&both["eavg"]) > 0.0 && f64_of(&front["eavg"]) == 0.0);
         assert_eq!(front["side"], "front");
         let (d, cell) = (f64_of(&both["cell"]), both["cells"].clone());
-        assert!(d > 0.0 && d <= 10.0, "EN 12464-1's spacing, {d} m, for {cell}");
+        assert!(
+            d > 0.0 && d <= 10.0,
+            "EN 12464-1's spacing, {d} m, for {cell}"
+        );
     }
 }
 

@@ -5,9 +5,10 @@
 
 use crate::InputError;
 use anyhow::Context;
-use clap::{Args, ValueEnum};
+use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use invlight_ilp::{Problem, configured_scene};
-use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photons_traced};
+use invlight_photon::{DEFAULT_MAX_BOUNCES, Side, TraceSettings, photons_traced};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
 use invlight_scene::{LoadOptions, Scene, UpAxis};
@@ -26,8 +27,8 @@ pub struct LoadArgs {
     /// The file's up axis when it does not say (OBJ) or says wrongly [default: the
     /// file's, or a problem file's <scene up>]. Positions are never swapped; the axis
     /// orients sun directions and default views.
-    #[arg(long, value_enum, value_name = "AXIS")]
-    pub up: Option<Up>,
+    #[arg(long, value_name = "AXIS", value_parser = up_axis())]
+    pub up: Option<UpAxis>,
     /// Memory the scene may take, loading and tracing: 8G, 512M, 64K or bytes (powers of
     /// 1024). A file whose declared sizes (buffers, vertex counts, texture pixels), or
     /// whose ray-tracing structure, would need more is refused with the figure before
@@ -42,13 +43,19 @@ pub struct LoadArgs {
     pub allow_outside_paths: bool,
 }
 
-/// An up axis on the command line.
-#[derive(ValueEnum, Debug, Clone, Copy)]
-pub enum Up {
-    /// +Y is up.
-    Y,
-    /// +Z is up.
-    Z,
+/// An up axis (`y` or `z`), as a flag's value parser that lists both in --help.
+fn up_axis() -> impl TypedValueParser<Value = UpAxis> {
+    PossibleValuesParser::new(["y", "z"]).map(|s| if s == "z" { UpAxis::Z } else { UpAxis::Y })
+}
+
+/// A side of a surface (`front`, `back` or `both`), as a flag's value parser that lists
+/// them in --help.
+pub fn side() -> impl TypedValueParser<Value = Side> {
+    PossibleValuesParser::new(["front", "back", "both"]).map(|s| match s.as_str() {
+        "front" => Side::Front,
+        "back" => Side::Back,
+        _ => Side::Both,
+    })
 }
 
 /// A positive finite number, as a flag's value parser.
@@ -76,19 +83,12 @@ fn confidence(s: &str) -> Result<Confidence, String> {
 }
 
 impl LoadArgs {
-    fn up(&self) -> Option<UpAxis> {
-        self.up.map(|u| match u {
-            Up::Y => UpAxis::Y,
-            Up::Z => UpAxis::Z,
-        })
-    }
-
     /// The loader's options.
     pub fn options(&self) -> LoadOptions {
         let defaults = LoadOptions::default();
         LoadOptions {
             scale: self.scale.unwrap_or(1.0),
-            up: self.up(),
+            up: self.up,
             max_memory: self.max_memory.unwrap_or(defaults.max_memory),
             allow_outside_paths: self.allow_outside_paths,
         }
@@ -102,7 +102,7 @@ impl LoadArgs {
 
     /// Loads a problem file's scene, these options overriding its `<scene>`'s.
     pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
-        let scene = problem.load_scene(&self.options(), self.scale, self.up())?;
+        let scene = problem.load_scene(&self.options(), self.scale, self.up)?;
         self.fits(scene, &problem.scene.path)
     }
 }
@@ -132,28 +132,6 @@ impl SceneArgs {
         configured_scene(path, self.config.as_deref(), file, |p| {
             self.load.load_problem(p)
         })
-    }
-}
-
-/// Which side of a measured surface counts (`--side`).
-#[derive(clap::ValueEnum, Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum SideArg {
-    /// The side its counter-clockwise normal faces (a desk's top).
-    Front,
-    /// The other side.
-    Back,
-    /// Every arrival, whichever side.
-    #[default]
-    Both,
-}
-
-impl From<SideArg> for invlight_photon::Side {
-    fn from(s: SideArg) -> Self {
-        match s {
-            SideArg::Front => invlight_photon::Side::Front,
-            SideArg::Back => invlight_photon::Side::Back,
-            SideArg::Both => invlight_photon::Side::Both,
-        }
     }
 }
 

@@ -3,11 +3,11 @@
 //! ([`invlight_render::illuminance_map`]).
 
 use crate::InputError;
-use crate::args::{ReportArgs, SceneArgs, SideArg, TraceArgs};
+use crate::args::{ReportArgs, SceneArgs, TraceArgs};
 use crate::progress::Progress;
 use crate::render::save_image;
 use clap::Args;
-use invlight_photon::{Estimator, photons_traced};
+use invlight_photon::{Estimator, Side, photons_traced};
 use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
 use invlight_report::{MapPage, file_safe};
 use invlight_trace::Accel;
@@ -29,8 +29,8 @@ pub struct MapArgs {
     pub grid: GridSpacing,
     /// The side of the surface that counts: the front (the side its area-weighted
     /// counter-clockwise normal faces, a floor's top), the back, or both.
-    #[arg(long, value_enum, default_value_t = SideArg::Both)]
-    pub side: SideArg,
+    #[arg(long, default_value = "both", value_parser = crate::args::side())]
+    pub side: Side,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals in the cells. By default every photon departure
@@ -65,13 +65,14 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     scene.require_light(path)?;
     let pool = args.trace.pool()?;
     let start = Instant::now();
-    let accel = Accel::new(&scene);
+    // Nothing moves: one world-space tree, as `measure` builds.
+    let accel = Accel::with_movable(&scene, &[]);
     let requirement = args.require.requirement()?;
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let settings = MapSettings {
         spacing: args.grid,
-        side: args.side.into(),
+        side: args.side,
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
     };

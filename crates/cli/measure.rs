@@ -1,10 +1,10 @@
 //! `invlight measure`: mean illuminance of named surfaces
 //! ([`invlight_photon::measure`]).
 
-use crate::args::{SceneArgs, SideArg, TraceArgs};
+use crate::args::{SceneArgs, TraceArgs};
 use crate::progress::Progress;
 use clap::Args;
-use invlight_photon::{Estimator, measure, photons_traced};
+use invlight_photon::{Estimator, Side, measure, photons_traced};
 use invlight_trace::Accel;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -21,8 +21,8 @@ pub struct MeasureArgs {
     /// The side of the surfaces that counts: the front (the side the surface's
     /// counter-clockwise normal faces, a desk's top), the back, or both. Front and back
     /// are reported apart either way.
-    #[arg(long, value_enum, default_value_t = SideArg::Both)]
-    pub side: SideArg,
+    #[arg(long, default_value = "both", value_parser = crate::args::side())]
+    pub side: Side,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals on the surfaces, as the thesis does (eq. 3.2),
@@ -64,7 +64,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     let seconds = start.elapsed().as_secs_f64();
     let report = m.report(
         &args.surfaces,
-        args.side.into(),
+        args.side,
         confidence,
         (&settings, estimator),
         (seconds, build_seconds),

@@ -1,24 +1,15 @@
 //! Progress on stderr: a bar drawn only when stderr is a terminal, so that logs and
 //! pipes stay clean, and — terminal or not — one warning when the work under way will
-//! take more than an hour, from its pace over the first seconds (a photon count typed
-//! with three zeros too many should not run for days without a word).
+//! take more than an hour ([`invlight_stats::Pace`]).
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use invlight_stats::Pace;
 use std::io::IsTerminal;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
-
-/// Work that takes longer than this gets a warning.
-const LONG: Duration = Duration::from_secs(3600);
-/// The pace is judged after this much of the work.
-const SAMPLE: Duration = Duration::from_secs(3);
 
 /// A bar over `total` units of work.
 pub struct Progress {
     bar: ProgressBar,
-    total: u64,
-    start: Instant,
-    warned: AtomicBool,
+    pace: Pace,
     what: String,
 }
 
@@ -37,9 +28,7 @@ impl Progress {
         );
         Progress {
             bar,
-            total,
-            start: Instant::now(),
-            warned: AtomicBool::new(false),
+            pace: Pace::new(total),
             what: what.to_string(),
         }
     }
@@ -47,25 +36,12 @@ impl Progress {
     /// `done` units are done (callable from worker threads).
     pub fn set(&self, done: u64) {
         self.bar.set_position(done);
-        let spent = self.start.elapsed();
-        if done == 0 || spent < SAMPLE || self.warned.load(Ordering::Relaxed) {
-            return;
-        }
-        let expected = spent.mul_f64(self.total as f64 / done as f64);
-        if expected > LONG && !self.warned.swap(true, Ordering::Relaxed) {
-            self.bar.suspend(|| {
-                eprintln!(
-                    "warning: {} will take about {} at this pace ({} of {} done in {:.0} s); Ctrl-C stops it",
-                    self.what,
-                    invlight_stats::hours_or_days(expected),
-                    done,
-                    self.total,
-                    spent.as_secs_f64()
-                )
-            });
+        if let Some(long) = self.pace.long_once(done) {
+            let what = &self.what;
+            let line = format!("warning: {what} will take {long}; Ctrl-C stops it");
+            self.bar.suspend(|| eprintln!("{line}"));
         }
     }
-
     /// `done` units of a total that is known only now.
     pub fn set_total(&self, done: u64, total: u64) {
         self.bar.set_length(total);

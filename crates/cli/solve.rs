@@ -90,18 +90,12 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     for w in &binding.warnings {
         eprintln!("warning: {w}");
     }
+    let info = ObjectiveInfo::of(&problem);
     let pictures = (!args.no_images)
         .then(|| {
             let (w, n) = (args.image_width, args.image_photons);
-            Pictures::new(
-                &scene,
-                &ObjectiveInfo::of(&problem),
-                w,
-                n,
-                problem.seed,
-                max_bounces,
-            )
-            .map_err(|e| InputError(format!("--image-width: {e}")))
+            Pictures::new(&scene, &info, w, n, problem.seed, max_bounces)
+                .map_err(|e| InputError(format!("--image-width: {e}")))
         })
         .transpose()?;
     let settings = problem.settings();
@@ -111,7 +105,6 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
 
     // 2. The output folder: a fresh run, or the rows of the one it continues.
     let dir = args.output.clone().unwrap_or(problem.output.clone());
-    let info = ObjectiveInfo::of(&problem);
     let flags = (args.resume, args.force);
     let run = Run::open(&dir, &binding, info, &settings, max_bounces, flags)
         .with_context(|| format!("the output folder {}", dir.display()))?;
@@ -172,20 +165,9 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     }
 
     // 5. Report.
-    let (rays, photons) = eval.work();
     outcome.note().into_iter().for_each(|n| eprintln!("{n}"));
-    if reporter.refused > 0 {
-        let n = reporter.refused;
-        eprintln!(
-            "{n} candidates put an object or light outside the scene, or two identical lamps in one cell, and were not traced"
-        );
-    }
-    eprintln!(
-        "{} evaluations, {photons} photons, {rays} rays in {:.1} s; results in {}",
-        search.evaluations(),
-        result.seconds,
-        dir.display()
-    );
+    let closing = reporter.closing(search.evaluations(), eval.work(), result.seconds, &dir);
+    closing.iter().for_each(|l| eprintln!("{l}"));
     if args.json {
         crate::print_json(&result)?;
     } else {

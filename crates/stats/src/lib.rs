@@ -33,6 +33,7 @@ mod distribution2d;
 mod estimate;
 mod format;
 mod interval;
+mod pace;
 mod rng;
 
 pub use channels::ChannelSums;
@@ -41,4 +42,5 @@ pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
 pub use format::{hours_or_days, significant};
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
+pub use pace::{LONG_WORK, LongWork, PACE_SAMPLE, Pace};
 pub use rng::{Pcg32, SplitMix64, mix};

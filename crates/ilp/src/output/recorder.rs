@@ -42,6 +42,29 @@ impl<'b, F: FnMut(Progress<'_>)> Recorder<'b, F> {
             show,
         }
     }
+
+    /// The lines that close a run: the refused candidates' count when there are any,
+    /// then the work (`evaluations`, photons and rays traced) and where the files are.
+    pub fn closing(
+        &self,
+        evaluations: u64,
+        (rays, photons): (u64, u64),
+        seconds: f64,
+        dir: &std::path::Path,
+    ) -> Vec<String> {
+        let mut lines = Vec::new();
+        if self.refused > 0 {
+            lines.push(format!(
+                "{} candidates put an object or light outside the scene, or two identical lamps in one cell, and were not traced",
+                self.refused
+            ));
+        }
+        lines.push(format!(
+            "{evaluations} evaluations, {photons} photons, {rays} rays in {seconds:.1} s; results in {}",
+            dir.display()
+        ));
+        lines
+    }
 }
 
 impl<F: FnMut(Progress<'_>)> Observer for Recorder<'_, F> {
