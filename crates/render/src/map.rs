@@ -305,8 +305,9 @@ impl MapReport {
     /// The report's figures for people: the grid, Emin, Eavg, Emax and U0.
     pub fn summary(&self) -> String {
         use invlight_stats::significant;
+        let z = Confidence::new(self.confidence).unwrap_or_default().z();
         format!(
-            "{}: {}×{} cells of {:.3}×{:.3} m, {} photons, {:.2} s\nEmin {} lx  Eavg {} lx  Emax {} lx  U0 = Emin/Eavg {:.3}\n",
+            "{}: {}×{} cells of {:.3}×{:.3} m, {} photons, {:.2} s\nEmin {} lx  Eavg {} lx  Emax {} lx  U0 = Emin/Eavg {:.3} [{:.3}, {:.3}]\n",
             self.surface,
             self.cells[0],
             self.cells[1],
@@ -317,7 +318,9 @@ impl MapReport {
             significant(self.emin),
             significant(self.eavg),
             significant(self.emax),
-            self.u0
+            self.u0,
+            (self.u0 - z * self.u0_std_error).max(0.0),
+            self.u0 + z * self.u0_std_error
         )
     }
 }

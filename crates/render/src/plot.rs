@@ -208,6 +208,29 @@ fn convex_hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     hull
 }
 
+/// Draws the axes of a plot of values against a quantity: light grid lines, the
+/// labels' sizes of every plot, values to significant digits.
+fn value_axes<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<(), ChartError>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .y_label_formatter(&|v| significant(*v))
+        .label_style(text(FONT - 2))
+        .axis_desc_style(text(FONT))
+        .light_line_style(WHITE)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .draw()?;
+    Ok(())
+}
+
 /// `lo..hi` widened by `pad` of its length on each side: a unit around `lo` when the
 /// range is a point, and 0..1 when it has no finite end (no values, or only unbounded
 /// intervals), since plotters loops forever looking for key points on an infinite axis.
@@ -518,16 +541,11 @@ impl SearchPlot {
             .x_label_area_size(2 * FONT + 12)
             .y_label_area_size(5 * FONT)
             .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
-        chart
-            .configure_mesh()
-            .x_desc("HSV value V")
-            .y_desc(format!("mean illuminance ({})", self.unit))
-            .y_label_formatter(&|v| significant(*v))
-            .label_style(text(FONT - 2))
-            .axis_desc_style(text(FONT))
-            .light_line_style(WHITE)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .draw()?;
+        value_axes(
+            &mut chart,
+            "HSV value V",
+            &format!("mean illuminance ({})", self.unit),
+        )?;
         for p in &self.points {
             let colour = match p.mark {
                 Mark::Invalid => INVALID,
@@ -709,16 +727,11 @@ impl ConvergencePlot {
             .x_label_area_size(2 * FONT + 12)
             .y_label_area_size(5 * FONT)
             .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
-        chart
-            .configure_mesh()
-            .x_desc("photons traced (millions)")
-            .y_desc(format!("standing configuration ({})", self.unit))
-            .y_label_formatter(&|v| significant(*v))
-            .label_style(text(FONT - 2))
-            .axis_desc_style(text(FONT))
-            .light_line_style(WHITE)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .draw()?;
+        value_axes(
+            &mut chart,
+            "photons traced (millions)",
+            &format!("standing configuration ({})", self.unit),
+        )?;
         // Steps: each estimate holds until the next one replaces it.
         let mut band_top = Vec::new();
         let mut band_bottom = Vec::new();

@@ -132,7 +132,10 @@ pub fn grid_section(
 ) -> Result<String, invlight_render::ChartError> {
     let plan = MapPlan::new(map, title, confidence).from_above(up);
     let s = map.summary();
-    let i = map.mean.interval(confidence.z());
+    let (i, u0) = (
+        map.mean.interval(confidence.z()),
+        map.u0.interval(confidence.z()),
+    );
     let mut out = figure(
         &plan.svg()?,
         &format!(
@@ -148,7 +151,7 @@ pub fn grid_section(
         ),
     );
     out += &format!(
-        "<dl><dt>Eavg</dt><dd>{} lx [{}, {}] ({} % interval)</dd><dt>Emin</dt><dd>{} lx</dd><dt>Emax</dt><dd>{} lx</dd><dt>U0 = Emin/Eavg</dt><dd>{:.3}</dd><dt>Grid</dt><dd>{} × {} cells of {} × {} m, {} photons</dd></dl>\n",
+        "<dl><dt>Eavg</dt><dd>{} lx [{}, {}] ({} % interval)</dd><dt>Emin</dt><dd>{} lx</dd><dt>Emax</dt><dd>{} lx</dd><dt>U0 = Emin/Eavg</dt><dd>{:.3} [{:.3}, {:.3}]</dd><dt>Grid</dt><dd>{} × {} cells of {} × {} m, {} photons</dd></dl>\n",
         significant(s.eavg),
         significant(i.low),
         significant(i.high),
@@ -156,6 +159,8 @@ pub fn grid_section(
         significant(s.emin),
         significant(s.emax),
         s.u0,
+        u0.low.max(0.0),
+        u0.high,
         map.columns,
         map.rows,
         significant(map.cell_u as f64),
