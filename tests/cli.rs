@@ -1978,3 +1978,240 @@ mod r19 {
         assert_eq!(bad.status.code(), Some(2));
     }
 }
+
+/// Luminaires from photometric files given to a scene's lights by name (issue 14):
+/// `--luminaire NAME=FILE` on any command that reads a scene, `<luminaire>` in a
+/// problem file's `<scene>`.
+mod luminaires {
+    use super::*;
+
+    /// The lamp room's point lamp (make_lamp_room.py) with `--luminaire`.
+    fn lamp_room_with(file: &str, extra: &[&str]) -> Vec<String> {
+        let mut args = vec![
+            data("ilp/lamp-room.gltf").display().to_string(),
+            "--luminaire".into(),
+            format!("Lamp={}", data(file).display()),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        args
+    }
+
+    /// Mean illuminance of the desk (x 2.75–3.25, z 1–1.5 at y = 0.01) from the lamp
+    /// at (0, 1.1, 0), direct light only: the flux onto the desk over its area, the flux
+    /// being I₀ times the desk's projected solid angle for I = I₀ cos γ (the
+    /// differential-to-rectangle form factor × π, Howell's catalogue C-11, summed over
+    /// corners with signs) and I₀ times its solid angle for an isotropic lamp.
+    fn desk_closed_form(cosine: bool) -> f64 {
+        let h: f64 = 1.1 - 0.01;
+        let corner = |a: f64, b: f64| {
+            if cosine {
+                let (ra, rb) = ((a * a + h * h).sqrt(), (b * b + h * h).sqrt());
+                0.5 * (a / ra * (b / ra).atan() + b / rb * (a / rb).atan())
+            } else {
+                (a * b / (h * (a * a + b * b + h * h).sqrt())).atan()
+            }
+        };
+        let (x0, x1, z0, z1) = (2.75, 3.25, 1.0, 1.5);
+        let angle = corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
+        100.0 * angle / 0.25
+    }
+
+    /// measure with a cosine luminaire (I₀ = 100 cd) where the 100 cd point lamp was
+    /// gives the cosine law's closed form, and without it the point lamp's: the flag
+    /// changes the light, not where it is. 4 reported σ, plus 0.1 % for the table's
+    /// interpolation every 1° (cos γ between samples is off by at most (1°)²/8 ≈ 4e-5).
+    #[test]
+    fn measure_follows_the_file() {
+        for (cosine, args) in [
+            (
+                true,
+                lamp_room_with("photometry/cosine.ies", &["--max-bounces", "0"]),
+            ),
+            (
+                false,
+                vec![
+                    data("ilp/lamp-room.gltf").display().to_string(),
+                    "--max-bounces".into(),
+                    "0".into(),
+                ],
+            ),
+        ] {
+            let file = PathBuf::from(&args[0]);
+            let mut extra: Vec<&str> = args[1..].iter().map(String::as_str).collect();
+            extra.extend(["--photons", "200000", "--seed", "3"]);
+            let out = measure(&file, &["Desk"], &extra);
+            let desk = named(&out["surfaces"], "Desk");
+            let (mean, se) = (f64_of(&desk["mean"]), f64_of(&desk["std_error"]));
+            let expected = desk_closed_form(cosine);
+            assert!(
+                (mean - expected).abs() <= 4.0 * se + 1e-3 * expected,
+                "cosine {cosine}: {mean} ± {se} lx, closed form {expected}"
+            );
+        }
+    }
+
+    /// `scene` shows the luminaire's file, its table's flux beside the file's figure,
+    /// watts and aim; the point lamp becomes a goniometric light aimed down (−up), C0
+    /// along +X.
+    #[test]
+    fn scene_shows_file_flux_watts_and_aim() {
+        let mut args = vec!["scene".to_string()];
+        args.extend(lamp_room_with("photometry/downlight.ies", &["--json"]));
+        let out = json(&args);
+        let lamp = named(&out["lights"], "Lamp");
+        assert_eq!(lamp["kind"], "goniometric");
+        let m = &lamp["luminaire"];
+        assert_eq!(m["file"], "downlight.ies");
+        assert_eq!(m["format"], "IES LM-63-2002");
+        // Φ = 2π·I₀/5 = 1700 lm (make_photometry.py), the bilinear table within 1 %.
+        close(f64_of(&m["table_lm"]), 1700.0, 0.01, "table flux");
+        close(
+            f64_of(&lamp["power_lm"]),
+            f64_of(&m["table_lm"]),
+            1e-5,
+            "power",
+        );
+        // IES LM-63 states the bare lamp's lumens: one 2000 lm module.
+        assert_eq!(
+            (f64_of(&m["file_lm"]), m["file_lm_of"].as_str()),
+            (2000.0, Some("lamps"))
+        );
+        close(f64_of(&m["watts"]), 18.5, 1e-9, "watts");
+        close3(vec3_of(&m["aim"]), [0.0, -1.0, 0.0], 1e-6, "aim");
+        close3(vec3_of(&m["c0"]), [1.0, 0.0, 0.0], 1e-6, "C0");
+        // The table says the same in words.
+        let mut args = vec!["scene".to_string()];
+        args.extend(lamp_room_with("photometry/batwing.ldt", &[]));
+        let out = invlight(&args);
+        let table = text(&out.stdout);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        for words in [
+            "batwing.ldt (EULUMDAT)",
+            "the file says 3672 lm of luminaire",
+            "64.00 W",
+        ] {
+            assert!(table.contains(words), "{words:?} in {table}");
+        }
+    }
+
+    /// A problem file's `<luminaire>` is relative to the problem file, scales candela
+    /// and watts by its multiplier, and `--luminaire` after it wins.
+    #[test]
+    fn problem_file_luminaire() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::copy(
+            data("ilp/lamp-room.gltf"),
+            dir.path().join("lamp-room.gltf"),
+        )
+        .unwrap();
+        std::fs::create_dir(dir.path().join("lamps")).unwrap();
+        std::fs::copy(
+            data("photometry/downlight.ldt"),
+            dir.path().join("lamps/downlight.ldt"),
+        )
+        .unwrap();
+        let problem = |luminaire: &str| {
+            let path = dir.path().join("problem.xml");
+            std::fs::write(
+                &path,
+                format!(
+                    r#"<input>
+  <scene path="lamp-room.gltf">
+    {luminaire}
+  </scene>
+  <conditions><lightPower id="Lamp" min="0.1" max="1"/></conditions>
+  <objectives><maximizeRadiance surface="Desk"/></objectives>
+</input>"#
+                ),
+            )
+            .unwrap();
+            path
+        };
+        let path =
+            problem(r#"<luminaire light="Lamp" file="lamps/downlight.ldt" multiplier="2"/>"#);
+        let lamp = named(&scene(&path)["lights"], "Lamp").clone();
+        let m = &lamp["luminaire"];
+        assert_eq!(m["file"], "downlight.ldt");
+        close(f64_of(&m["multiplier"]), 2.0, 1e-6, "multiplier");
+        close(
+            f64_of(&lamp["power_lm"]),
+            2.0 * f64_of(&m["table_lm"]),
+            1e-5,
+            "power",
+        );
+        close(f64_of(&m["watts"]), 2.0 * 18.5, 1e-9, "watts");
+        // EULUMDAT states the luminaire's flux: 2000 lm × LOR 85 %.
+        close(f64_of(&m["file_lm"]), 1700.0, 1e-9, "file flux");
+        assert_eq!(m["file_lm_of"], "luminaire");
+
+        let cli = json([
+            "scene".as_ref(),
+            path.as_os_str(),
+            "--luminaire".as_ref(),
+            format!("Lamp={}", data("photometry/cosine.ies").display()).as_ref(),
+            "--json".as_ref(),
+        ]);
+        let m = &named(&cli["lights"], "Lamp")["luminaire"];
+        assert_eq!(m["file"], "cosine.ies");
+        close(
+            f64_of(&m["table_lm"]),
+            std::f64::consts::PI * 100.0,
+            1e-3,
+            "cosine flux",
+        );
+
+        // Errors name the problem file's line and say where the file is looked for.
+        let missing = problem(r#"<luminaire light="Lamp" file="lamps/none.ies"/>"#);
+        input_error(
+            ["scene".as_ref(), missing.as_os_str()],
+            &[
+                "problem.xml:3",
+                "none.ies does not exist",
+                "relative to the problem file's folder",
+            ],
+        );
+        let outside = problem(r#"<luminaire light="Lamp" file="../downlight.ldt"/>"#);
+        input_error(
+            ["scene".as_ref(), outside.as_os_str()],
+            &["problem.xml", "outside"],
+        );
+        let wrong = problem(r#"<luminaire light="Lmp" file="lamps/downlight.ldt"/>"#);
+        input_error(
+            ["scene".as_ref(), wrong.as_os_str()],
+            &["problem.xml:3", "no light named 'Lmp'", "invlight scene"],
+        );
+        let bad = problem(r#"<luminaire light="Lamp" file="lamps/downlight.ldt" multiplier="0"/>"#);
+        input_error(
+            [
+                "measure".as_ref(),
+                bad.as_os_str(),
+                "-s".as_ref(),
+                "Desk".as_ref(),
+            ],
+            &["problem.xml:3", "multiplier"],
+        );
+    }
+
+    /// The flag's own errors, the same on every command: not NAME=FILE, a missing file,
+    /// a light that is not there.
+    #[test]
+    fn flag_errors() {
+        let room = data("ilp/lamp-room.gltf").display().to_string();
+        let cosine = format!("Desk={}", data("photometry/cosine.ies").display());
+        for (command, value, mentions) in [
+            ("map", "Lamp", &["NAME=FILE"][..]),
+            (
+                "measure",
+                "Lamp=nowhere.ies",
+                &["nowhere.ies does not exist", "current folder"],
+            ),
+            ("scene", cosine.as_str(), &["no light named 'Desk'", "Lamp"]),
+        ] {
+            let mut args = vec![command, room.as_str(), "--luminaire", value];
+            if command != "scene" {
+                args.extend(["-s", "Floor"]);
+            }
+            input_error(args, mentions);
+        }
+    }
+}

@@ -11,7 +11,7 @@ use invlight_ilp::{Problem, configured_scene};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, Side, TraceSettings, photons_traced};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
-use invlight_scene::{LoadOptions, Scene, UpAxis};
+use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
 use std::path::{Path, PathBuf};
@@ -41,6 +41,11 @@ pub struct LoadArgs {
     /// pipes are never read.
     #[arg(long)]
     pub allow_outside_paths: bool,
+    /// Give the point or spot light NAME the candela table of an IES LM-63 (.ies) or
+    /// EULUMDAT (.ldt) file, where the light is and aimed as it is (repeatable; after a
+    /// problem file's <luminaire>s, so this one wins). `invlight scene` lists the names.
+    #[arg(long, value_name = "NAME=FILE")]
+    pub luminaire: Vec<Luminaire>,
 }
 
 /// An up axis (`y` or `z`), as a flag's value parser that lists both in --help.
@@ -94,8 +99,10 @@ impl LoadArgs {
         }
     }
 
-    /// Refuses a scene whose ray-tracing structure would not fit the memory limit.
-    fn fits(&self, scene: Scene, path: &Path) -> anyhow::Result<Scene> {
+    /// Gives the scene the `--luminaire` files, then refuses it if its ray-tracing
+    /// structure would not fit the memory limit.
+    fn fits(&self, mut scene: Scene, path: &Path) -> anyhow::Result<Scene> {
+        scene.set_luminaires(path, &self.luminaire, &self.options())?;
         Accel::check_memory(&scene, path, self.options().max_memory)?;
         Ok(scene)
     }

@@ -17,7 +17,8 @@
 //! - [`Photometry`]: a luminaire's candela table from an IES LM-63 or EULUMDAT file
 //!   ([`read_photometry`]), which a [`LightKind::Goniometric`] light emits; glTF files
 //!   place them by `EXT_lights_ies`, [`Scene::set_photometry`] puts one in place of a
-//!   point or spot light.
+//!   point or spot light, and [`Scene::set_luminaires`] does so from the files a
+//!   [`Luminaire`] names (`--luminaire NAME=FILE`, a problem file's `<luminaire>`).
 //!
 //! Units (DESIGN.md §1): lengths in metres; point and spot intensities in candela,
 //! directional illuminance in lux, emission as luminance in cd/m². Colours are linear
@@ -47,6 +48,7 @@ mod image_file;
 mod light;
 mod load;
 mod lookup;
+mod luminaire;
 mod material;
 mod mesh;
 mod model;
@@ -63,6 +65,7 @@ pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
 pub use load::{LoadOptions, UpAxis, load};
 pub use lookup::known_names;
+pub use luminaire::Luminaire;
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
 pub use model::{
@@ -73,6 +76,6 @@ pub use photometry::{
     DirectionSample, Opening, PhotometricSystem, Photometry, PhotometryFormat, Tilt, parse_ies,
     parse_ldt, read_photometry,
 };
-pub use summary::{CameraSummary, LightSummary, SceneSummary, SurfaceSummary};
+pub use summary::{CameraSummary, LightSummary, LuminaireSummary, SceneSummary, SurfaceSummary};
 pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};
 pub use world::WorldTriangle;

@@ -143,6 +143,27 @@ impl LightKind {
         }
     }
 
+    /// The electrical power of a goniometric light whose file gives it, W, in a scene
+    /// whose zenith is `up`: the file's input watts (IES LM-63 input watts; EULUMDAT's
+    /// wattage including ballast) × the luminance of the light's multiplier without the
+    /// IES tilt factor ([`tilt_factor`]), which changes the lamp's light and not what it
+    /// draws. A multiplier of 2 is twice the light for twice the power, as two lamps
+    /// would be; a light dimmed to a level draws that share. `None` for a file without
+    /// watts and for every other kind of light.
+    pub fn watts(&self, up: Vec3) -> Option<f64> {
+        let LightKind::Goniometric {
+            frame,
+            photometry,
+            multiplier,
+            ..
+        } = self
+        else {
+            return None;
+        };
+        let tilt = tilt_factor(photometry, -frame.z_axis, up).max(f32::MIN_POSITIVE);
+        Some(photometry.watts? * (luminance(*multiplier) / tilt) as f64)
+    }
+
     /// `point`, `spot`, `directional` or `goniometric`.
     pub fn name(&self) -> &'static str {
         match self {

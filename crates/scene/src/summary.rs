@@ -1,6 +1,7 @@
 //! What a scene holds, as `invlight scene` shows it and `--json` writes it: surfaces
 //! with their materials, lights with their flux and aim (emissive surfaces among them,
-//! with the way they face), cameras and bounds, and warnings about what a file's units
+//! with the way they face; luminaires with their file, the flux of its table beside the
+//! file's own figure, watts and aim), cameras and bounds, and warnings about what a file's units
 //! suggest. One [`SceneSummary`] is both the table's data and the JSON's schema.
 
 use crate::light::{LightKind, luminance};
@@ -56,6 +57,37 @@ pub struct LightSummary {
     pub power_lm: Option<f32>,
     /// The sun's illuminance on a plane facing it, lx.
     pub illuminance_lx: Option<f32>,
+    /// For a luminaire (a goniometric light), its photometric file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub luminaire: Option<LuminaireSummary>,
+}
+
+/// What a luminaire's photometric file says, beside what invlight makes of it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LuminaireSummary {
+    /// The file's name.
+    pub file: String,
+    /// Its format: `IES LM-63-2002`, `EULUMDAT`, ….
+    pub format: String,
+    /// The luminous flux of its candela table, lm: the integral over the sphere of the
+    /// table as interpolated, before the light's multiplier (`power_lm` is after it).
+    pub table_lm: f64,
+    /// The flux the file states, lm: EULUMDAT's lamp flux × light output ratio (the
+    /// luminaire's); IES LM-63's lamps × lumens per lamp (the bare lamps', more than
+    /// the luminaire sends); none for absolute photometry.
+    pub file_lm: Option<f64>,
+    /// What `file_lm` is the flux of: `luminaire` or `lamps`.
+    pub file_lm_of: Option<String>,
+    /// Electrical power, W, as the light is scaled ([`LightKind::watts`]); none when
+    /// the file gives no watts.
+    pub watts: Option<f64>,
+    /// The luminance of the factor on the table (a problem's or glTF's multiplier and
+    /// colour, an IES tilt factor).
+    pub multiplier: f32,
+    /// The aim, where γ = 0 points, unit.
+    pub aim: [f32; 3],
+    /// The C0 axis (C = 0°, γ = 90°), unit.
+    pub c0: [f32; 3],
 }
 
 /// A camera.
@@ -122,6 +154,7 @@ impl Scene {
                     LightKind::Directional { illuminance, .. } => Some(luminance(illuminance)),
                     _ => None,
                 },
+                luminaire: self.luminaire_summary(&l.kind),
             })
             .collect();
         // Emissive surfaces are area lights: flux π·L·A from their front faces. A
@@ -152,6 +185,7 @@ impl Scene {
                     direction: Some(facing.normalize_or_zero().to_array()),
                     power_lm: Some(flux as f32),
                     illuminance_lx: None,
+                    luminaire: None,
                 });
             }
         }
@@ -175,6 +209,13 @@ impl Scene {
                 ));
             }
         }
+        for l in &self.lights {
+            if let LightKind::Goniometric { photometry, .. } = &l.kind {
+                for w in &photometry.warnings {
+                    warnings.push(format!("the light '{}' ({}): {w}", l.name, photometry.file));
+                }
+            }
+        }
         for l in &lights {
             if let Some(flux) = l.power_lm.filter(|&f| f > SUSPICIOUS_FLUX) {
                 warnings.push(format!(
@@ -191,6 +232,35 @@ impl Scene {
             up: self.up.to_array(),
             warnings,
         }
+    }
+
+    /// A goniometric light's file, flux, watts and aim.
+    fn luminaire_summary(&self, kind: &LightKind) -> Option<LuminaireSummary> {
+        let LightKind::Goniometric {
+            frame,
+            photometry: p,
+            multiplier,
+            ..
+        } = kind
+        else {
+            return None;
+        };
+        let (file_lm, of) = match (p.stated_flux, p.lumens_per_lamp) {
+            (Some(f), _) => (Some(f), Some("luminaire")),
+            (None, Some(per_lamp)) => (Some(per_lamp * p.lamps as f64), Some("lamps")),
+            (None, None) => (None, None),
+        };
+        Some(LuminaireSummary {
+            file: p.file.clone(),
+            format: p.format.name().into(),
+            table_lm: p.flux(),
+            file_lm,
+            file_lm_of: of.map(String::from),
+            watts: kind.watts(self.up),
+            multiplier: luminance(*multiplier),
+            aim: (-frame.z_axis).to_array(),
+            c0: frame.x_axis.to_array(),
+        })
     }
 
     fn surface_summary(&self, i: SurfaceId) -> SurfaceSummary {
@@ -282,6 +352,28 @@ impl SceneSummary {
                     "{:<20}  {:<11}  {p:<32}  {d:<28}  {power}",
                     l.name, l.kind
                 );
+                if let Some(m) = &l.luminaire {
+                    let file = match (m.file_lm, m.file_lm_of.as_deref()) {
+                        (Some(f), Some(of)) => {
+                            format!("the file says {} lm of {of}", significant(f))
+                        }
+                        _ => "absolute photometry".into(),
+                    };
+                    let watts = m
+                        .watts
+                        .map_or("no watts".into(), |w| format!("{} W", significant(w)));
+                    let _ = writeln!(
+                        out,
+                        "{:<20}  {} ({}): table {} lm ({file}) × {}, {watts}, aim {}, C0 {}",
+                        "",
+                        m.file,
+                        m.format,
+                        significant(m.table_lm),
+                        significant(m.multiplier as f64),
+                        v3(Some(m.aim)),
+                        v3(Some(m.c0))
+                    );
+                }
             }
             if self.lights.iter().any(|l| l.kind == "area") {
                 out += "area lights emit from their front side only, the side their direction points to\n";

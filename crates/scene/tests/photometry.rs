@@ -440,6 +440,31 @@ fn tilt_data_from_a_file_beside() {
     );
 }
 
+/// A `TILT=<file>` is a reference like a scene's: one outside the IES file's folder
+/// tree is refused with the line, the way it was written and the flag that allows it;
+/// one in a subfolder is read.
+#[test]
+fn tilt_file_stays_beside() {
+    let dir = tempdir();
+    std::fs::create_dir(dir.join("lamps")).unwrap();
+    std::fs::create_dir(dir.join("lamps/tilt")).unwrap();
+    std::fs::write(dir.join("lamp.tlt"), "3\n3\n0 45 90\n1 0.8 0.5\n").unwrap();
+    std::fs::copy(dir.join("lamp.tlt"), dir.join("lamps/tilt/lamp.tlt")).unwrap();
+    let ies = dir.join("lamps/lamp.ies");
+    std::fs::write(&ies, GOOD_IES.replace("TILT=NONE", "TILT=../lamp.tlt")).unwrap();
+    let e = read_photometry(&ies).unwrap_err();
+    let text = format!("{e} {}", e.hint.as_deref().unwrap_or(""));
+    assert!(
+        text.contains("line 3")
+            && text.contains("../lamp.tlt")
+            && text.contains("--allow-outside-paths"),
+        "{text}"
+    );
+    std::fs::write(&ies, GOOD_IES.replace("TILT=NONE", "TILT=tilt/lamp.tlt")).unwrap();
+    let p = read_photometry(&ies).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(p.tilt.unwrap().angles.len(), 3);
+}
+
 /// A unique empty folder under the target directory (no tempfile dependency here).
 fn tempdir() -> PathBuf {
     use std::sync::atomic::{AtomicU32, Ordering};

@@ -13,7 +13,7 @@ mod bare_attributes;
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
-use invlight_scene::{Diagnostic, LoadOptions, Scene, UpAxis};
+use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
 
@@ -137,7 +137,8 @@ impl VariableSpec {
     }
 }
 
-/// The scene a problem is posed on: `<scene path="…" scale="…" up="…"/>`.
+/// The scene a problem is posed on: `<scene path="…" scale="…" up="…"/>`, with the
+/// photometric files its `<luminaire>` children give its lights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneRef {
     /// The scene file, resolved against the problem file's folder.
@@ -146,6 +147,9 @@ pub struct SceneRef {
     pub scale: Option<f32>,
     /// `up`: the file's up axis when it does not say or says wrongly (invlight).
     pub up: Option<UpAxis>,
+    /// `<luminaire light="…" file="…" multiplier="…"/>` children (invlight), in file
+    /// order: the named point or spot light emits the file's candela table.
+    pub luminaires: Vec<Luminaire>,
     /// Line of its element.
     pub line: u32,
 }
@@ -219,7 +223,8 @@ impl Problem {
     }
 
     /// Loads the problem's scene with `base`'s options and `<scene>`'s `scale` and `up`
-    /// unless `scale` and `up` (the command line's) say otherwise. A missing file is
+    /// unless `scale` and `up` (the command line's) say otherwise, its lights given
+    /// their `<luminaire>` files (relative to the problem file). A missing file is
     /// named with the problem file's line: its path is relative to the problem file,
     /// not to the current directory.
     pub fn load_scene(
@@ -248,7 +253,9 @@ impl Problem {
         let mut options = *base;
         options.scale = scale.or(self.scene.scale).unwrap_or(1.0);
         options.up = up.or(self.scene.up);
-        invlight_scene::load(path, &options)
+        let mut scene = invlight_scene::load(path, &options)?;
+        scene.set_luminaires(path, &self.scene.luminaires, &options)?;
+        Ok(scene)
     }
 
     /// The search settings the file asks for.
@@ -399,6 +406,43 @@ impl<'a, 'i> Reader<'a, 'i> {
         }
     }
 
+    /// `<scene>`'s `<luminaire light file multiplier>` children; the file is kept as
+    /// written and resolved when the scene is loaded ([`Scene::set_luminaires`]), under
+    /// the folder rule of the problem file.
+    fn luminaires(&self, scene: Node) -> Result<Vec<Luminaire>, Diagnostic> {
+        let mut out = Vec::new();
+        for e in self.elements(scene) {
+            if e.tag_name().name() != "luminaire" {
+                self.warn(
+                    e,
+                    format!(
+                        "unknown element <{}> in <scene> ignored (expected luminaire)",
+                        e.tag_name().name()
+                    ),
+                );
+                continue;
+            }
+            self.check_attributes(e, &["light", "file", "multiplier"]);
+            let what = "a positive factor on the file's candela";
+            let multiplier = match self.real(e, "multiplier", what)? {
+                Some(m) if m <= 0.0 || m as f32 > f32::MAX => {
+                    return Err(self.error(
+                        e,
+                        format!("'multiplier' of <luminaire> is {m}, expected {what}"),
+                    ));
+                }
+                m => m.unwrap_or(1.0) as f32,
+            };
+            out.push(Luminaire {
+                light: self.required(e, "light")?,
+                file: PathBuf::from(self.required(e, "file")?),
+                multiplier,
+                origin: Some((self.path.to_path_buf(), self.line(e))),
+            });
+        }
+        Ok(out)
+    }
+
     fn problem(&self) -> Result<Problem, Diagnostic> {
         let root = self.doc.root_element();
         if root.tag_name().name() != "input" {
@@ -460,6 +504,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             path: dir.join(self.required(scene_el, "path")?),
             scale,
             up,
+            luminaires: self.luminaires(scene_el)?,
             line: self.line(scene_el),
         };
 

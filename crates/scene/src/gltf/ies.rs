@@ -12,7 +12,7 @@
 use super::Builder;
 use crate::error::LoadError;
 use crate::light::{Light, LightKind, tilt_factor};
-use crate::photometry::{Photometry, parse_ies};
+use crate::photometry::{Photometry, parse_ies_in};
 use glam::{Mat3, Mat4, Vec3};
 use gltf_json as json;
 use serde_json::Value;
@@ -151,7 +151,7 @@ impl Builder<'_> {
         };
         let referenced = self.referenced(uri, view, &here)?;
         let photometry = match &referenced.file {
-            Some(file) => parse_ies(&referenced.bytes, file)?,
+            Some(file) => parse_ies_in(&referenced.bytes, file, self.files)?,
             None => {
                 // Embedded: errors point into the glTF, a TILT=<file> beside it.
                 let beside = self
@@ -159,7 +159,7 @@ impl Builder<'_> {
                     .parent()
                     .unwrap_or(Path::new(""))
                     .join("embedded.ies");
-                parse_ies(&referenced.bytes, &beside).map_err(|e| LoadError {
+                parse_ies_in(&referenced.bytes, &beside, self.files).map_err(|e| LoadError {
                     path: self.path.to_path_buf(),
                     location: if e.location.is_empty() {
                         here.clone()

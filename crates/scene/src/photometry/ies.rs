@@ -15,6 +15,8 @@ use super::symmetry::{Symmetry, expand_b, expand_c};
 use super::text::{Numbers, increasing, latin1};
 use super::{Opening, PhotometricSystem, Photometry, PhotometryFormat, Table, Tilt};
 use crate::error::LoadError;
+use crate::files::{Files, ReadError};
+use crate::load::LoadOptions;
 use std::path::Path;
 
 /// Metres per foot.
@@ -23,8 +25,20 @@ const FOOT: f64 = 0.3048;
 const FORMAT_HINT: &str = "the file does not follow IES LM-63: export it again from the manufacturer's tool, or check the counts of angles against the values";
 
 /// Reads an IES LM-63 file's bytes; `path` names it in errors and locates a
-/// `TILT=<file>`.
+/// `TILT=<file>`, which is read as a scene's references are (files.rs): from the IES
+/// file's folder or below, a regular file, within the default memory budget.
 pub fn parse_ies(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
+    parse_ies_in(bytes, path, &Files::new(path, &LoadOptions::default()))
+}
+
+/// [`parse_ies`] with the references of the load it is part of: a `TILT=<file>` is
+/// resolved relative to `path` and must stay where `files` allows (the scene's or the
+/// problem file's folder unless `--allow-outside-paths`), charged to its budget.
+pub(crate) fn parse_ies_in(
+    bytes: &[u8],
+    path: &Path,
+    files: &Files,
+) -> Result<Photometry, LoadError> {
     let text = latin1(bytes).replace("\r\n", "\n").replace('\r', "\n");
     let lines: Vec<&str> = text.lines().collect();
     let at = |line: usize, message: String| LoadError::at(path, format!("line {line}"), message);
@@ -87,17 +101,25 @@ pub fn parse_ies(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         "NONE" => None,
         "INCLUDE" => Some(read_tilt(&mut numbers)?),
         file => {
-            let tilt_path = path.parent().unwrap_or(Path::new("")).join(file);
-            let bytes = std::fs::read(&tilt_path).map_err(|e| {
+            let loc = format!("line {}", tilt_line + 1);
+            let tilt_path = files.resolve(path, &loc, file, Path::new(file))?;
+            let cannot = |why: String| {
                 at(
                     tilt_line + 1,
                     format!(
-                        "cannot read the tilt file {file} ({}): {e}",
+                        "cannot read the tilt file {file} ({}): {why}",
                         tilt_path.display()
                     ),
                 )
                 .with_hint("a TILT=<file> is looked up beside the IES file")
-            })?;
+            };
+            let bytes = files
+                .read(path, &loc, &tilt_path, None)
+                .map_err(|e| match e {
+                    ReadError::Missing => cannot("no such file".into()),
+                    ReadError::Io(m) => cannot(m),
+                    ReadError::Budget(e) => e,
+                })?;
             let tilt_text = latin1(&bytes);
             let tilt_lines: Vec<&str> = tilt_text.lines().collect();
             Some(read_tilt(&mut Numbers::new(&tilt_path, &tilt_lines, 1))?)

@@ -34,11 +34,14 @@ mod symmetry;
 mod text;
 
 use crate::error::LoadError;
+use crate::files::Files;
+use crate::load::LoadOptions;
 use glam::{Vec2, Vec3};
 use invlight_stats::PiecewiseConstant2D;
 use std::path::Path;
 
 pub use ies::parse_ies;
+pub(crate) use ies::parse_ies_in;
 pub use ldt::parse_ldt;
 
 /// Which file format, and which version of it, a photometry was read from.
@@ -399,20 +402,26 @@ impl Photometry {
 
 /// Reads an IES (`.ies`) or EULUMDAT (`.ldt`) file, by extension; a file with another
 /// extension is read as IES when it starts like one (`IES`, or a `TILT=` line), else
-/// as EULUMDAT.
+/// as EULUMDAT. The file is read as a scene file is (a regular file, within the default
+/// memory budget), and an IES `TILT=<file>` from its folder or below.
 pub fn read_photometry(path: &Path) -> Result<Photometry, LoadError> {
-    let bytes = std::fs::read(path).map_err(|e| {
-        LoadError::new(path, format!("cannot read the photometric file: {e}"))
-            .with_hint("give the path of an IES LM-63 (.ies) or EULUMDAT (.ldt) file")
-    })?;
+    let files = Files::new(path, &LoadOptions::default());
+    read_photometry_in(path, &files)
+}
+
+/// [`read_photometry`] within the references and budget of `files`.
+pub(crate) fn read_photometry_in(path: &Path, files: &Files) -> Result<Photometry, LoadError> {
+    let bytes = files
+        .read_scene(path)
+        .map_err(|e| e.with_hint("give the path of an IES LM-63 (.ies) or EULUMDAT (.ldt) file"))?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase());
     match ext.as_deref() {
-        Some("ies") => parse_ies(&bytes, path),
+        Some("ies") => ies::parse_ies_in(&bytes, path, files),
         Some("ldt") => parse_ldt(&bytes, path),
-        _ if text::looks_like_ies(&bytes) => parse_ies(&bytes, path),
+        _ if text::looks_like_ies(&bytes) => ies::parse_ies_in(&bytes, path, files),
         _ => parse_ldt(&bytes, path),
     }
 }
