@@ -90,7 +90,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     for w in &binding.warnings {
         eprintln!("warning: {w}");
     }
-    let info = ObjectiveInfo::of(&problem);
+    let info = ObjectiveInfo::of(&problem, &binding);
     let pictures = (!args.no_images)
         .then(|| {
             let (w, n) = (args.image_width, args.image_photons);

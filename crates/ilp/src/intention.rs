@@ -69,7 +69,8 @@ pub enum Goal {
         /// Its grid.
         grid: Grid,
     },
-    /// `<minimizePower/>`: the least luminous flux of the scene's lights as dimmed, lm.
+    /// `<minimizePower/>`: the least power of the scene's lights as dimmed: watts when
+    /// every light's file gives them, lumens otherwise ([`crate::PowerUnit`]).
     MinimizePower,
 }
 
@@ -96,7 +97,8 @@ impl Goal {
         }
     }
 
-    /// The unit of its value: `lx`, `` (a ratio) or `lm`.
+    /// The unit of its value: `lx`, `` (a ratio) or `lm` (a bound problem's
+    /// `minimizePower` may count watts instead: [`crate::Binding::goal_unit`]).
     pub fn unit(&self) -> &'static str {
         match self {
             Goal::MaximizeUniformity { .. } => "",

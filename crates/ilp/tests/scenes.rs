@@ -537,7 +537,7 @@ fn lamp_files(threads: usize, dir: &Path) -> String {
     let binding = Binding::new(&pb, &mut scene).unwrap();
     let mut search = Search::new(&binding.space, pb.settings(), &binding.initial);
     let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
-    let info = ObjectiveInfo::of(&pb);
+    let info = ObjectiveInfo::of(&pb, &binding);
     let start = Start::Fresh { replace: false };
     let mut out = Output::create(dir, &binding, info, &pb.settings(), 64, &start).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()

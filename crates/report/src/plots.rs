@@ -5,7 +5,7 @@
 
 use crate::describe::{compass, subject};
 use glam::DVec3;
-use invlight_ilp::{Axes, Binding, Domain, Goal, Isoc, Record, Role, Verdict, visits};
+use invlight_ilp::{Axes, Binding, Domain, Isoc, Record, Role, Verdict, visits};
 use invlight_render::{
     ConvergencePlot, ConvergencePoint, Mark, PlanAxis, PlanFrame, PlotKind, PlotPoint, SearchPlot,
 };
@@ -201,7 +201,7 @@ pub fn search_plot(
     SearchPlot {
         title,
         kind,
-        unit: goal_unit(&binding.goal),
+        unit: goal_unit(binding),
         cap,
         points,
     }
@@ -210,7 +210,7 @@ pub fn search_plot(
 /// The best configuration so far against the photons traced: the search's start and
 /// each improvement it moved to (a fast estimate's refinement with N is the move), then
 /// the final ISOC's best member (re-measured with N when the strategy says so).
-pub fn convergence(records: &[Record], isoc: &Isoc, goal: &Goal) -> ConvergencePlot {
+pub fn convergence(records: &[Record], isoc: &Isoc, binding: &Binding) -> ConvergencePlot {
     let z = isoc.z();
     let mut photons = 0u64;
     let mut points = Vec::new();
@@ -234,14 +234,14 @@ pub fn convergence(records: &[Record], isoc: &Isoc, goal: &Goal) -> ConvergenceP
     }
     ConvergencePlot {
         title: "Convergence: the best configuration so far".into(),
-        unit: goal_unit(goal),
+        unit: goal_unit(binding),
         points,
     }
 }
 
-/// The unit a plot labels the goal's values with: lx, lm, or U0 for a uniformity.
-pub fn goal_unit(goal: &Goal) -> String {
-    match goal.unit() {
+/// The unit a plot labels the goal's values with: lx, W or lm, or U0 for a uniformity.
+pub fn goal_unit(binding: &Binding) -> String {
+    match binding.goal_unit() {
         "" => "U0".into(),
         u => u.into(),
     }

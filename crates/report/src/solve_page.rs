@@ -451,7 +451,7 @@ impl<'a> SolveReport<'a> {
                 "Every evaluated cell in the colour of its mean (viridis over the evaluated range); the start (square), the improvements in order (line), the ISOC (red rings).",
             );
         }
-        let conv = convergence(&f.records, &f.isoc, &b.goal);
+        let conv = convergence(&f.records, &f.isoc, b);
         search += &figure(
             &conv.svg()?,
             &format!(

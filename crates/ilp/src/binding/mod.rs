@@ -100,8 +100,34 @@ pub struct Binding {
     /// Where placed things may go: everything no variable moves, and every moved thing
     /// as authored.
     bounds: Option<Bounds>,
-    /// The electric lights' authored flux per component, lm (daylight costs nothing).
-    electric_flux: Vec<f64>,
+    /// The electric lights' authored power per component, in `power_unit` (daylight
+    /// costs nothing).
+    electric_power: Vec<f64>,
+    /// What `electric_power` and [`Binding::power`] count.
+    pub power_unit: PowerUnit,
+}
+
+/// What `minimizePower` minimises: electrical watts when every electric light's
+/// photometric file gives them, else luminous flux — a designer's "least power" is
+/// the meter's, but a point light or an emissive surface has no watts, and a sum of
+/// some lamps' watts with other lamps' lumens would mean nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PowerUnit {
+    /// Electrical power, W ([`LightKind::watts`]: the IES input watts, EULUMDAT's
+    /// wattage with ballast).
+    Watts,
+    /// Luminous flux, lm.
+    Lumens,
+}
+
+impl PowerUnit {
+    /// `W` or `lm`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            PowerUnit::Watts => "W",
+            PowerUnit::Lumens => "lm",
+        }
+    }
 }
 
 impl Binding {
@@ -269,9 +295,10 @@ impl Binding {
             warnings,
             targets,
             bounds,
-            electric_flux: Vec::new(),
+            electric_power: Vec::new(),
+            power_unit: PowerUnit::Lumens,
         };
-        binding.electric_flux = binding.component_flux(scene);
+        (binding.electric_power, binding.power_unit) = binding.component_power(scene);
         Ok(binding)
     }
 
@@ -301,23 +328,48 @@ impl Binding {
         c
     }
 
-    /// Each component's electric flux as authored, lm: every light but the sun.
-    fn component_flux(&self, scene: &Scene) -> Vec<f64> {
+    /// Each component's electric power as authored, every light but the sun: watts
+    /// when every electric light has them ([`PowerUnit`]), else lumens.
+    fn component_power(&self, scene: &Scene) -> (Vec<f64>, PowerUnit) {
         let emitters = Emitters::new(scene);
         let components = self.components(scene);
-        let mut flux = vec![0.0; self.component_count()];
+        let (mut flux, mut watts) = (
+            vec![0.0; self.component_count()],
+            Some(vec![0.0; self.component_count()]),
+        );
+        let mut counted = vec![false; scene.lights.len()];
         let of = components.of_sources(&emitters);
         for (s, &k) in of.iter().enumerate() {
             let s = s as u32;
-            let daylight = match emitters.origin(s) {
-                SourceOrigin::Light(l) => power::is_daylight(&scene.lights[l].kind),
-                SourceOrigin::Instance(_) => false,
-            };
-            if !daylight {
-                flux[k as usize] += emitters.flux(s);
+            let k = k as usize;
+            match emitters.origin(s) {
+                SourceOrigin::Light(l) if power::is_daylight(&scene.lights[l].kind) => continue,
+                SourceOrigin::Light(l) => {
+                    // A light drawn as several sources draws its watts once.
+                    if !std::mem::replace(&mut counted[l.index()], true) {
+                        match (scene.lights[l].kind.watts(scene.up), &mut watts) {
+                            (Some(w), Some(sum)) => sum[k] += w,
+                            _ => watts = None,
+                        }
+                    }
+                }
+                SourceOrigin::Instance(_) => watts = None,
             }
+            flux[k] += emitters.flux(s);
         }
-        flux
+        match watts {
+            Some(w) if counted.iter().any(|&c| c) => (w, PowerUnit::Watts),
+            _ => (flux, PowerUnit::Lumens),
+        }
+    }
+
+    /// The goal's unit: [`Goal::unit`], and for `minimizePower` what
+    /// [`Binding::power`] counts.
+    pub fn goal_unit(&self) -> &'static str {
+        match self.goal {
+            Goal::MinimizePower => self.power_unit.symbol(),
+            _ => self.goal.unit(),
+        }
     }
 
     /// The weight of each component at `config`: 1 for the undimmed lights, each
@@ -333,12 +385,14 @@ impl Binding {
         w
     }
 
-    /// The electric lights' luminous flux at `config`, lm: each component's authored
-    /// flux times its level (exact; daylight is not counted).
+    /// The electric lights' power at `config` in [`Binding::power_unit`]: each
+    /// component's authored power times its level (exact for flux; for watts, a lamp
+    /// dimmed to a level is taken to draw that share, as a driver's rated curve is not
+    /// in the file; daylight is not counted).
     pub fn power(&self, config: &Configuration) -> f64 {
         self.levels(config)
             .iter()
-            .zip(&self.electric_flux)
+            .zip(&self.electric_power)
             .map(|(w, f)| w * f)
             .sum()
     }

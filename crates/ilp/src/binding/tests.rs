@@ -341,3 +341,53 @@ fn a_hole_larger_than_its_wall_is_refused() {
         .is_ok()
     );
 }
+
+/// `minimizePower` counts watts when every electric light has them and lumens
+/// otherwise, and says which (the sun costs nothing either way).
+#[test]
+fn power_in_watts_when_every_lamp_has_them() {
+    let least = |s: &mut Scene| {
+        let p = Problem::parse(
+            Path::new("/p/x.xml"),
+            "<input><scene path=\"s.gltf\"/><conditions meshSize=\"10\"><lightPower id=\"Lamp\" min=\"0\" max=\"1\"/></conditions><objectives><minimizePower/><minLux surface=\"Floor\" value=\"1\"/></objectives></input>",
+        )
+        .unwrap();
+        Binding::new(&p, s).unwrap()
+    };
+    let half = Configuration { coords: vec![0.5] };
+    // A 1 cd point lamp sends 4π lm; it has no watts.
+    let mut s = scene();
+    let b = least(&mut s);
+    assert_eq!((b.power_unit, b.goal_unit()), (PowerUnit::Lumens, "lm"));
+    assert!((b.power(&half) - 0.5 * 4.0 * std::f64::consts::PI).abs() < 1e-4);
+    // A 20 W file at multiplier 2 is two such lamps: 40 W, half of it at level 0.5.
+    let mut table = invlight_scene::Photometry::from_table(
+        invlight_scene::PhotometricSystem::C,
+        vec![0.0, 360.0],
+        vec![0.0, 90.0],
+        vec![100.0; 4],
+    )
+    .unwrap();
+    table.watts = Some(20.0);
+    let table = std::sync::Arc::new(table);
+    s.set_photometry("Lamp", table.clone(), 2.0).unwrap();
+    let b = least(&mut s);
+    assert_eq!((b.power_unit, b.goal_unit()), (PowerUnit::Watts, "W"));
+    assert!((b.power(&half) - 20.0).abs() < 1e-9, "{}", b.power(&half));
+    // One lamp without watts: lumens for all, not a sum of watts and lumens.
+    s.lights.push(Light {
+        name: "Bare".into(),
+        kind: LightKind::Point {
+            position: Vec3::new(2.0, 1.0, 2.5),
+            intensity: Vec3::ONE,
+        },
+    });
+    let b = least(&mut s);
+    assert_eq!(b.power_unit, PowerUnit::Lumens);
+    let flux = 2.0 * table.flux() * 0.5 + 4.0 * std::f64::consts::PI;
+    assert!(
+        (b.power(&half) - flux).abs() < 1e-3 * flux,
+        "{} vs {flux}",
+        b.power(&half)
+    );
+}

@@ -66,15 +66,16 @@ fn both() -> String {
 }
 
 impl ObjectiveInfo {
-    /// The goal of `problem`.
-    pub fn of(problem: &crate::problem::Problem) -> ObjectiveInfo {
+    /// The goal of `problem` as `binding` bound it (which says what `minimizePower`
+    /// counts).
+    pub fn of(problem: &crate::problem::Problem, binding: &Binding) -> ObjectiveInfo {
         let goal = &problem.goal;
         ObjectiveInfo {
             element: goal.element().into(),
             surface: goal.surface().map(|s| s.name.clone()),
             side: goal.surface().map_or(Side::Both, |s| s.side).name().into(),
             sense: goal.sense().into(),
-            unit: goal.unit().into(),
+            unit: binding.goal_unit().into(),
             cap: match goal {
                 Goal::Maximize { cap, .. } => *cap,
                 _ => None,
@@ -101,7 +102,11 @@ impl ObjectiveInfo {
                 significant(self.target.unwrap_or_default())
             )),
             "maximizeUniformity" => on("the most uniform light (U0)"),
-            "minimizePower" => "the least lamp power".into(),
+            "minimizePower" if self.unit == "W" => "the least electrical power (W)".into(),
+            "minimizePower" => {
+                "the least lamp power as luminous flux (lm: not every lamp's file gives watts)"
+                    .into()
+            }
             _ => on("the most light"),
         }
     }

@@ -327,7 +327,7 @@ fn constraints_and_levels_round_trip() {
         };
         let mut search = Search::new(&b.space, settings.clone(), &b.initial);
         {
-            let info = ObjectiveInfo::of(&p);
+            let info = ObjectiveInfo::of(&p, &b);
             let mut out = Output::create(dir, &b, info, &settings, 7, &fresh(false)).unwrap();
             search.run(&mut Lit, &mut out).unwrap();
         }
