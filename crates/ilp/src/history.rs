@@ -88,9 +88,12 @@ pub fn visits(
                 [w / cells[first] as f64, h / cells[first + 1] as f64],
             )
         }
-        Domain::Hemisphere(_) => (
+        Domain::Hemisphere(h) => (
             Axes::Direction,
-            [90.0 / cells[first + 1] as f64, 360.0 / cells[first] as f64],
+            [
+                h.max_zenith.to_degrees() / cells[first + 1] as f64,
+                360.0 / cells[first] as f64,
+            ],
         ),
         &Domain::Segment { min, max } => (
             Axes::Value { min, max },
@@ -147,7 +150,7 @@ pub fn visits(
 fn coords(domain: &Domain, x: &[f64]) -> [f64; 2] {
     match domain {
         Domain::Parallelogram(r) => [x[0] * r.e1.length(), x[1] * r.e2.length()],
-        Domain::Hemisphere(_) => [x[1] * 90.0, x[0] * 360.0],
+        Domain::Hemisphere(h) => [x[1] * h.max_zenith.to_degrees(), x[0] * 360.0],
         Domain::Segment { min, max } => [min + x[0] * (max - min), 0.0],
     }
 }

@@ -161,14 +161,15 @@ impl Parallelogram {
     }
 }
 
-/// Directions in the hemisphere about `up`, in spherical coordinates (thesis §4.4.2):
-/// zenith angle θ ∈ [0, π/2] from `up`, azimuth φ ∈ [0, 2π) measured from `east`
-/// counter-clockwise about `up`. The coordinates are of the direction the light comes
-/// *from*; the light travels along the opposite vector.
+/// Directions in the hemisphere about `up`, or a cone of it, in spherical coordinates
+/// (thesis §4.4.2): zenith angle θ ∈ [0, `max_zenith`] from `up` (π/2 for a sun's
+/// hemisphere, a `lightAim`'s `maxTilt` for a lamp's cone), azimuth φ ∈ [0, 2π)
+/// measured from `east` counter-clockwise about `up`. The coordinates are of the
+/// direction the light comes *from*; the light travels along the opposite vector.
 ///
-/// Neighbourhood of radius r: θ within ±r·π/2 (clipped), φ within ±r·π (wrapping), so
-/// N(x, 1) covers the hemisphere (the thesis' square of side π·r covered its whole
-/// sphere only at r = 2).
+/// Neighbourhood of radius r: θ within ±r·`max_zenith` (clipped), φ within ±r·π
+/// (wrapping), so N(x, 1) covers the whole hemisphere or cone (the thesis' square of
+/// side π·r covered its whole sphere only at r = 2).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hemisphere {
     /// Zenith (the scene's up axis), unit.
@@ -177,6 +178,8 @@ pub struct Hemisphere {
     pub east: DVec3,
     /// up × east.
     pub north: DVec3,
+    /// The largest zenith angle, radians, in (0, π/2].
+    pub max_zenith: f64,
 }
 
 impl Hemisphere {
@@ -192,25 +195,40 @@ impl Hemisphere {
             up,
             east,
             north: up.cross(east),
+            max_zenith: FRAC_PI_2,
         }
     }
 
-    /// The unit vector light travels along for normalised (φ/2π, θ/(π/2)).
+    /// The travel directions within `max_tilt` radians (clamped to (0, π/2]) of
+    /// `axis`, a lamp's authored aim: the cone about `−axis` as zenith, so θ = 0 is
+    /// the authored aim.
+    pub fn cone(axis: DVec3, max_tilt: f64) -> Hemisphere {
+        Hemisphere {
+            max_zenith: max_tilt.clamp(f64::MIN_POSITIVE, FRAC_PI_2),
+            ..Hemisphere::new(-axis)
+        }
+    }
+
+    /// The unit vector light travels along for normalised (φ/2π, θ/`max_zenith`).
     pub fn direction(&self, phi01: f64, theta01: f64) -> DVec3 {
-        let (phi, theta) = (phi01 * TAU, theta01 * FRAC_PI_2);
+        let (phi, theta) = (phi01 * TAU, theta01 * self.max_zenith);
         -(theta.sin() * (phi.cos() * self.east + phi.sin() * self.north) + theta.cos() * self.up)
     }
 
-    /// Normalised (φ/2π, θ/(π/2)) of a travel direction; a direction pointing upward is
-    /// clamped to the horizon.
+    /// Normalised (φ/2π, θ/`max_zenith`) of a travel direction; a direction outside
+    /// is clamped to the edge (the horizon of a hemisphere).
     pub fn coords(&self, travel: DVec3) -> (f64, f64) {
         let from = -travel.normalize();
-        let theta = from.dot(self.up).clamp(-1.0, 1.0).acos().min(FRAC_PI_2);
+        let theta = from
+            .dot(self.up)
+            .clamp(-1.0, 1.0)
+            .acos()
+            .min(self.max_zenith);
         let phi = from
             .dot(self.north)
             .atan2(from.dot(self.east))
             .rem_euclid(TAU);
-        ((phi / TAU).rem_euclid(1.0), theta / FRAC_PI_2)
+        ((phi / TAU).rem_euclid(1.0), theta / self.max_zenith)
     }
 }
 

@@ -569,3 +569,73 @@ fn same_solutions_on_one_and_two_threads() {
     assert!(one.lines().count() > 10);
     assert_eq!(one, two);
 }
+
+/// `lightAim` (issue 14): a spot authored straight down at the middle of a black room
+/// finds the aim that puts its beam on a small desk 1.56 m off its axis: the desk's
+/// centre is where the aim of one cell centre of the cone (maxTilt 40°, meshSize 24x8:
+/// cells of 15° of azimuth and 5° of tilt) meets the floor. The beam is full to 5° and
+/// falls to nothing at 12°, so the desk's light grows toward its cell from a few cells
+/// around, and each member of the ISOC aims within a cell of it. Passed for seeds 3 and
+/// 11–16.
+#[test]
+fn light_aim_puts_the_beam_on_an_off_axis_desk() {
+    let mut s = Scene::default();
+    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
+    room(&mut s, 6.0, 3.0, 6.0, black, black, black);
+    let lamp = DVec3::new(3.0, 2.99, 3.0);
+    let cone = invlight_ilp::Hemisphere::cone(DVec3::NEG_Y, 40f64.to_radians());
+    let best = Configuration {
+        coords: vec![7.5 / 24.0, 5.5 / 8.0],
+    };
+    let aim = cone.direction(best.coords[0], best.coords[1]);
+    let desk = lamp + aim * (-(lamp.y - 0.01) / aim.y);
+    let (x, z) = (desk.x as f32, desk.z as f32);
+    quad(
+        &mut s,
+        "Desk",
+        [
+            Vec3::new(x - 0.15, 0.01, z - 0.15),
+            Vec3::new(x - 0.15, 0.01, z + 0.15),
+            Vec3::new(x + 0.15, 0.01, z + 0.15),
+            Vec3::new(x + 0.15, 0.01, z - 0.15),
+        ],
+        black,
+    );
+    s.lights.push(Light {
+        name: "Spot".into(),
+        kind: LightKind::Spot {
+            position: lamp.as_vec3(),
+            direction: Vec3::NEG_Y,
+            intensity: Vec3::splat(1000.0),
+            inner: 5f32.to_radians(),
+            outer: 12f32.to_radians(),
+        },
+    });
+    let pb = problem(
+        "meshSize=\"24x8\"><lightAim id=\"Spot\" maxTilt=\"40\"/>",
+        "maxIterations=\"600\" photons=\"20000\" seed=\"3\"",
+        "<maximizeRadiance surface=\"Desk\"/>",
+    );
+    let solved = solve("light aim", &pb, s);
+    let b = &solved.binding;
+    assert_eq!(
+        b.initial.coords,
+        vec![0.0, 0.0],
+        "the search starts at the authored aim"
+    );
+    let want = b.space.cell(&best);
+    let members = solved.isoc.members();
+    assert!(
+        members.iter().any(|m| m.cell == want),
+        "the desk's cell {want:?} is not in the ISOC {:?}",
+        members.iter().map(|m| &m.cell).collect::<Vec<_>>()
+    );
+    // Every member aims the beam onto the desk: within a cell of the desk's aim.
+    for m in members {
+        let VariableValue::Direction(d) = b.values(&m.config)[0] else {
+            panic!("an aim is a direction");
+        };
+        let off = d.angle_between(aim).to_degrees();
+        assert!(off < 5.0, "a member aims {off:.1}° from the desk");
+    }
+}

@@ -45,6 +45,7 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::DirectionalLight => format!("the sun ({})", spec.id),
         VariableKind::Color { .. } => format!("the colour of {}", spec.id),
         VariableKind::LightPower { .. } => format!("the dimming of {}", spec.id),
+        VariableKind::LightAim { .. } => format!("the aim of {}", spec.id),
     }
 }
 
@@ -105,6 +106,14 @@ pub fn range(binding: &Binding, i: usize) -> String {
             cells[first],
             cells[first + 1]
         ),
+        Domain::Hemisphere(h) if matches!(binding.specs[i].kind, VariableKind::LightAim { .. }) => {
+            format!(
+                "any aim within {}° of the authored one, in {} × {} cells of azimuth and tilt",
+                significant(h.max_zenith.to_degrees()),
+                cells[first],
+                cells[first + 1]
+            )
+        }
         Domain::Hemisphere(_) => format!(
             "any direction from above the horizon, in {} × {} cells of azimuth and zenith angle",
             cells[first],

@@ -163,7 +163,7 @@ pub fn search_plot(
             let angles = |theta: f64, phi: f64| {
                 let d = hemi.direction(
                     (phi / 360.0).rem_euclid(1.0),
-                    (theta / 90.0).clamp(0.0, 1.0),
+                    (theta / hemi.max_zenith.to_degrees()).clamp(0.0, 1.0),
                 );
                 compass
                     .as_ref()

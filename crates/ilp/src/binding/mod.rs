@@ -15,7 +15,7 @@ use crate::intention::{Constraint, Goal};
 use crate::problem::{Anchor, PlacementSpec, Problem, VariableKind, VariableSpec};
 use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
@@ -68,6 +68,13 @@ enum Target {
     Move(Moved),
     /// A directional light's direction.
     Sun { light: LightId },
+    /// A spot's or goniometric light's aim, turned from its authored aim `axis` by the
+    /// shortest rotation (a luminaire's authored `frame` turns with it, C0 included).
+    Aim {
+        light: LightId,
+        axis: Vec3,
+        frame: Mat3,
+    },
     /// Materials' K_d.
     Colour {
         materials: Vec<MaterialId>,
@@ -203,6 +210,36 @@ impl Binding {
                         })?;
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
+                }
+                VariableKind::LightAim { max_tilt } => {
+                    let aimed = |k: &LightKind| {
+                        matches!(k, LightKind::Spot { .. } | LightKind::Goniometric { .. })
+                    };
+                    let light = scene
+                        .light(&spec.id)
+                        .filter(|&l| aimed(&scene.lights[l].kind))
+                        .ok_or_else(|| {
+                            err(format!(
+                                "no spot or luminaire named '{}' in the scene, expected a light with an aim (a point light sends the same light every way; give it a file with --luminaire or <luminaire> first)",
+                                spec.id
+                            ))
+                            .with_hint(known_names(
+                                scene
+                                    .lights
+                                    .iter()
+                                    .filter(|l| aimed(&l.kind))
+                                    .map(|l| l.name.as_str()),
+                                "spots and luminaires",
+                            ))
+                        })?;
+                    let kind = &scene.lights[light].kind;
+                    let axis = kind.direction().unwrap_or(-scene.up);
+                    let frame = match kind {
+                        LightKind::Goniometric { frame, .. } => *frame,
+                        _ => Mat3::IDENTITY,
+                    };
+                    let cone = Hemisphere::cone(axis.as_dvec3(), max_tilt.to_radians());
+                    (Domain::Hemisphere(cone), Target::Aim { light, axis, frame })
                 }
                 VariableKind::LightPower { min, max } => {
                     let dimmed = power::bind(scene, &spec.id, &err)?;
@@ -623,6 +660,24 @@ impl Binding {
                         *direction = d.as_vec3().normalize();
                     }
                 }
+                (
+                    VariableValue::Direction(d),
+                    Target::Aim {
+                        light,
+                        axis,
+                        frame: authored,
+                    },
+                ) => {
+                    // From the authored aim and frame each time, so turns never add up.
+                    let turn = Quat::from_rotation_arc(*axis, d.as_vec3().normalize());
+                    match &mut scene.lights[*light].kind {
+                        LightKind::Spot { direction, .. } => *direction = turn * *axis,
+                        LightKind::Goniometric { frame, .. } => {
+                            *frame = Mat3::from_quat(turn) * *authored;
+                        }
+                        _ => {}
+                    }
+                }
                 (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
                     for &m in materials {
                         scene.materials[m].diffuse =
@@ -806,6 +861,8 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
             let (s, t) = r.coords(m.reference);
             vec![s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]
         }
+        // A lamp starts at its authored aim, the cone's axis.
+        (Domain::Hemisphere(_), Target::Aim { .. }) => vec![0.0, 0.0],
         (Domain::Hemisphere(h), Target::Sun { light }) => {
             let d = scene.lights[*light]
                 .kind
@@ -855,6 +912,13 @@ fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Ve
         let [(light, _)] = m.lights[..] else {
             continue;
         };
+        // An aimed lamp is not like another: swapping places would swap aims too.
+        if targets
+            .iter()
+            .any(|t| matches!(t, Target::Aim { light: l, .. } if *l == light))
+        {
+            continue;
+        }
         if !m.instances.is_empty() {
             continue;
         }

@@ -391,3 +391,61 @@ fn power_in_watts_when_every_lamp_has_them() {
         b.power(&half)
     );
 }
+
+/// `lightAim` turns a luminaire's whole frame from its authored one by the shortest
+/// rotation (C0 turns with the aim), refuses a light without an aim and a tilt outside
+/// (0, 90], and shares an id with the light's placement and dimming.
+#[test]
+fn light_aim_turns_the_frame() {
+    let mut s = scene();
+    let table = invlight_scene::Photometry::from_table(
+        invlight_scene::PhotometricSystem::C,
+        vec![0.0, 360.0],
+        vec![0.0, 90.0],
+        vec![100.0; 4],
+    )
+    .unwrap();
+    let e = Binding::new(&problem("<lightAim id=\"Lamp\" maxTilt=\"30\"/>"), &mut s).unwrap_err();
+    assert!(
+        e.to_string().contains("no spot or luminaire named 'Lamp'"),
+        "{e}"
+    );
+    s.set_photometry("Lamp", std::sync::Arc::new(table), 1.0)
+        .unwrap();
+    let p = problem(
+        "<lightInSurface id=\"Lamp\" surface=\"Floor__Geometry\"/><lightPower id=\"Lamp\"/><lightAim id=\"Lamp\" maxTilt=\"30\"/>",
+    );
+    let keys: Vec<String> = (0..3).map(|i| VariableSpec::key(&p.variables, i)).collect();
+    assert_eq!(keys, ["Lamp", "Lamp.power", "Lamp.aim"]);
+    let b = Binding::new(&p, &mut s).unwrap();
+    // θ = 30° (the cone's edge) at φ = 0: the cone about the authored aim −Z has
+    // zenith +Z and φ = 0 along +X, and the light comes from there, so it travels
+    // toward −X.
+    let config = Configuration {
+        coords: vec![0.0, 0.0, 1.0, 0.0, 1.0],
+    };
+    b.apply(&mut s, &config);
+    let LightKind::Goniometric { frame, .. } = s.lights[0].kind else {
+        panic!("a luminaire");
+    };
+    let aim = Vec3::new(-0.5, 0.0, -(3f32.sqrt()) / 2.0);
+    assert!((-frame.z_axis - aim).length() < 1e-5, "{:?}", -frame.z_axis);
+    // C0 (+X as authored) tilts with the aim, about +Y.
+    let c0 = Vec3::new(3f32.sqrt() / 2.0, 0.0, -0.5);
+    assert!((frame.x_axis - c0).length() < 1e-5, "{:?}", frame.x_axis);
+    assert!((frame.y_axis - Vec3::Y).length() < 1e-5);
+    for (bad, says) in [
+        ("<lightAim id=\"Lamp\" maxTilt=\"95\"/>", "maxTilt"),
+        ("<lightAim id=\"Lamp\"/>", "needs 'maxTilt'"),
+        (
+            "<lightAim id=\"Lamp\" maxTilt=\"9\"/><lightAim id=\"Lamp\" maxTilt=\"9\"/>",
+            "a second variable",
+        ),
+    ] {
+        let text = format!(
+            "<input><scene path=\"s.gltf\"/><conditions>{bad}</conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"
+        );
+        let e = Problem::parse(Path::new("/p/x.xml"), &text).unwrap_err();
+        assert!(e.to_string().contains(says), "{e}");
+    }
+}

@@ -204,6 +204,13 @@ pub enum ResultValue {
         /// Direction of travel.
         direction: [f64; 3],
     },
+    /// `lightAim`: the unit vector of the lamp's aim (a spot's axis, a luminaire's
+    /// γ = 0).
+    #[serde(rename = "lightAim")]
+    LightAim {
+        /// The aim.
+        direction: [f64; 3],
+    },
     /// `color`: the HSV value V and the linear K_d it gives.
     #[serde(rename = "color")]
     Color {
@@ -236,6 +243,9 @@ impl ResultValue {
                     _ => ResultValue::ObjectInSurface { position, anchor },
                 }
             }
+            (VariableValue::Direction(d), VariableKind::LightAim { .. }) => ResultValue::LightAim {
+                direction: d.to_array(),
+            },
             (VariableValue::Direction(d), _) => ResultValue::DirectionalLight {
                 direction: d.to_array(),
             },
@@ -253,7 +263,7 @@ impl ResultValue {
                 point: DVec3::from_array(position),
                 anchor: DVec3::from_array(anchor),
             },
-            ResultValue::DirectionalLight { direction } => {
+            ResultValue::DirectionalLight { direction } | ResultValue::LightAim { direction } => {
                 VariableValue::Direction(DVec3::from_array(direction))
             }
             ResultValue::Color { value, rgb } => VariableValue::Colour { value, rgb },
@@ -483,6 +493,9 @@ impl ResultFile {
                     }
                     ResultValue::DirectionalLight { direction } => {
                         format!("{id} along {}", v3(direction))
+                    }
+                    ResultValue::LightAim { direction } => {
+                        format!("{id} aimed along {}", v3(direction))
                     }
                     ResultValue::Color { value, .. } => format!("{id} V = {}", significant(value)),
                     ResultValue::LightPower { value } => {

@@ -64,6 +64,12 @@ pub enum VariableKind {
     HoleInSurface(PlacementSpec),
     /// `directionalLight`: the direction of a sun.
     DirectionalLight,
+    /// `lightAim` (invlight): the aim of a spot or luminaire, within a cone about its
+    /// authored aim.
+    LightAim {
+        /// `maxTilt`: the cone's half-angle, degrees, in (0, 90].
+        max_tilt: f64,
+    },
     /// `lightPower`: the dimming level of a light or an emissive object (its authored
     /// output × the level).
     LightPower {
@@ -93,6 +99,7 @@ impl VariableKind {
             VariableKind::LightInSurface(_) => "lightInSurface",
             VariableKind::HoleInSurface(_) => "holeInSurface",
             VariableKind::DirectionalLight => "directionalLight",
+            VariableKind::LightAim { .. } => "lightAim",
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
         }
@@ -122,7 +129,8 @@ pub struct VariableSpec {
 
 impl VariableSpec {
     /// The key of variable `i` of `specs` in `result.json`'s `variables`: its id, or
-    /// `<id>.power` for a `lightPower` whose light another variable also places.
+    /// `<id>.power` for a `lightPower` and `<id>.aim` for a `lightAim` whose light
+    /// another variable also places, dims or aims.
     pub fn key(specs: &[VariableSpec], i: usize) -> String {
         let spec = &specs[i];
         let shared = specs
@@ -131,6 +139,8 @@ impl VariableSpec {
             .any(|(j, other)| j != i && other.id == spec.id);
         if shared && matches!(spec.kind, VariableKind::LightPower { .. }) {
             format!("{}.power", spec.id)
+        } else if shared && matches!(spec.kind, VariableKind::LightAim { .. }) {
+            format!("{}.aim", spec.id)
         } else {
             spec.id.clone()
         }
@@ -204,6 +214,7 @@ const VARIABLES: &[&str] = &[
     "lightInSurface",
     "holeInSurface",
     "directionalLight",
+    "lightAim",
     "color",
     "lightPower",
 ];
@@ -537,19 +548,23 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut variables = Vec::new();
         for v in self.elements(conditions) {
             if let Some(spec) = self.variable(v)? {
-                // A light may be placed and dimmed: one lightPower beside one
-                // lightInSurface of the same id; any other repeat is a mistake.
-                let power = |w: &VariableSpec| matches!(w.kind, VariableKind::LightPower { .. });
-                let placed = |w: &VariableSpec| matches!(w.kind, VariableKind::LightInSurface(_));
-                let same: Vec<&VariableSpec> = variables
+                // A light may be placed, dimmed and aimed: one lightInSurface, one
+                // lightPower and one lightAim of the same id; any other repeat is a
+                // mistake.
+                let light_part = |w: &VariableSpec| match w.kind {
+                    VariableKind::LightInSurface(_) => Some(0),
+                    VariableKind::LightPower { .. } => Some(1),
+                    VariableKind::LightAim { .. } => Some(2),
+                    _ => None,
+                };
+                let allowed = variables
                     .iter()
                     .filter(|w: &&VariableSpec| w.id == spec.id)
-                    .collect();
-                let allowed = match same[..] {
-                    [] => true,
-                    [other] => (power(other) && placed(&spec)) || (placed(other) && power(&spec)),
-                    _ => false,
-                };
+                    .all(|w| {
+                        light_part(w).is_some()
+                            && light_part(&spec).is_some()
+                            && light_part(w) != light_part(&spec)
+                    });
                 if !allowed {
                     return Err(self.error(
                         v,
@@ -906,6 +921,22 @@ impl<'a, 'i> Reader<'a, 'i> {
             "directionalLight" => {
                 self.check_attributes(v, &["id"]);
                 VariableKind::DirectionalLight
+            }
+            "lightAim" => {
+                self.check_attributes(v, &["id", "maxTilt"]);
+                let what = "the largest tilt from the authored aim, degrees in (0, 90]";
+                match self.real(v, "maxTilt", what)? {
+                    Some(t) if t > 0.0 && t <= 90.0 => VariableKind::LightAim { max_tilt: t },
+                    Some(t) => {
+                        return Err(self.error(
+                            v,
+                            format!("'maxTilt' of <lightAim> is {t}, expected {what}"),
+                        ));
+                    }
+                    None => {
+                        return Err(self.error(v, format!("<lightAim> needs 'maxTilt', {what}")));
+                    }
+                }
             }
             "color" => {
                 self.check_attributes(v, &["id", "hue", "saturation", "min", "max"]);
