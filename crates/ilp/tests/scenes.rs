@@ -639,3 +639,63 @@ fn light_aim_puts_the_beam_on_an_off_axis_desk() {
         assert!(off < 5.0, "a member aims {off:.1}° from the desk");
     }
 }
+
+/// `holeSize` (issue 14): a skylight grows until the floor's light reaches a cap. The
+/// sun shines straight down (1000 lx) into a black 4 m × 4 m room through a 0.5 m
+/// square skylight at scale s, so the floor's mean is exactly 1000 lx × (0.5 s)² / 16
+/// m² = 15.625 s² lx. The cap is that at s = 1.5, the edge between cells 9 (s = 1.45,
+/// 6.6 % under it) and 10 (s = 1.55, 6.8 % over) of meshSize 15 over [0.5, 2]: the
+/// largest valid scale is cell 9's.
+/// Passed for seeds 5 and 11–14.
+#[test]
+fn hole_size_grows_a_skylight_up_to_a_cap() {
+    let mut s = Scene::default();
+    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
+    room(&mut s, 4.0, 3.0, 4.0, black, black, black);
+    let glass = s.add_mesh(Mesh::cuboid(
+        Vec3::new(1.75, 2.9, 1.75),
+        Vec3::new(2.25, 3.1, 2.25),
+        black,
+    ));
+    s.add_instance("Skylight", glass, Mat4::IDENTITY);
+    s.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: Vec3::NEG_Y,
+            illuminance: Vec3::splat(1000.0),
+        },
+    });
+    let floor = |scale: f64| 15.625 * scale * scale;
+    let cap = floor(1.5);
+    let pb = problem(
+        "meshSize=\"15\"><holeSize id=\"Skylight\" minScale=\"0.5\" maxScale=\"2\"/>",
+        "maxIterations=\"60\" photons=\"200000\" seed=\"5\" fastEvaluationQuality=\"1\"",
+        &format!("<maximizeRadiance surface=\"Floor\" maxRadiosity=\"{cap}\"/>"),
+    );
+    let solved = solve("hole size", &pb, s);
+    let b = &solved.binding;
+    let scale = |m: &Member| match b.values(&m.config)[0] {
+        VariableValue::Scale(k) => k,
+        ref v => panic!("a hole's size is a scale, not {v:?}"),
+    };
+    let members = solved.isoc.members();
+    let cells: Vec<u32> = members.iter().map(|m| m.cell.0[0]).collect();
+    assert!(cells.contains(&9), "ISOC cells {cells:?}, cap {cap} lx");
+    for m in members {
+        // Valid (its interval reaches below the cap) and next to the cap's cell.
+        assert!(m.estimate.mean - solved.isoc.z() * m.estimate.std_error <= cap);
+        assert!(
+            (1.35..1.6).contains(&scale(m)),
+            "member at scale {}",
+            scale(m)
+        );
+        // Its estimate agrees with the closed form.
+        let truth = floor(scale(m));
+        assert!(
+            (m.estimate.mean - truth).abs() <= 4.0 * m.estimate.std_error,
+            "scale {}: {:?} against {truth} lx",
+            scale(m),
+            m.estimate
+        );
+    }
+}

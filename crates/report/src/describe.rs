@@ -46,6 +46,7 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::Color { .. } => format!("the colour of {}", spec.id),
         VariableKind::LightPower { .. } => format!("the dimming of {}", spec.id),
         VariableKind::LightAim { .. } => format!("the aim of {}", spec.id),
+        VariableKind::HoleSize { .. } => format!("the size of hole {}", spec.id),
     }
 }
 
@@ -62,6 +63,7 @@ pub fn value(value: &VariableValue, compass: Option<&Compass>) -> String {
         },
         VariableValue::Colour { value, .. } => format!("V = {}", significant(value)),
         VariableValue::Power(level) => format!("at {} %", significant(100.0 * level)),
+        VariableValue::Scale(k) => format!("× {} of its authored size", significant(k)),
     }
 }
 
@@ -81,6 +83,9 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
         }
         (VariableValue::Power(a), VariableValue::Power(b)) => {
             format!("dimmed by {} points", significant(100.0 * (a - b)))
+        }
+        (VariableValue::Scale(a), VariableValue::Scale(b)) => {
+            format!("scaled by {}", significant(b / a))
         }
         _ => String::new(),
     }
@@ -135,6 +140,12 @@ pub fn range(binding: &Binding, i: usize) -> String {
                     "levels from {} % to {} % of the authored output, in {} cells",
                     significant(100.0 * min),
                     significant(100.0 * max),
+                    cells[first]
+                ),
+                VariableKind::HoleSize { .. } => format!(
+                    "scales from {} to {} of the authored size, in {} cells",
+                    significant(*min),
+                    significant(*max),
                     cells[first]
                 ),
                 _ => format!(

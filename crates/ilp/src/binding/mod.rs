@@ -46,6 +46,8 @@ pub enum VariableValue {
     },
     /// A dimming level: the light's output is its authored output times it.
     Power(f64),
+    /// A hole's scale: its size over its authored size.
+    Scale(f64),
 }
 
 /// What a placement moves, and how P turns into a translation.
@@ -83,6 +85,12 @@ enum Target {
     },
     /// A light's or emissive object's output, kept apart as component `component`.
     Power { dimmed: Dimmed, component: usize },
+    /// A hole's instances, with their authored transforms, scaled uniformly about
+    /// `centre`, their box's centre as authored.
+    Scale {
+        instances: Vec<(InstanceId, Mat4)>,
+        centre: Vec3,
+    },
 }
 
 /// A problem bound to a scene: the search space, where it starts, the objective and the
@@ -210,6 +218,24 @@ impl Binding {
                         })?;
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
+                }
+                VariableKind::HoleSize { min, max } => {
+                    let s = find_surface(scene, &spec.id, spec, &err)?;
+                    hole::make_hole(scene, s, &spec.id);
+                    let ids = scene.surfaces[s].instances.clone();
+                    let centre = instance_bounds(scene, &ids)
+                        .map_or(Vec3::ZERO, |b| (0.5 * (b.lo + b.hi)).as_vec3());
+                    let instances = ids
+                        .into_iter()
+                        .map(|i| (i, scene.instances[i].transform))
+                        .collect();
+                    (
+                        Domain::Segment {
+                            min: *min,
+                            max: *max,
+                        },
+                        Target::Scale { instances, centre },
+                    )
                 }
                 VariableKind::LightAim { max_tilt } => {
                     let aimed = |k: &LightKind| {
@@ -459,10 +485,17 @@ impl Binding {
     /// placed on rectangles), in variable order: the acceleration structure keeps them
     /// separate and bakes everything else into one tree.
     pub fn movable_instances(&self) -> Vec<InstanceId> {
-        let mut out = Vec::new();
+        let mut out: Vec<InstanceId> = Vec::new();
         for t in &self.targets {
-            if let Target::Move(m) = t {
-                out.extend(m.instances.iter().map(|&(i, _)| i));
+            let ids = match t {
+                Target::Move(m) => &m.instances,
+                Target::Scale { instances, .. } => instances,
+                _ => continue,
+            };
+            for &(i, _) in ids {
+                if !out.contains(&i) {
+                    out.push(i);
+                }
             }
         }
         out
@@ -487,6 +520,9 @@ impl Binding {
                     (Domain::Hemisphere(h), _) => VariableValue::Direction(h.direction(x[0], x[1])),
                     (Domain::Segment { min, max }, Target::Power { .. }) => {
                         VariableValue::Power(min + x[0] * (max - min))
+                    }
+                    (Domain::Segment { min, max }, Target::Scale { .. }) => {
+                        VariableValue::Scale(min + x[0] * (max - min))
                     }
                     (Domain::Segment { min, max }, target) => {
                         let value = min + x[0] * (max - min);
@@ -545,7 +581,9 @@ impl Binding {
                 }
                 (
                     Domain::Segment { min, max },
-                    VariableValue::Colour { value, .. } | VariableValue::Power(value),
+                    VariableValue::Colour { value, .. }
+                    | VariableValue::Power(value)
+                    | VariableValue::Scale(value),
                 ) => {
                     let x = if max > min {
                         (value - min) / (max - min)
@@ -635,13 +673,46 @@ impl Binding {
 
     fn apply_parts(&self, scene: &mut Scene, config: &Configuration, dim: bool) -> bool {
         let mut moved = false;
-        for (value, target) in self.values(config).into_iter().zip(&self.targets) {
+        let values = self.values(config);
+        // A hole both placed and sized is scaled about its authored centre, then moved.
+        let mut scaled: Vec<(InstanceId, Mat4)> = Vec::new();
+        for (value, target) in values.iter().zip(&self.targets) {
+            if let (VariableValue::Scale(k), Target::Scale { instances, centre }) = (value, target)
+            {
+                let about = Mat4::from_translation(*centre)
+                    * Mat4::from_scale(Vec3::splat(*k as f32))
+                    * Mat4::from_translation(-*centre);
+                scaled.extend(instances.iter().map(|&(i, _)| (i, about)));
+            }
+        }
+        let scale_of = |i: InstanceId| {
+            scaled
+                .iter()
+                .find(|(j, _)| *j == i)
+                .map_or(Mat4::IDENTITY, |&(_, s)| s)
+        };
+        let placed = |i: InstanceId| {
+            self.targets
+                .iter()
+                .any(|t| matches!(t, Target::Move(m) if m.instances.iter().any(|&(j, _)| j == i)))
+        };
+        for (value, target) in values.into_iter().zip(&self.targets) {
             match (value, target) {
+                (VariableValue::Scale(_), Target::Scale { instances, .. }) => {
+                    for &(inst, original) in instances.iter().filter(|&&(i, _)| !placed(i)) {
+                        let t = scale_of(inst) * original;
+                        let slot = &mut scene.instances[inst].transform;
+                        if *slot != t {
+                            *slot = t;
+                            moved = true;
+                        }
+                    }
+                }
                 (VariableValue::Position { point, .. }, Target::Move(m)) => {
                     let delta = (point - m.reference).as_vec3();
                     let shift = Mat4::from_translation(delta);
                     for &(inst, original) in &m.instances {
-                        let t = shift * original;
+                        let t = shift * scale_of(inst) * original;
                         let slot = &mut scene.instances[inst].transform;
                         if *slot != t {
                             *slot = t;
@@ -879,8 +950,8 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
                 .unwrap_or(*max);
             vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
         }
-        (Domain::Segment { min, max }, Target::Power { .. }) => {
-            // The scene as authored is at level 1.
+        (Domain::Segment { min, max }, Target::Power { .. } | Target::Scale { .. }) => {
+            // The scene as authored is at level 1, its holes at scale 1.
             let x = if max > min {
                 (1.0 - min) / (max - min)
             } else {

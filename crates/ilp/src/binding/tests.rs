@@ -449,3 +449,59 @@ fn light_aim_turns_the_frame() {
         assert!(e.to_string().contains(says), "{e}");
     }
 }
+
+/// `holeSize` makes its object an aperture scaled about its authored centre; placed
+/// as well, it is scaled first and then moved, and both keys are kept apart.
+#[test]
+fn hole_size_scales_then_moves() {
+    let mut s = scene();
+    let p = problem(
+        "<holeInSurface id=\"Window\" surface=\"Floor__Geometry\" anchor=\"centre\"/><holeSize id=\"Window\" minScale=\"1\" maxScale=\"2\"/>",
+    );
+    let keys: Vec<String> = (0..2).map(|i| VariableSpec::key(&p.variables, i)).collect();
+    assert_eq!(keys, ["Window", "Window.size"]);
+    let b = Binding::new(&p, &mut s).unwrap();
+    let window = InstanceId::from_index(2);
+    assert!(
+        s.meshes[s.instances[window].mesh]
+            .materials
+            .iter()
+            .all(|&m| s.materials[m].hole)
+    );
+    assert_eq!(b.movable_instances(), vec![window]);
+    assert_eq!(b.values(&b.initial)[1], VariableValue::Scale(1.0));
+    // P = (2, 1.5, 0); the window's box [0, 0.5]² × [2, 2.5] has its centre
+    // (0.25, 0.25, 2.25), on the floor's plane (0.25, 0.25, 0): moved by (1.75, 1.25, 0)
+    // after doubling about its centre, its corner (0, 0, 2) goes to (1.5, 1, 1.75).
+    let config = Configuration {
+        coords: vec![0.5, 0.5, 1.0],
+    };
+    assert!(b.apply(&mut s, &config));
+    let corner = s.instances[window].transform.transform_point3(Vec3::ZERO);
+    assert!(
+        (corner - Vec3::new(1.5, 1.0, 1.75)).length() < 1e-5,
+        "{corner}"
+    );
+    // Sized alone, it stays where it is.
+    let mut s = scene();
+    let b = Binding::new(&problem("<holeSize id=\"Window\"/>"), &mut s).unwrap();
+    b.apply(&mut s, &Configuration { coords: vec![1.0] });
+    let corner = s.instances[window].transform.transform_point3(Vec3::ZERO);
+    assert!(
+        (corner - Vec3::new(-0.25, -0.25, 1.75)).length() < 1e-5,
+        "{corner}"
+    );
+    for (bad, says) in [
+        ("<holeSize id=\"Window\" minScale=\"0\"/>", "minScale"),
+        (
+            "<holeSize id=\"Window\" minScale=\"2\" maxScale=\"1\"/>",
+            "minScale 2 ≥ maxScale 1",
+        ),
+    ] {
+        let text = format!(
+            "<input><scene path=\"s.gltf\"/><conditions>{bad}</conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"
+        );
+        let e = Problem::parse(Path::new("/p/x.xml"), &text).unwrap_err();
+        assert!(e.to_string().contains(says), "{e}");
+    }
+}

@@ -225,6 +225,12 @@ pub enum ResultValue {
         /// The level.
         value: f64,
     },
+    /// `holeSize`: the hole's size over its authored size (a uniform scale).
+    #[serde(rename = "holeSize")]
+    HoleSize {
+        /// The scale.
+        scale: f64,
+    },
 }
 
 impl ResultValue {
@@ -251,6 +257,7 @@ impl ResultValue {
             },
             (VariableValue::Colour { value, rgb }, _) => ResultValue::Color { value, rgb },
             (VariableValue::Power(value), _) => ResultValue::LightPower { value },
+            (VariableValue::Scale(scale), _) => ResultValue::HoleSize { scale },
         }
     }
 
@@ -268,6 +275,7 @@ impl ResultValue {
             }
             ResultValue::Color { value, rgb } => VariableValue::Colour { value, rgb },
             ResultValue::LightPower { value } => VariableValue::Power(value),
+            ResultValue::HoleSize { scale } => VariableValue::Scale(scale),
         }
     }
 }
@@ -500,6 +508,9 @@ impl ResultFile {
                     ResultValue::Color { value, .. } => format!("{id} V = {}", significant(value)),
                     ResultValue::LightPower { value } => {
                         format!("{id} at {} %", significant(100.0 * value))
+                    }
+                    ResultValue::HoleSize { scale } => {
+                        format!("{id} × {}", significant(scale))
                     }
                 })
                 .collect();

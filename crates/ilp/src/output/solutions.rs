@@ -112,9 +112,9 @@ impl SolutionRow {
                     f.extend(anchor.to_array().map(|c| c.to_string()));
                 }
                 VariableValue::Direction(d) => f.extend(d.to_array().map(|c| c.to_string())),
-                VariableValue::Colour { value, .. } | VariableValue::Power(value) => {
-                    f.push(value.to_string())
-                }
+                VariableValue::Colour { value, .. }
+                | VariableValue::Power(value)
+                | VariableValue::Scale(value) => f.push(value.to_string()),
             }
         }
         let goal = &self.evaluation.goal;
@@ -258,6 +258,7 @@ impl Solutions {
                         // needed to map the row back to a configuration).
                         values.push(match spec.kind {
                             VariableKind::LightPower { .. } => VariableValue::Power(real(c)?),
+                            VariableKind::HoleSize { .. } => VariableValue::Scale(real(c)?),
                             _ => VariableValue::Colour {
                                 value: real(c)?,
                                 rgb: [0.0; 3],

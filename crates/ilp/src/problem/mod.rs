@@ -64,6 +64,14 @@ pub enum VariableKind {
     HoleInSurface(PlacementSpec),
     /// `directionalLight`: the direction of a sun.
     DirectionalLight,
+    /// `holeSize` (invlight): the size of an aperture, a uniform scale of its object
+    /// about its centre.
+    HoleSize {
+        /// `minScale`, > 0.
+        min: f64,
+        /// `maxScale`, > `minScale`.
+        max: f64,
+    },
     /// `lightAim` (invlight): the aim of a spot or luminaire, within a cone about its
     /// authored aim.
     LightAim {
@@ -100,6 +108,7 @@ impl VariableKind {
             VariableKind::HoleInSurface(_) => "holeInSurface",
             VariableKind::DirectionalLight => "directionalLight",
             VariableKind::LightAim { .. } => "lightAim",
+            VariableKind::HoleSize { .. } => "holeSize",
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
         }
@@ -129,8 +138,8 @@ pub struct VariableSpec {
 
 impl VariableSpec {
     /// The key of variable `i` of `specs` in `result.json`'s `variables`: its id, or
-    /// `<id>.power` for a `lightPower` and `<id>.aim` for a `lightAim` whose light
-    /// another variable also places, dims or aims.
+    /// `<id>.power` for a `lightPower`, `<id>.aim` for a `lightAim` and `<id>.size` for
+    /// a `holeSize` whose light or hole another variable also places, dims or aims.
     pub fn key(specs: &[VariableSpec], i: usize) -> String {
         let spec = &specs[i];
         let shared = specs
@@ -141,6 +150,8 @@ impl VariableSpec {
             format!("{}.power", spec.id)
         } else if shared && matches!(spec.kind, VariableKind::LightAim { .. }) {
             format!("{}.aim", spec.id)
+        } else if shared && matches!(spec.kind, VariableKind::HoleSize { .. }) {
+            format!("{}.size", spec.id)
         } else {
             spec.id.clone()
         }
@@ -213,6 +224,7 @@ const VARIABLES: &[&str] = &[
     "objectInSurface",
     "lightInSurface",
     "holeInSurface",
+    "holeSize",
     "directionalLight",
     "lightAim",
     "color",
@@ -549,20 +561,23 @@ impl<'a, 'i> Reader<'a, 'i> {
         for v in self.elements(conditions) {
             if let Some(spec) = self.variable(v)? {
                 // A light may be placed, dimmed and aimed: one lightInSurface, one
-                // lightPower and one lightAim of the same id; any other repeat is a
-                // mistake.
+                // lightPower and one lightAim of the same id; a hole placed and sized:
+                // one holeInSurface and one holeSize. Any other repeat is a mistake.
                 let light_part = |w: &VariableSpec| match w.kind {
-                    VariableKind::LightInSurface(_) => Some(0),
-                    VariableKind::LightPower { .. } => Some(1),
-                    VariableKind::LightAim { .. } => Some(2),
+                    VariableKind::LightInSurface(_) => Some((0, 0)),
+                    VariableKind::LightPower { .. } => Some((0, 1)),
+                    VariableKind::LightAim { .. } => Some((0, 2)),
+                    VariableKind::HoleInSurface(_) => Some((1, 0)),
+                    VariableKind::HoleSize { .. } => Some((1, 1)),
                     _ => None,
                 };
+                let group = |w: &VariableSpec| light_part(w).map(|(g, _)| g);
                 let allowed = variables
                     .iter()
                     .filter(|w: &&VariableSpec| w.id == spec.id)
                     .all(|w| {
                         light_part(w).is_some()
-                            && light_part(&spec).is_some()
+                            && group(w) == group(&spec)
                             && light_part(w) != light_part(&spec)
                     });
                 if !allowed {
@@ -921,6 +936,25 @@ impl<'a, 'i> Reader<'a, 'i> {
             "directionalLight" => {
                 self.check_attributes(v, &["id"]);
                 VariableKind::DirectionalLight
+            }
+            "holeSize" => {
+                self.check_attributes(v, &["id", "minScale", "maxScale"]);
+                let what = "a positive scale of the hole (1 is its authored size)";
+                let scale = |attr: &str, default: f64| -> Result<f64, Diagnostic> {
+                    match self.real(v, attr, what)? {
+                        Some(x) if x <= 0.0 => Err(self
+                            .error(v, format!("'{attr}' of <holeSize> is {x}, expected {what}"))),
+                        x => Ok(x.unwrap_or(default)),
+                    }
+                };
+                let (min, max) = (scale("minScale", 0.5)?, scale("maxScale", 2.0)?);
+                if min >= max {
+                    return Err(self.error(
+                        v,
+                        format!("<holeSize> has minScale {min} ≥ maxScale {max}, expected minScale < maxScale"),
+                    ));
+                }
+                VariableKind::HoleSize { min, max }
             }
             "lightAim" => {
                 self.check_attributes(v, &["id", "maxTilt"]);
