@@ -47,6 +47,7 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::LightPower { .. } => format!("the dimming of {}", spec.id),
         VariableKind::LightAim { .. } => format!("the aim of {}", spec.id),
         VariableKind::HoleSize { .. } => format!("the size of hole {}", spec.id),
+        VariableKind::ObjectRotation { .. } => format!("the turn of {}", spec.id),
     }
 }
 
@@ -64,6 +65,7 @@ pub fn value(value: &VariableValue, compass: Option<&Compass>) -> String {
         VariableValue::Colour { value, .. } => format!("V = {}", significant(value)),
         VariableValue::Power(level) => format!("at {} %", significant(100.0 * level)),
         VariableValue::Scale(k) => format!("× {} of its authored size", significant(k)),
+        VariableValue::Angle(a) => format!("turned {}°", significant(a)),
     }
 }
 
@@ -86,6 +88,9 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
         }
         (VariableValue::Scale(a), VariableValue::Scale(b)) => {
             format!("scaled by {}", significant(b / a))
+        }
+        (VariableValue::Angle(a), VariableValue::Angle(b)) => {
+            format!("turned {}°", significant(b - a))
         }
         _ => String::new(),
     }
@@ -140,6 +145,12 @@ pub fn range(binding: &Binding, i: usize) -> String {
                     "levels from {} % to {} % of the authored output, in {} cells",
                     significant(100.0 * min),
                     significant(100.0 * max),
+                    cells[first]
+                ),
+                VariableKind::ObjectRotation { .. } => format!(
+                    "turns from {}° to {}° about its placement's normal, in {} cells",
+                    significant(*min),
+                    significant(*max),
                     cells[first]
                 ),
                 VariableKind::HoleSize { .. } => format!(

@@ -48,6 +48,8 @@ pub enum VariableValue {
     Power(f64),
     /// A hole's scale: its size over its authored size.
     Scale(f64),
+    /// A turn about the placement's normal, degrees.
+    Angle(f64),
 }
 
 /// What a placement moves, and how P turns into a translation.
@@ -89,6 +91,14 @@ enum Target {
     /// `centre`, their box's centre as authored.
     Scale {
         instances: Vec<(InstanceId, Mat4)>,
+        centre: Vec3,
+    },
+    /// An object's instances, or a light as authored, turned about `axis` (unit)
+    /// through `centre` (the box's centre, the light's position).
+    Rotate {
+        instances: Vec<(InstanceId, Mat4)>,
+        light: Option<(LightId, LightKind)>,
+        axis: Vec3,
         centre: Vec3,
     },
 }
@@ -235,6 +245,54 @@ impl Binding {
                             max: *max,
                         },
                         Target::Scale { instances, centre },
+                    )
+                }
+                VariableKind::ObjectRotation { min, max } => {
+                    // The normal of the rectangle another variable places it on, else up.
+                    let placement = problem
+                        .variables
+                        .iter()
+                        .filter(|w| w.id == spec.id)
+                        .find_map(|w| w.kind.placement());
+                    let axis = match placement {
+                        Some(p) => {
+                            let r = find_parallelogram(scene, &p.surface, p.vertices, &err)?;
+                            r.e1.cross(r.e2).normalize().as_vec3()
+                        }
+                        None => scene.up.normalize(),
+                    };
+                    let light = scene.light(&spec.id).filter(|&l| {
+                        !matches!(scene.lights[l].kind, LightKind::Directional { .. })
+                    });
+                    let (instances, light, centre) = match light {
+                        Some(l) => {
+                            let kind = scene.lights[l].kind.clone();
+                            let centre = kind.position().unwrap_or(Vec3::ZERO);
+                            (Vec::new(), Some((l, kind)), centre)
+                        }
+                        None => {
+                            let s = find_surface(scene, &spec.id, spec, &err)?;
+                            let ids = scene.surfaces[s].instances.clone();
+                            let centre = instance_bounds(scene, &ids)
+                                .map_or(Vec3::ZERO, |b| (0.5 * (b.lo + b.hi)).as_vec3());
+                            let instances = ids
+                                .into_iter()
+                                .map(|i| (i, scene.instances[i].transform))
+                                .collect();
+                            (instances, None, centre)
+                        }
+                    };
+                    (
+                        Domain::Segment {
+                            min: *min,
+                            max: *max,
+                        },
+                        Target::Rotate {
+                            instances,
+                            light,
+                            axis,
+                            centre,
+                        },
                     )
                 }
                 VariableKind::LightAim { max_tilt } => {
@@ -489,7 +547,7 @@ impl Binding {
         for t in &self.targets {
             let ids = match t {
                 Target::Move(m) => &m.instances,
-                Target::Scale { instances, .. } => instances,
+                Target::Scale { instances, .. } | Target::Rotate { instances, .. } => instances,
                 _ => continue,
             };
             for &(i, _) in ids {
@@ -523,6 +581,9 @@ impl Binding {
                     }
                     (Domain::Segment { min, max }, Target::Scale { .. }) => {
                         VariableValue::Scale(min + x[0] * (max - min))
+                    }
+                    (Domain::Segment { min, max }, Target::Rotate { .. }) => {
+                        VariableValue::Angle(min + x[0] * (max - min))
                     }
                     (Domain::Segment { min, max }, target) => {
                         let value = min + x[0] * (max - min);
@@ -583,7 +644,8 @@ impl Binding {
                     Domain::Segment { min, max },
                     VariableValue::Colour { value, .. }
                     | VariableValue::Power(value)
-                    | VariableValue::Scale(value),
+                    | VariableValue::Scale(value)
+                    | VariableValue::Angle(value),
                 ) => {
                     let x = if max > min {
                         (value - min) / (max - min)
@@ -674,19 +736,43 @@ impl Binding {
     fn apply_parts(&self, scene: &mut Scene, config: &Configuration, dim: bool) -> bool {
         let mut moved = false;
         let values = self.values(config);
-        // A hole both placed and sized is scaled about its authored centre, then moved.
-        let mut scaled: Vec<(InstanceId, Mat4)> = Vec::new();
+        // An object sized or turned is scaled and turned about its authored centre
+        // (the two commute: the scale is uniform and both are about the box's centre),
+        // then moved.
+        let mut local: Vec<(InstanceId, Mat4)> = Vec::new();
         for (value, target) in values.iter().zip(&self.targets) {
-            if let (VariableValue::Scale(k), Target::Scale { instances, centre }) = (value, target)
-            {
-                let about = Mat4::from_translation(*centre)
-                    * Mat4::from_scale(Vec3::splat(*k as f32))
-                    * Mat4::from_translation(-*centre);
-                scaled.extend(instances.iter().map(|&(i, _)| (i, about)));
+            let (about, instances) = match (value, target) {
+                (VariableValue::Scale(k), Target::Scale { instances, centre }) => (
+                    Mat4::from_translation(*centre)
+                        * Mat4::from_scale(Vec3::splat(*k as f32))
+                        * Mat4::from_translation(-*centre),
+                    instances,
+                ),
+                (
+                    VariableValue::Angle(a),
+                    Target::Rotate {
+                        instances,
+                        axis,
+                        centre,
+                        ..
+                    },
+                ) => (
+                    Mat4::from_translation(*centre)
+                        * Mat4::from_axis_angle(*axis, a.to_radians() as f32)
+                        * Mat4::from_translation(-*centre),
+                    instances,
+                ),
+                _ => continue,
+            };
+            for &(i, _) in instances {
+                match local.iter_mut().find(|(j, _)| *j == i) {
+                    Some((_, m)) => *m = about * *m,
+                    None => local.push((i, about)),
+                }
             }
         }
         let scale_of = |i: InstanceId| {
-            scaled
+            local
                 .iter()
                 .find(|(j, _)| *j == i)
                 .map_or(Mat4::IDENTITY, |&(_, s)| s)
@@ -698,7 +784,32 @@ impl Binding {
         };
         for (value, target) in values.into_iter().zip(&self.targets) {
             match (value, target) {
-                (VariableValue::Scale(_), Target::Scale { instances, .. }) => {
+                (
+                    VariableValue::Angle(a),
+                    Target::Rotate {
+                        light: Some((light, authored)),
+                        axis,
+                        ..
+                    },
+                ) => {
+                    // A light turns about an axis through itself: its aim and frame turn.
+                    let turn = Mat3::from_axis_angle(*axis, a.to_radians() as f32);
+                    match (&mut scene.lights[*light].kind, authored) {
+                        (
+                            LightKind::Spot { direction, .. },
+                            LightKind::Spot { direction: d0, .. },
+                        ) => *direction = turn * *d0,
+                        (
+                            LightKind::Goniometric { frame, .. },
+                            LightKind::Goniometric { frame: f0, .. },
+                        ) => *frame = turn * *f0,
+                        _ => {}
+                    }
+                }
+                (
+                    VariableValue::Scale(_) | VariableValue::Angle(_),
+                    Target::Scale { instances, .. } | Target::Rotate { instances, .. },
+                ) => {
                     for &(inst, original) in instances.iter().filter(|&&(i, _)| !placed(i)) {
                         let t = scale_of(inst) * original;
                         let slot = &mut scene.instances[inst].transform;
@@ -950,6 +1061,10 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
                 .unwrap_or(*max);
             vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
         }
+        (Domain::Segment { min, max }, Target::Rotate { .. }) => {
+            // As authored: turned by 0° (or the nearest end of the range).
+            vec![((0.0 - min) / (max - min)).clamp(0.0, 1.0)]
+        }
         (Domain::Segment { min, max }, Target::Power { .. } | Target::Scale { .. }) => {
             // The scene as authored is at level 1, its holes at scale 1.
             let x = if max > min {
@@ -983,11 +1098,16 @@ fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Ve
         let [(light, _)] = m.lights[..] else {
             continue;
         };
-        // An aimed lamp is not like another: swapping places would swap aims too.
-        if targets
-            .iter()
-            .any(|t| matches!(t, Target::Aim { light: l, .. } if *l == light))
-        {
+        // An aimed or turned lamp is not like another: swapping places would swap
+        // aims too.
+        if targets.iter().any(|t| match t {
+            Target::Aim { light: l, .. } => *l == light,
+            Target::Rotate {
+                light: Some((l, _)),
+                ..
+            } => *l == light,
+            _ => false,
+        }) {
             continue;
         }
         if !m.instances.is_empty() {

@@ -505,3 +505,38 @@ fn hole_size_scales_then_moves() {
         assert!(e.to_string().contains(says), "{e}");
     }
 }
+
+/// `objectRotation` turns an object about its placement's normal through its box's
+/// centre, then moves it; it is refused beside a `lightAim` of the same light.
+#[test]
+fn object_rotation_turns_then_moves() {
+    let mut s = scene();
+    let p = problem(
+        "<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/><objectRotation id=\"Chair\" min=\"0\" max=\"180\"/>",
+    );
+    assert_eq!(VariableSpec::key(&p.variables, 1), "Chair.rotation");
+    let b = Binding::new(&p, &mut s).unwrap();
+    assert_eq!(b.values(&b.initial)[1], VariableValue::Angle(0.0));
+    // 90° about the floor's normal (+Z) through the chair's centre (1.25, 1.25, 0.25):
+    // its corner (1, 1, 0) goes to (1.5, 1, 0); then P − A = (1.5, 0.5, 0) moves it to
+    // (3, 1.5, 0).
+    let config = Configuration {
+        coords: vec![0.75, 0.5, 0.5],
+    };
+    assert!(b.apply(&mut s, &config));
+    let chair = InstanceId::from_index(1);
+    let corner = s.instances[chair].transform.transform_point3(Vec3::ZERO);
+    assert!(
+        (corner - Vec3::new(3.0, 1.5, 0.0)).length() < 1e-5,
+        "{corner}"
+    );
+    let text = "<input><scene path=\"s.gltf\"/><conditions><lightAim id=\"L\" maxTilt=\"9\"/><objectRotation id=\"L\"/></conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>";
+    let e = Problem::parse(Path::new("/p/x.xml"), text).unwrap_err();
+    assert!(e.to_string().contains("a second variable"), "{e}");
+    let text = text.replace(
+        "<lightAim id=\"L\" maxTilt=\"9\"/><objectRotation id=\"L\"/>",
+        "<objectRotation id=\"L\" min=\"0\" max=\"400\"/>",
+    );
+    let e = Problem::parse(Path::new("/p/x.xml"), &text).unwrap_err();
+    assert!(e.to_string().contains("min + 360"), "{e}");
+}

@@ -231,6 +231,12 @@ pub enum ResultValue {
         /// The scale.
         scale: f64,
     },
+    /// `objectRotation`: the turn about the placement's normal, degrees.
+    #[serde(rename = "objectRotation")]
+    ObjectRotation {
+        /// The angle, degrees, counter-clockwise about the normal.
+        degrees: f64,
+    },
 }
 
 impl ResultValue {
@@ -258,6 +264,7 @@ impl ResultValue {
             (VariableValue::Colour { value, rgb }, _) => ResultValue::Color { value, rgb },
             (VariableValue::Power(value), _) => ResultValue::LightPower { value },
             (VariableValue::Scale(scale), _) => ResultValue::HoleSize { scale },
+            (VariableValue::Angle(degrees), _) => ResultValue::ObjectRotation { degrees },
         }
     }
 
@@ -276,6 +283,7 @@ impl ResultValue {
             ResultValue::Color { value, rgb } => VariableValue::Colour { value, rgb },
             ResultValue::LightPower { value } => VariableValue::Power(value),
             ResultValue::HoleSize { scale } => VariableValue::Scale(scale),
+            ResultValue::ObjectRotation { degrees } => VariableValue::Angle(degrees),
         }
     }
 }
@@ -511,6 +519,9 @@ impl ResultFile {
                     }
                     ResultValue::HoleSize { scale } => {
                         format!("{id} × {}", significant(scale))
+                    }
+                    ResultValue::ObjectRotation { degrees } => {
+                        format!("{id} turned {}°", significant(degrees))
                     }
                 })
                 .collect();

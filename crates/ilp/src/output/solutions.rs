@@ -114,7 +114,8 @@ impl SolutionRow {
                 VariableValue::Direction(d) => f.extend(d.to_array().map(|c| c.to_string())),
                 VariableValue::Colour { value, .. }
                 | VariableValue::Power(value)
-                | VariableValue::Scale(value) => f.push(value.to_string()),
+                | VariableValue::Scale(value)
+                | VariableValue::Angle(value) => f.push(value.to_string()),
             }
         }
         let goal = &self.evaluation.goal;
@@ -259,6 +260,7 @@ impl Solutions {
                         values.push(match spec.kind {
                             VariableKind::LightPower { .. } => VariableValue::Power(real(c)?),
                             VariableKind::HoleSize { .. } => VariableValue::Scale(real(c)?),
+                            VariableKind::ObjectRotation { .. } => VariableValue::Angle(real(c)?),
                             _ => VariableValue::Colour {
                                 value: real(c)?,
                                 rgb: [0.0; 3],

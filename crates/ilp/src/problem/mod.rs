@@ -72,6 +72,14 @@ pub enum VariableKind {
         /// `maxScale`, > `minScale`.
         max: f64,
     },
+    /// `objectRotation` (invlight): the turn of an object or luminaire about its
+    /// placement rectangle's normal (the scene's up without one), through its anchor.
+    ObjectRotation {
+        /// `min`, degrees.
+        min: f64,
+        /// `max`, degrees, at most 360° above `min`.
+        max: f64,
+    },
     /// `lightAim` (invlight): the aim of a spot or luminaire, within a cone about its
     /// authored aim.
     LightAim {
@@ -109,6 +117,7 @@ impl VariableKind {
             VariableKind::DirectionalLight => "directionalLight",
             VariableKind::LightAim { .. } => "lightAim",
             VariableKind::HoleSize { .. } => "holeSize",
+            VariableKind::ObjectRotation { .. } => "objectRotation",
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
         }
@@ -152,6 +161,8 @@ impl VariableSpec {
             format!("{}.aim", spec.id)
         } else if shared && matches!(spec.kind, VariableKind::HoleSize { .. }) {
             format!("{}.size", spec.id)
+        } else if shared && matches!(spec.kind, VariableKind::ObjectRotation { .. }) {
+            format!("{}.rotation", spec.id)
         } else {
             spec.id.clone()
         }
@@ -225,6 +236,7 @@ const VARIABLES: &[&str] = &[
     "lightInSurface",
     "holeInSurface",
     "holeSize",
+    "objectRotation",
     "directionalLight",
     "lightAim",
     "color",
@@ -562,7 +574,13 @@ impl<'a, 'i> Reader<'a, 'i> {
             if let Some(spec) = self.variable(v)? {
                 // A light may be placed, dimmed and aimed: one lightInSurface, one
                 // lightPower and one lightAim of the same id; a hole placed and sized:
-                // one holeInSurface and one holeSize. Any other repeat is a mistake.
+                // one holeInSurface and one holeSize; any of them, or an
+                // objectInSurface, turned by one objectRotation (a luminaire's turn and
+                // its aim are one frame, so not with lightAim). Any other repeat is a
+                // mistake.
+                let turned =
+                    |w: &VariableSpec| matches!(w.kind, VariableKind::ObjectRotation { .. });
+                let aimed = |w: &VariableSpec| matches!(w.kind, VariableKind::LightAim { .. });
                 let light_part = |w: &VariableSpec| match w.kind {
                     VariableKind::LightInSurface(_) => Some((0, 0)),
                     VariableKind::LightPower { .. } => Some((0, 1)),
@@ -576,9 +594,15 @@ impl<'a, 'i> Reader<'a, 'i> {
                     .iter()
                     .filter(|w: &&VariableSpec| w.id == spec.id)
                     .all(|w| {
-                        light_part(w).is_some()
-                            && group(w) == group(&spec)
-                            && light_part(w) != light_part(&spec)
+                        let (a, b) = (w, &spec);
+                        if turned(a) || turned(b) {
+                            let other = if turned(a) { b } else { a };
+                            !turned(other) && !aimed(other)
+                        } else {
+                            light_part(a).is_some()
+                                && group(a) == group(b)
+                                && light_part(a) != light_part(b)
+                        }
                     });
                 if !allowed {
                     return Err(self.error(
@@ -955,6 +979,19 @@ impl<'a, 'i> Reader<'a, 'i> {
                     ));
                 }
                 VariableKind::HoleSize { min, max }
+            }
+            "objectRotation" => {
+                self.check_attributes(v, &["id", "min", "max"]);
+                let what = "an angle in degrees";
+                let min = self.real(v, "min", what)?.unwrap_or(0.0);
+                let max = self.real(v, "max", what)?.unwrap_or(360.0);
+                if !(min < max && max - min <= 360.0) {
+                    return Err(self.error(
+                        v,
+                        format!("<objectRotation> has min {min}° and max {max}°, expected min < max ≤ min + 360°"),
+                    ));
+                }
+                VariableKind::ObjectRotation { min, max }
             }
             "lightAim" => {
                 self.check_attributes(v, &["id", "maxTilt"]);
