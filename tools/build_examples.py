@@ -7,7 +7,8 @@ Python 3 standard library only. Reads the original models from their zips
 (DIR/sponza/sponza.zip, DIR/conference/conference.zip; DIR defaults to ../shared/scenes
 beside the repository) and writes glTF 2.0 scenes (`scene.gltf` + `scene.bin`) into
 examples/atrium-skylight, examples/atrium-colour, examples/conference-sun and
-examples/office-target (built from nothing, no source geometry). The output
+examples/office-target and examples/office-ies (the same office, built from nothing, no
+source geometry; office-ies also gets tests/data/photometry/downlight.ldt). The output
 is byte-for-byte the same on every run, so a reader can redo it and diff.
 
 What is added to the original geometry (a roof, a hole, a jar, lamps, the sun, ceiling
@@ -548,9 +549,9 @@ LAMP_ZONE = ((1.0, 0.5), (4.0, 3.5))  # (x, z) corners of the ceiling zone lamps
 LAMPS = ((1.5, 1.0), (3.5, 3.0))  # as authored: not where a designer would put them
 
 
-def office(_scenes_dir, out):
+def office(_scenes_dir, out, name="office-target"):
     w, h, d = OFFICE
-    gl = Gltf("invlight tools/build_examples.py: office-target")
+    gl = Gltf("invlight tools/build_examples.py: " + name)
     room = gl.node("Room")
     # Every room surface faces into the room.
     faces = {
@@ -603,13 +604,23 @@ def office(_scenes_dir, out):
     gl.write(out)
 
 
+def office_ies(scenes_dir, out):
+    """The office of office-target whose lamps take a photometric file (problem.xml's
+    <luminaire>): the LED downlight of tests/data/photometry (make_photometry.py
+    there writes it), copied beside the problem."""
+    office(scenes_dir, out, "office-ies")
+    src = os.path.join(REPO, "tests", "data", "photometry", "downlight.ldt")
+    with open(src, "rb") as f, open(os.path.join(out, "downlight.ldt"), "wb") as g:
+        g.write(f.read())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=os.path.join(os.path.dirname(REPO), "shared", "scenes"),
                     help="folder holding sponza/sponza.zip and conference/conference.zip")
     ap.add_argument("--out", default=os.path.join(REPO, "examples"), help="examples folder")
     ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun",
-                                       "office-target"])
+                                       "office-target", "office-ies"])
     ap.add_argument("--wall-value", type=float,
                     help="write only atrium-colour, with this inner-wall HSV value, into --out")
     args = ap.parse_args()
@@ -617,7 +628,8 @@ def main():
         atrium_colour(args.scenes, args.out, args.wall_value)
         return
     builders = {"atrium-skylight": atrium_skylight, "atrium-colour": atrium_colour,
-                "conference-sun": conference, "office-target": office}
+                "conference-sun": conference, "office-target": office,
+                "office-ies": office_ies}
     for name, build in builders.items():
         if args.only in (None, name):
             build(args.scenes, os.path.join(args.out, name))

@@ -92,6 +92,21 @@ def office_target(r, again):
         desk["low"], desk["high"], screen["mean"])
 
 
+def office_ies(r, again):
+    # The lamps from downlight.ldt at multiplier 2 (37 W each): the least electrical
+    # power (watts, since every lamp's file gives them) within 15 % of the README's
+    # 39.03 W from 600 draws; measured again with 1 M other photons (the problem file's
+    # <luminaire>s applied by measure too), 500 lx on the desk within its noise and at
+    # most 300 lx on the screen.
+    power = r["estimate"]["mean"]
+    m = again(["measure", "--config", "RESULT#1", "--side", "front", "-s", "Desk", "-s",
+               "Screen", "--photons", "1000000", "--seed", "7", "--json"])
+    desk, screen = m["surfaces"]
+    ok = power <= 1.15 * 39.03 and desk["high"] >= 500 and screen["low"] <= 300
+    return ok, "%.2f W; measured again: desk %.1f lx [%.1f, %.1f], screen %.1f lx" % (
+        power, desk["mean"], desk["low"], desk["high"], screen["mean"])
+
+
 # name: (check, reduced-budget arguments)
 EXAMPLES = {
     "cornell-cone": (cornell_cone, ["--iterations", "300"]),
@@ -100,6 +115,7 @@ EXAMPLES = {
     "atrium-colour": (atrium_colour, ["--photons", "400000"]),
     "conference-sun": (conference_sun, ["--iterations", "300", "--photons", "400000"]),
     "office-target": (office_target, ["--iterations", "600"]),
+    "office-ies": (office_ies, ["--iterations", "600"]),
 }
 
 
@@ -150,7 +166,7 @@ def main():
                 done = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, check=True)
                 return json.loads(done.stdout)
 
-            ok, what = check(best, again) if check is office_target else check(best)
+            ok, what = check(best, again) if check in (office_target, office_ies) else check(best)
             unit = result["objective"]["unit"]
             print("%s %s: %s; %.4g %s [%.4g, %.4g]; %d evaluations, N = %d photons, %.0f s" % (
                 "ok  " if ok else "FAIL", name, what, best["estimate"]["mean"], unit,
