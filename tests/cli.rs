@@ -2192,6 +2192,60 @@ mod luminaires {
         );
     }
 
+    /// solve reads a problem's `<luminaire>` and minimises watts when every lamp has
+    /// them, and says so: result.json's unit is W, and the least power is the level
+    /// found × the file's 18.5 W (a lamp dimmed to a level draws that share).
+    #[test]
+    fn solve_minimises_watts() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::copy(
+            data("ilp/lamp-room.gltf"),
+            dir.path().join("lamp-room.gltf"),
+        )
+        .unwrap();
+        std::fs::copy(
+            data("photometry/downlight.ldt"),
+            dir.path().join("downlight.ldt"),
+        )
+        .unwrap();
+        let path = dir.path().join("problem.xml");
+        std::fs::write(
+            &path,
+            r#"<input>
+  <scene path="lamp-room.gltf"><luminaire light="Lamp" file="downlight.ldt"/></scene>
+  <conditions meshSize="10"><lightPower id="Lamp" min="0.1" max="1"/></conditions>
+  <objectives photons="20000" maxIterations="40"><minimizePower/><constraint surface="Floor" minLux="1"/></objectives>
+</input>"#,
+        )
+        .unwrap();
+        let out = dir.path().join("out");
+        let run = invlight([
+            "solve".as_ref(),
+            path.as_os_str(),
+            "--output".as_ref(),
+            out.as_os_str(),
+            "--no-images".as_ref(),
+            "--no-report".as_ref(),
+        ]);
+        let stdout = text(&run.stdout);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        assert!(
+            stdout.contains("the least electrical power (W)"),
+            "{stdout}"
+        );
+        let result: Value =
+            serde_json::from_slice(&std::fs::read(out.join("result.json")).unwrap()).unwrap();
+        assert_eq!(result["objective"]["unit"], "W");
+        let best = &result["isoc"][0];
+        let level = f64_of(&best["variables"]["Lamp"]["value"]);
+        close(
+            f64_of(&best["estimate"]["mean"]),
+            18.5 * level,
+            1e-9,
+            "watts",
+        );
+    }
+
     /// The flag's own errors, the same on every command: not NAME=FILE, a missing file,
     /// a light that is not there.
     #[test]
