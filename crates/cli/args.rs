@@ -11,7 +11,7 @@ use invlight_ilp::{Problem, configured_scene};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, Side, TraceSettings, photons_traced};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
-use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis};
+use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
 use std::path::{Path, PathBuf};
@@ -41,10 +41,8 @@ pub struct LoadArgs {
     /// pipes are never read.
     #[arg(long)]
     pub allow_outside_paths: bool,
-    /// Give the point or spot light NAME the candela table of an IES LM-63 (.ies) or
-    /// EULUMDAT (.ldt) file, where the light is and aimed as it is (repeatable; after a
-    /// problem file's <luminaire>s, so this one wins). `invlight scene` lists the names.
-    #[arg(long, value_name = "NAME=FILE")]
+    /// NAME=FILE: light NAME emits an IES or EULUMDAT file's table (repeatable; wins over <luminaire>)
+    #[arg(long)]
     pub luminaire: Vec<Luminaire>,
 }
 
@@ -99,17 +97,15 @@ impl LoadArgs {
         }
     }
 
-    /// Gives the scene the `--luminaire` files, then refuses it if its ray-tracing
-    /// structure would not fit the memory limit.
-    fn fits(&self, mut scene: Scene, path: &Path) -> anyhow::Result<Scene> {
-        scene.set_luminaires(path, &self.luminaire, &self.options())?;
+    /// Refuses a scene whose ray-tracing structure would not fit the memory limit.
+    fn fits(&self, scene: Scene, path: &Path) -> anyhow::Result<Scene> {
         Accel::check_memory(&scene, path, self.options().max_memory)?;
         Ok(scene)
     }
 
     /// Loads a problem file's scene, these options overriding its `<scene>`'s.
     pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
-        let scene = problem.load_scene(&self.options(), self.scale, self.up)?;
+        let scene = problem.load_scene(&self.options(), self.scale, self.up, &self.luminaire)?;
         self.fits(scene, &problem.scene.path)
     }
 }
@@ -134,8 +130,8 @@ pub struct SceneArgs {
 impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
-        let (path, options) = (&self.scene, self.load.options());
-        let file = || self.load.fits(invlight_scene::load(path, &options)?, path);
+        let (path, options, lum) = (&self.scene, self.load.options(), &self.load.luminaire);
+        let file = || self.load.fits(load_with(path, &options, lum)?, path);
         configured_scene(path, self.config.as_deref(), file, |p| {
             self.load.load_problem(p)
         })

@@ -37,7 +37,7 @@ fn cornell_problems_bind_to_cornell_dae() {
     ] {
         let problem = problem(example);
         let mut scene = problem
-            .load_scene(&LoadOptions::default(), None, None)
+            .load_scene(&LoadOptions::default(), None, None, &[])
             .unwrap();
         let b = Binding::new(&problem, &mut scene).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(b.warnings.len(), 1, "{:?}", b.warnings);
@@ -81,7 +81,7 @@ fn cornell_problems_improve_on_their_start_with_a_small_budget() {
         problem.max_iterations = 60;
         problem.photons = 8192;
         let mut scene = problem
-            .load_scene(&LoadOptions::default(), None, None)
+            .load_scene(&LoadOptions::default(), None, None, &[])
             .unwrap();
         let b = Binding::new(&problem, &mut scene).unwrap();
         let mut search = Search::new(&b.space, problem.settings(), &b.initial);

@@ -56,6 +56,18 @@ impl Default for LoadOptions {
     }
 }
 
+/// [`load`], then gives the named lights their photometric files
+/// ([`Scene::set_luminaires`]; `--luminaire NAME=FILE`, a problem's `<luminaire>`).
+pub fn load_with(
+    path: &Path,
+    options: &LoadOptions,
+    luminaires: &[crate::Luminaire],
+) -> Result<Scene, LoadError> {
+    let mut scene = load(path, options)?;
+    scene.set_luminaires(path, luminaires, options)?;
+    Ok(scene)
+}
+
 /// Reads a glTF (`.gltf`, `.glb`), COLLADA (`.dae`) or Wavefront (`.obj`) scene.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
     let ext = path

@@ -259,7 +259,8 @@ impl Problem {
 
     /// Loads the problem's scene with `base`'s options and `<scene>`'s `scale` and `up`
     /// unless `scale` and `up` (the command line's) say otherwise, its lights given
-    /// their `<luminaire>` files (relative to the problem file). A missing file is
+    /// their `<luminaire>` files (relative to the problem file) and then `luminaires`
+    /// (the command line's, which thus win). A missing file is
     /// named with the problem file's line: its path is relative to the problem file,
     /// not to the current directory.
     pub fn load_scene(
@@ -267,6 +268,7 @@ impl Problem {
         base: &LoadOptions,
         scale: Option<f32>,
         up: Option<UpAxis>,
+        luminaires: &[Luminaire],
     ) -> Result<Scene, Diagnostic> {
         let path = &self.scene.path;
         if !path.exists() {
@@ -288,8 +290,8 @@ impl Problem {
         let mut options = *base;
         options.scale = scale.or(self.scene.scale).unwrap_or(1.0);
         options.up = up.or(self.scene.up);
-        let mut scene = invlight_scene::load(path, &options)?;
-        scene.set_luminaires(path, &self.scene.luminaires, &options)?;
+        let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
+        scene.set_luminaires(path, luminaires, &options)?;
         Ok(scene)
     }
 
@@ -1353,7 +1355,7 @@ mod tests {
         std::fs::write(&path, "<input>\n<scene path=\"nowhere.gltf\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap();
         let p = Problem::read(&path).unwrap();
         let e = p
-            .load_scene(&LoadOptions::default(), None, None)
+            .load_scene(&LoadOptions::default(), None, None, &[])
             .unwrap_err();
         assert_eq!(e.line, Some(2));
         let text = e.to_string();
