@@ -9,11 +9,25 @@
 //! bilinear inside them, so its photons carry the total flux times r = I/(Φ·p), whose
 //! mean is 1 and which stays near 1 on the fine tables of real files (see
 //! `connect`'s module doc; the variance grows by the factor E[r²]).
+//!
+//! The sky ([`Scene::sky`], a CIE sky of `invlight_scene::daylight`) is light from every
+//! direction of the upper hemisphere. Each of its photons draws a direction ω from the
+//! sky's luminance (density p(ω) = L(ω)/∫L dω, `Sky::sample`) and starts on a disk
+//! across ω that covers the scene's bounding sphere, as the sun's do (thesis §4.5): the
+//! sky's flux into the sphere is π r² ∫ L dω, and every photon carries its share of it
+//! times L(ω)/(p(ω)·∫ L dω), 1 for the overcast sky and near 1 for the clear sky's
+//! table, so that its expected power per steradian is the sky's (pbrt-v4's
+//! `ImageInfiniteLight::SampleLe` draws the same way). For one ω the
+//! photon is a parallel beam, so connections and their weights are the sun's
+//! ([`Lobe::Parallel`]): the connection to a target point y along ω is the sky's
+//! luminance toward ω times cos θ_y over p(ω), the next-event estimate of the sky with
+//! the sky's own density, and p(ω) cancels between the two strategies' densities.
 
 use crate::connect::Lobe;
 use crate::sampler::Sampler;
 use crate::sampling;
 use glam::{Mat3, Vec3};
+use invlight_scene::daylight::Sky;
 use invlight_scene::{InstanceId, LightId, LightKind, Opening, Photometry, Rgb, Scene, luminance};
 use invlight_stats::Distribution1D;
 use std::f32::consts::PI;
@@ -48,6 +62,8 @@ pub enum SourceOrigin {
     Light(LightId),
     /// An emissive triangle of this instance.
     Instance(InstanceId),
+    /// The sky ([`Scene::sky`]).
+    Sky,
 }
 
 /// An emissive triangle of a scene, in world space: an area light that emits from its
@@ -127,6 +143,14 @@ enum Source {
         photometry: Arc<Photometry>,
         power: Rgb,
     },
+    /// The sky: a direction from its luminance, then a point on the disk across it
+    /// that covers the bounding sphere (centre, radius), placed outside it.
+    Sky {
+        sky: Arc<Sky>,
+        centre: Vec3,
+        radius: f32,
+        power: Rgb,
+    },
     /// An emissive triangle (Lambertian, front face).
     Triangle {
         p0: Vec3,
@@ -150,8 +174,8 @@ pub struct Emitters {
 }
 
 impl Emitters {
-    /// Collects every light of `scene`: point, spot and directional lights and every
-    /// emissive triangle.
+    /// Collects every light of `scene`: point, spot and directional lights, every
+    /// emissive triangle and the sky.
     pub fn new(scene: &Scene) -> Emitters {
         let mut flux_rgb: Vec<Rgb> = Vec::new();
         let mut sources = Vec::new();
@@ -225,6 +249,18 @@ impl Emitters {
             // A Lambertian emitter of radiance L sends π·L per unit area.
             flux_rgb.push(t.emission * (PI * t.area));
         }
+        if let Some(sky) = &scene.sky {
+            origins.push(SourceOrigin::Sky);
+            sources.push(Source::Sky {
+                sky: sky.clone(),
+                centre,
+                radius,
+                power: Vec3::ZERO,
+            });
+            // White light of luminance L from each direction through a disk of π r².
+            let flux = sky.dome_luminance() * std::f64::consts::PI * (radius as f64).powi(2);
+            flux_rgb.push(Vec3::splat(flux as f32));
+        }
         let by_flux = Distribution1D::new(flux_rgb.iter().map(|&f| luminance(f) as f64));
         let total = by_flux.total();
         for (source, flux) in sources.iter_mut().zip(&flux_rgb) {
@@ -240,6 +276,7 @@ impl Emitters {
                 | Source::Spot { power: p, .. }
                 | Source::Directional { power: p, .. }
                 | Source::Goniometric { power: p, .. }
+                | Source::Sky { power: p, .. }
                 | Source::Triangle { power: p, .. } => *p = power,
             }
         }
@@ -252,7 +289,7 @@ impl Emitters {
         }
     }
 
-    /// The number of sources (lights and emissive triangles).
+    /// The number of sources (lights, emissive triangles and the sky).
     pub fn len(&self) -> usize {
         self.sources.len()
     }
@@ -267,8 +304,8 @@ impl Emitters {
         self.flux[i as usize]
     }
 
-    /// Total luminous flux of the scene's lights, lm (for the sun: what crosses the disk
-    /// that covers the scene).
+    /// Total luminous flux of the scene's lights, lm (for the sun and the sky: what
+    /// crosses the disks that cover the scene).
     pub fn total_flux(&self) -> f64 {
         self.by_flux.total()
     }
@@ -345,6 +382,37 @@ impl Emitters {
                     lumens: luminance(power),
                     lobe: Lobe::Parallel {
                         direction,
+                        area: PI * radius * radius,
+                    },
+                }
+            }
+            Source::Sky {
+                ref sky,
+                centre,
+                radius,
+                power,
+            } => {
+                // The direction from (u1, u2), the stratified pair; the point from (u3, u4).
+                let drawn = sky.sample(u1, u2);
+                let to_sky = drawn.to_sky;
+                // r = L/(p·∫L dω): exactly 1 for the overcast sky, whose density is ∝ L;
+                // near 1 for the clear sky's table, whose cells are uniform where L is not.
+                let r = if drawn.pdf > 0.0 {
+                    (drawn.luminance as f64 / (drawn.pdf as f64 * sky.dome_luminance())) as f32
+                } else {
+                    0.0
+                };
+                let (x, y) = sampling::disk(u3, u4);
+                let (t, b) = sampling::basis(to_sky);
+                EmitSample {
+                    source: source_index,
+                    origin: centre + (t * x + b * y + to_sky * 1.01) * radius,
+                    dir: -to_sky,
+                    surface_normal: None,
+                    power: power * r,
+                    lumens: luminance(power * r),
+                    lobe: Lobe::Parallel {
+                        direction: -to_sky,
                         area: PI * radius * radius,
                     },
                 }

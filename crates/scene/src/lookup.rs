@@ -94,19 +94,23 @@ impl Scene {
         let lit = self.lights.iter().any(|l| luminance(l.kind.flux()) > 0.0)
             || self
                 .all_world_triangles()
-                .any(|(_, t)| self.materials[t.material].is_emissive() && t.area() > 0.0);
+                .any(|(_, t)| self.materials[t.material].is_emissive() && t.area() > 0.0)
+            || self
+                .sky
+                .as_ref()
+                .is_some_and(|s| s.horizontal_illuminance() > 0.0);
         if lit {
             return Ok(());
         }
         let dark: Vec<&str> = self.lights.iter().map(|l| l.name.as_str()).collect();
         let why = if dark.is_empty() {
-            "no point, spot or directional light and no emissive surface".to_string()
+            "no point, spot or directional light, no emissive surface and no sky".to_string()
         } else {
             format!("its lights {} emit no luminous flux", quoted(&dark))
         };
         Err(
             Diagnostic::new(path, format!("the scene has no light: {why}"))
-                .with_hint("give a light a positive intensity, or a material an emission"),
+                .with_hint("give a light a positive intensity, a material an emission, or the scene a sky (--sky cie-overcast:10000)"),
         )
     }
 }

@@ -34,6 +34,7 @@
 //! `list[id.index()]`. [`InstanceId::from_index`] makes an id of a position (as
 //! `enumerate` gives it); [`InstanceId::index`] gives the position back.
 
+use crate::daylight::Sky;
 use crate::error::PhotometryError;
 use crate::light::{Camera, Light, LightKind, aimed_frame, tilt_factor};
 use crate::material::{Material, Texture};
@@ -213,6 +214,10 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Cameras, the first being the default view.
     pub cameras: Vec<Camera>,
+    /// The sky over the scene, a light from every direction of the upper hemisphere
+    /// about [`Scene::up`] (CIE skies, [`crate::daylight`]); none by default, as no
+    /// scene file describes one.
+    pub sky: Option<Arc<Sky>>,
     /// Named surfaces, in the order they were first seen. Read it freely; add to it
     /// through [`Scene::add_instance`] and [`Scene::add_to_surface`], which keep the name
     /// index in step (a list pushed to directly is still searched correctly by
@@ -250,6 +255,7 @@ impl Default for Scene {
             textures: Vec::new(),
             lights: Vec::new(),
             cameras: Vec::new(),
+            sky: None,
             surfaces: Vec::new(),
             placements: Vec::new(),
             up: Vec3::Y,

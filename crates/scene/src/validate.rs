@@ -409,7 +409,8 @@ impl Scene {
 
     /// Every emitter's flux and their sum, in `f64`, as photon emission will weigh them
     /// (`invlight_photon::Emitters`): lights by [`LightKind::flux`], a sun over the
-    /// scene's bounding disk, a Lambertian emissive triangle by π·L·A. Runs after the
+    /// scene's bounding disk, a Lambertian emissive triangle by π·L·A, the sky by its
+    /// ∫ L dω over the bounding disk. Runs after the
     /// position checks, so the areas and the bounding disk are finite.
     fn validate_flux(&self) -> Result<(), SceneError> {
         let mut total = 0.0f64;
@@ -484,6 +485,17 @@ impl Scene {
                 });
             }
             total += flux;
+        }
+        if let Some(sky) = &self.sky {
+            let flux = sky.dome_luminance() * PI * radius * radius;
+            if !within_flux(flux) {
+                return Err(SceneError::Flux {
+                    place: "the sky".into(),
+                    flux,
+                });
+            }
+            total += flux;
+            emitters += 1;
         }
         if !within_flux(total) {
             return Err(SceneError::TotalFlux {

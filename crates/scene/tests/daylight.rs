@@ -4,9 +4,8 @@
 //! skies: each one's horizontal illuminance integrated here over the dome, its shape
 //! against the CIE formulas, and its sampling distribution against its density.
 //!
-//! Still to come with the dome emitter (phase 2 of issue 18): an unobstructed plane
-//! traced under each sky reads `horizontalLux`, and a patch at the bottom of a black
-//! square shaft under the overcast sky reads the integral of L·cos over the opening.
+//! The skies traced as emitters are checked in the photon crate's tests
+//! (`crates/photon/tests/daylight.rs`).
 
 use invlight_scene::Vec3;
 use invlight_scene::daylight::{
@@ -472,33 +471,55 @@ mod sky {
         }
     }
 
-    /// Each drawn direction's L·cos Z / pdf estimates E_h (the dome emitter's photon
-    /// weight): exactly E_h for the overcast sky, whose density is ∝ L·cos Z; close to
-    /// it for the clear sky's table, and on average E_h.
+    /// Each drawn direction's L / pdf is the dome's ∫ L dω (the dome emitter's photon
+    /// power per m² of its disk): exactly for the overcast sky, whose density is ∝ L;
+    /// close to it for the clear sky's table, and on average. And L·cos Z / pdf
+    /// estimates E_h.
     #[test]
-    fn samples_estimate_the_horizontal_illuminance() {
+    fn samples_estimate_the_dome_and_horizontal_illuminance() {
         for (name, sky, c) in skies() {
             let e_h = sky.horizontal_illuminance();
+            let dome = sky.dome_luminance();
             let n = 100_000;
             let mut rng = Pcg32::new(3, 1);
-            let (mut sum, mut sum_sq) = (0.0f64, 0.0f64);
+            let (mut sum, mut sum_sq, mut h, mut h_sq) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
             for _ in 0..n {
                 let s = sky.sample(rng.uniform(), rng.uniform());
-                let w = s.luminance as f64 * s.to_sky.dot(c.up()) as f64 / s.pdf as f64;
+                let w = s.luminance as f64 / s.pdf as f64;
                 if sky.kind() == SkyKind::CieOvercast {
-                    assert!((w - e_h).abs() < 1e-4 * e_h, "{name}: {w}");
+                    assert!((w - dome).abs() < 1e-4 * dome, "{name}: {w}");
                 }
                 sum += w;
                 sum_sq += w * w;
+                let wh = w * s.to_sky.dot(c.up()) as f64;
+                h += wh;
+                h_sq += wh * wh;
             }
-            let mean = sum / n as f64;
-            let sd = (sum_sq / n as f64 - mean * mean).max(0.0).sqrt();
-            assert!(
-                (mean - e_h).abs() < 4.0 * sd / (n as f64).sqrt() + 1e-6 * e_h,
-                "{name}: {mean}"
-            );
-            assert!(sd < 0.1 * e_h, "{name}: the table follows L (sd {sd})");
+            let n = n as f64;
+            for (what, sum, sum_sq, want) in [("dome", sum, sum_sq, dome), ("E_h", h, h_sq, e_h)] {
+                let mean = sum / n;
+                let sd = (sum_sq / n - mean * mean).max(0.0).sqrt();
+                assert!(
+                    (mean - want).abs() < 4.0 * sd / n.sqrt() + 1e-6 * want,
+                    "{name}: {what} {mean}, want {want}"
+                );
+                if what == "dome" {
+                    assert!(sd < 0.1 * dome, "{name}: the table follows L (sd {sd})");
+                }
+            }
         }
+    }
+
+    /// The dome's ∫ L dω against the midpoint rule here: 12/7 E_h for the overcast sky.
+    #[test]
+    fn dome_luminance_is_the_integral_of_luminance() {
+        for (name, sky, c) in skies() {
+            let e = dome_integral(&c, 480, |d| sky.luminance(d) as f64 / d.dot(c.up()) as f64);
+            let want = sky.dome_luminance();
+            assert!((e - want).abs() < 5e-5 * want, "{name}: {e}, want {want}");
+        }
+        let overcast = Sky::cie_overcast(Vec3::Y, 7_000.0).unwrap();
+        assert!((overcast.dome_luminance() - 12_000.0).abs() < 1e-9);
     }
 
     /// Pearson's χ² of 200 000 draws in 10 (cos Z) × 24 (azimuth) bins of the compass

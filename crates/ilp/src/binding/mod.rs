@@ -475,6 +475,8 @@ impl Binding {
                     }
                 }
                 SourceOrigin::Instance(_) => watts = None,
+                // Daylight costs no power.
+                SourceOrigin::Sky => continue,
             }
             flux[k] += emitters.flux(s);
         }

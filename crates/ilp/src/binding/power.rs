@@ -123,7 +123,8 @@ pub fn apply(scene: &mut Scene, dimmed: &Dimmed, level: f64) {
     }
 }
 
-/// Whether `kind` is daylight, which costs no power.
+/// Whether `kind` is daylight, which costs no power (the sun; the sky is not a light of
+/// the list but [`invlight_scene::Scene::sky`], daylight too).
 pub fn is_daylight(kind: &LightKind) -> bool {
     matches!(kind, LightKind::Directional { .. })
 }

@@ -22,15 +22,19 @@
 //! directional light of [`super::SunPosition`]. L_z follows from `E_h` numerically,
 //! once, when the sky is built (there is no closed form).
 //!
-//! **Sampling.** Directions are drawn with a density proportional to L·cos Z, the
-//! distribution of the light that crosses a horizontal plane: photons entering a scene
-//! through a disk over it then all carry the same power. For the overcast sky that
-//! density is analytic, `p(ω) = 3 cos Z (1 + 2 cos Z) / (7π)` per steradian, inverted in
-//! cos Z by Newton's method on its cubic CDF. For the clear sky the dome is mapped to
-//! the unit square by (s, t) = (sin² Z, azimuth / 2π), Malley's cosine-weighted map,
-//! whose density is cos Z / π per steradian, and a piecewise-constant table of L over
-//! the square (pbrt-v4's `PiecewiseConstant2D`) carries the rest:
-//! `p(ω) = p_table(s, t) · cos Z / π`, exact for what is drawn.
+//! **Sampling.** Directions are drawn with a density proportional to L per steradian,
+//! the distribution of the light that crosses a disk held across each direction in
+//! turn: photons entering a scene through a disk perpendicular to their direction that
+//! covers its bounding sphere then all carry the same power, π r² ∫ L dω, whatever the
+//! direction (pbrt-v4's `ImageInfiniteLight` does the same for environment maps). A
+//! horizontal disk over the scene would favour high skies (density ∝ L·cos Z) but
+//! misses the light of low skies, which enters a room through its windows. For the
+//! overcast sky the density is analytic, `p(ω) = (1 + 2 cos Z) / (4π)` per steradian,
+//! inverted in cos Z in closed form. For the clear sky the dome is mapped to the unit
+//! square by (s, t) = (cos Z, azimuth / 2π), Archimedes' equal-area map, whose density is
+//! 1 / 2π per steradian, and a piecewise-constant table of L over the square (pbrt-v4's
+//! `PiecewiseConstant2D`) carries the rest: `p(ω) = p_table(s, t) / 2π`, exact for what
+//! is drawn.
 
 use super::DaylightError;
 use glam::{DVec3, Vec3};
@@ -111,17 +115,17 @@ impl GeneralSky {
     }
 }
 
-/// Rows (in sin² Z) and columns (in azimuth) of the clear sky's sampling table: cells of
-/// equal solid angle-times-cosine, 7° of zenith angle at the zenith and 2.8° of azimuth,
-/// small against the circumsolar peak's e^{−3χ} (χ in radians: 19° to fall by e).
+/// Rows (in cos Z) and columns (in azimuth) of the clear sky's sampling table: cells of
+/// equal solid angle, 10° of zenith angle at the zenith, 0.9° at the horizon, and 2.8° of
+/// azimuth, small against the circumsolar peak's e^{−3χ} (χ in radians: 19° to fall by e).
 const ROWS: usize = 64;
 const COLUMNS: usize = 128;
 /// Points per cell side averaged for a cell's weight.
 const SUBSAMPLES: usize = 2;
 /// Zenith-angle × azimuth cells of the midpoint rule that integrates the clear sky for
 /// its normalisation. In (Z, azimuth) the integrand L cos Z sin Z is smooth at the zenith
-/// and the horizon alike (in the table's sin² Z it is not, where a sun near the zenith
-/// made as many points nearly ten times less accurate); the rule converges as
+/// and the horizon alike (in sin² Z it is not, where a sun near the zenith made as many
+/// points nearly ten times less accurate); the rule converges as
 /// h², to 1.3·10⁻⁵ of E_h at this size for every sun checked against a 3000 × 12 000
 /// reference.
 const NORMALISATION_GRID: (usize, usize) = (256, 512);
@@ -134,6 +138,8 @@ pub struct Sky {
     model: Model,
     zenith_luminance: f64,
     horizontal_illuminance: f64,
+    /// ∫ L dω over the dome, cd/m²·sr = lx.
+    dome_luminance: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -181,16 +187,16 @@ impl Frame {
         sin * (cp * self.tangent + sp * self.bitangent) + mu * self.up
     }
 
-    /// Malley's map: (s, t) = (sin² Z, φ / 2π) to a direction.
+    /// Archimedes' equal-area map: (s, t) = (cos Z, φ / 2π) to a direction.
     fn square_to_direction(&self, s: f64, t: f64) -> DVec3 {
-        self.local((1.0 - s).max(0.0).sqrt(), 2.0 * PI * t)
+        self.local(s.clamp(0.0, 1.0), 2.0 * PI * t)
     }
 
     /// The inverse of [`Frame::square_to_direction`] for unit `d` above the horizon.
     fn direction_to_square(&self, d: DVec3) -> (f64, f64) {
         let (x, y) = (d.dot(self.tangent), d.dot(self.bitangent));
         let t = y.atan2(x) / (2.0 * PI);
-        ((x * x + y * y).min(1.0), t.rem_euclid(1.0))
+        (d.dot(self.up).clamp(0.0, 1.0), t.rem_euclid(1.0))
     }
 }
 
@@ -241,6 +247,8 @@ impl Sky {
             model: Model::Overcast,
             zenith_luminance: 9.0 * horizontal_lux / (7.0 * PI),
             horizontal_illuminance: horizontal_lux,
+            // ∫ L_z (1 + 2μ)/3 dω = 2π L_z/3 · ∫₀¹ (1 + 2μ) dμ = 4π L_z/3 = 12/7 E_h.
+            dome_luminance: 12.0 / 7.0 * horizontal_lux,
         })
     }
 
@@ -281,22 +289,25 @@ impl Sky {
                 sum / (n * n)
             })
             .collect();
-        // E_h / L_z = ∫∫ (L/L_z) cos Z sin Z dZ dφ.
+        // E_h / L_z = ∫∫ (L/L_z) cos Z sin Z dZ dφ, and ∫ L dω / L_z without the cos Z.
         let (nz, nphi) = NORMALISATION_GRID;
         let (dz, dphi) = (PI / 2.0 / nz as f64, 2.0 * PI / nphi as f64);
-        let mut ratio = 0.0;
+        let (mut ratio, mut dome) = (0.0, 0.0);
         for i in 0..nz {
             let z = (i as f64 + 0.5) * dz;
             let ring: f64 = (0..nphi)
                 .map(|j| relative(frame.local(z.cos(), (j as f64 + 0.5) * dphi)))
                 .sum();
             ratio += ring * z.cos() * z.sin();
+            dome += ring * z.sin();
         }
+        let zenith_luminance = horizontal_lux / (ratio * dz * dphi);
         Ok(Sky {
             frame,
             model: Model::Clear(clear, square_table(&weights)),
-            zenith_luminance: horizontal_lux / (ratio * dz * dphi),
+            zenith_luminance,
             horizontal_illuminance: horizontal_lux,
+            dome_luminance: zenith_luminance * dome * dz * dphi,
         })
     }
 
@@ -332,6 +343,13 @@ impl Sky {
         self.horizontal_illuminance
     }
 
+    /// The sky's luminance integrated over the dome, ∫ L dω, lx: the illuminance a disk
+    /// held across each direction in turn gathers from it, so that π r² times it is the
+    /// luminous flux the sky sends into a sphere of radius r.
+    pub fn dome_luminance(&self) -> f64 {
+        self.dome_luminance
+    }
+
     /// Luminance seen looking along `to_sky` (need not be unit), cd/m²; 0 at and
     /// below the horizon.
     pub fn luminance(&self, to_sky: Vec3) -> f32 {
@@ -359,13 +377,13 @@ impl Sky {
             Model::Overcast => overcast_pdf(mu),
             Model::Clear(_, table) => {
                 let (s, t) = self.frame.direction_to_square(d);
-                table.pdf(s, t) * mu / PI
+                table.pdf(s, t) / (2.0 * PI)
             }
         }) as f32
     }
 
     /// A direction toward the sky for uniform `u1`, `u2` in [0, 1), drawn with density
-    /// ∝ L·cos Z, with its density and luminance. Both are those [`Sky::pdf`] and
+    /// ∝ L per steradian, with its density and luminance. Both are those [`Sky::pdf`] and
     /// [`Sky::luminance`] give the returned vector, so that they agree exactly even where
     /// rounding to `f32` moves a direction across the edge of a table cell (a sliver of
     /// the dome some 10⁻⁷ wide, where the density is that of the neighbouring cell).
@@ -381,7 +399,7 @@ impl Sky {
     }
 
     /// The unit direction drawn for (u1, u2): by inverting the overcast sky's CDF in
-    /// cos Z (azimuth uniform), or through the table and Malley's map.
+    /// cos Z (azimuth uniform), or through the table and Archimedes' map.
     fn sample_direction(&self, u1: f64, u2: f64) -> DVec3 {
         match &self.model {
             Model::Overcast => self.frame.local(overcast_cos_zenith(u1), 2.0 * PI * u2),
@@ -393,35 +411,20 @@ impl Sky {
     }
 }
 
-/// The overcast sky's sampling density per steradian, 3μ(1 + 2μ)/(7π): L·cos Z over E_h.
+/// The overcast sky's sampling density per steradian, (1 + 2μ)/(4π): L over ∫ L dω.
 fn overcast_pdf(mu: f64) -> f64 {
-    3.0 * mu * (1.0 + 2.0 * mu) / (7.0 * PI)
+    (1.0 + 2.0 * mu) / (4.0 * PI)
 }
 
-/// The cos Z at which the overcast sky's CDF over cos Z, F(μ) = (3μ² + 4μ³)/7 (the
-/// density above integrated over azimuth and from the horizon), reaches `u`. F is convex
-/// and increasing on [0, 1], so Newton's method started above the root, at the smaller of
-/// the bounds √(7u/3) and ∛(7u/4) that each of its terms alone gives, descends on it
-/// monotonically.
+/// The cos Z at which the overcast sky's CDF over cos Z, F(μ) = (μ + μ²)/2 (the density
+/// above integrated over azimuth and from the horizon), reaches `u`: the root of the
+/// quadratic, written as 2u / (1/2 + √(1/4 + 2u)) so that it keeps its digits near 0.
 fn overcast_cos_zenith(u: f64) -> f64 {
-    let target = 7.0 * u.clamp(0.0, 1.0);
-    let mut mu = (target / 3.0).sqrt().min((target / 4.0).cbrt()).min(1.0);
-    for _ in 0..50 {
-        let g = mu * mu * (3.0 + 4.0 * mu) - target;
-        let slope = mu * (6.0 + 12.0 * mu);
-        if g <= 0.0 || slope <= 0.0 {
-            break;
-        }
-        let step = g / slope;
-        mu -= step;
-        if step <= 1e-15 * mu {
-            break;
-        }
-    }
-    mu.clamp(0.0, 1.0)
+    let u = u.clamp(0.0, 1.0);
+    (2.0 * u / (0.5 + (0.25 + 2.0 * u).sqrt())).clamp(0.0, 1.0)
 }
 
-/// The clear sky's table over Malley's square: `weights` row by row (row i of
+/// The clear sky's table over Archimedes' square: `weights` row by row (row i of
 /// [`ROWS`] in s, column j of [`COLUMNS`] in t), every cell of the same area, so a
 /// cell's mass is its weight.
 fn square_table(weights: &[f64]) -> PiecewiseConstant2D {
@@ -439,14 +442,14 @@ mod tests {
         for k in 0..=1000 {
             let u = k as f64 / 1000.0;
             let mu = overcast_cos_zenith(u);
-            let f = (3.0 * mu * mu + 4.0 * mu * mu * mu) / 7.0;
+            let f = (mu + mu * mu) / 2.0;
             assert!((f - u).abs() < 1e-12, "{u}: F({mu}) = {f}");
         }
         assert_eq!(overcast_cos_zenith(0.0), 0.0);
         assert_eq!(overcast_cos_zenith(1.0), 1.0);
     }
 
-    /// Malley's map and its inverse undo each other, and what the table draws has the
+    /// Archimedes' map and its inverse undo each other, and what the table draws has the
     /// density it reports at the point drawn (in f64, where no rounding moves a point
     /// across a cell edge).
     #[test]
@@ -469,9 +472,7 @@ mod tests {
                 );
                 assert_eq!(p, table.pdf(s, t));
                 let d = sky.sample_direction(u1, u2);
-                assert!(
-                    (sky.pdf(d.as_vec3()) as f64 - p * d.dot(sky.frame.up) / PI).abs() < 1e-5 * p
-                );
+                assert!((sky.pdf(d.as_vec3()) as f64 - p / (2.0 * PI)).abs() < 1e-5 * p);
             }
         }
     }
