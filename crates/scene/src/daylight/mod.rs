@@ -10,7 +10,10 @@
 //!   direct normal illuminance of IES RP-21-84; [`SunReport`] is all of it, serialisable.
 //! - [`Sky`]: the CIE standard overcast and clear skies as luminance over the dome,
 //!   scaled to a horizontal illuminance, with a sampling distribution over directions
-//!   and its density, for dome emitters and connections.
+//!   and its density, for the dome emitter ([`crate::Scene::sky`]).
+//! - [`Daylight`]: a site, the sun at a date and time and a sky as a problem file or
+//!   the command line gives them, put on a scene by [`Daylight::apply`];
+//!   [`daylight_factor_scene`] makes a scene what a daylight factor is measured in.
 //!
 //! docs/daylight.md states the conventions with a figure, the models and their sources.
 //!
@@ -32,11 +35,15 @@
 //! # Ok::<(), invlight_scene::daylight::DaylightError>(())
 //! ```
 
+mod setting;
 mod site;
 mod sky;
 mod sun;
 mod time;
 
+pub use setting::{
+    DAYLIGHT_FACTOR_LUX, Daylight, SUN_NAME, SkySpec, SunAt, daylight_factor_scene, set_sun,
+};
 pub use site::{Compass, Site};
 pub use sky::{Sky, SkyKind, SkySample};
 pub use sun::{
@@ -84,6 +91,21 @@ pub enum DaylightError {
     UnknownSky(String),
     /// The solar position algorithm refused its inputs.
     Spa(String),
+    /// Text that is not in the form expected.
+    Format {
+        /// The text.
+        text: String,
+        /// The form expected.
+        expected: &'static str,
+    },
+    /// A sun by date and time was given without the site it shines on.
+    NeedsSite,
+    /// A clear sky was asked for a scene without a sun to place it by.
+    NeedsSun,
+    /// The scene has several directional lights and none is named [`SUN_NAME`].
+    SeveralSuns(Vec<String>),
+    /// A daylight factor was asked under a sky that is not the CIE overcast sky.
+    NotOvercast(SkyKind),
 }
 
 impl fmt::Display for DaylightError {
@@ -106,6 +128,23 @@ impl fmt::Display for DaylightError {
                 SkyKind::ALL.map(|k| k.name()).join(" or ")
             ),
             DaylightError::Spa(message) => write!(f, "solar position: {message}"),
+            DaylightError::Format { text, expected } => write!(f, "'{text}': expected {expected}"),
+            DaylightError::NeedsSite => f.write_str(
+                "a sun by date and time needs the site it shines on: give a <site> or --site LAT,LON,TZ",
+            ),
+            DaylightError::NeedsSun => f.write_str(
+                "the CIE clear sky is drawn about the sun, and the scene has none: give a sun by date and time (<sun>, --sun) or a directional light",
+            ),
+            DaylightError::SeveralSuns(names) => write!(
+                f,
+                "the scene has {} directional lights ({}) and none is named '{SUN_NAME}': name the one the site's sun replaces '{SUN_NAME}'",
+                names.len(),
+                names.join(", ")
+            ),
+            DaylightError::NotOvercast(kind) => write!(
+                f,
+                "a daylight factor is measured under the CIE overcast sky, and the sky is {kind}: use cie-overcast"
+            ),
         }
     }
 }
