@@ -9,10 +9,12 @@
 //! quotes, which is not XML; such values are quoted before parsing, with a warning.
 
 mod bare_attributes;
+mod daylight;
 
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
+use invlight_scene::daylight::Daylight;
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
@@ -219,11 +221,22 @@ pub struct Problem {
     pub confidence: Confidence,
     /// invlight: `maxBounces` per photon path (default: the tracer's own).
     pub max_bounces: Option<u32>,
+    /// `<site>`, `<sun>` and `<sky>`: the daylight [`Problem::load_scene`] puts on the
+    /// scene.
+    pub daylight: Daylight,
     /// Warnings: unknown elements and attributes, repaired syntax.
     pub warnings: Vec<Diagnostic>,
 }
 
-const TOP: &[&str] = &["scene", "output", "conditions", "objectives"];
+const TOP: &[&str] = &[
+    "scene",
+    "output",
+    "conditions",
+    "objectives",
+    "site",
+    "sun",
+    "sky",
+];
 const GOALS: &[&str] = &[
     "maximizeRadiance",
     "minimizeRadiance",
@@ -260,7 +273,9 @@ impl Problem {
     /// Loads the problem's scene with `base`'s options and `<scene>`'s `scale` and `up`
     /// unless `scale` and `up` (the command line's) say otherwise, its lights given
     /// their `<luminaire>` files (relative to the problem file) and then `luminaires`
-    /// (the command line's, which thus win). A missing file is
+    /// (the command line's, which thus win), and puts the file's daylight on it
+    /// ([`Problem::daylight`]; its warnings were given when the file was read). A
+    /// missing file is
     /// named with the problem file's line: its path is relative to the problem file,
     /// not to the current directory.
     pub fn load_scene(
@@ -292,6 +307,10 @@ impl Problem {
         options.up = up.or(self.scene.up);
         let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
         scene.set_luminaires(path, luminaires, &options)?;
+        // A sun below the horizon was warned of with its line when the file was read.
+        self.daylight
+            .apply(&mut scene)
+            .map_err(|e| Diagnostic::new(&self.path, format!("daylight: {e}")))?;
         Ok(scene)
     }
 
@@ -545,6 +564,8 @@ impl<'a, 'i> Reader<'a, 'i> {
             line: self.line(scene_el),
         };
 
+        let daylight = self.daylight(only("site")?, only("sun")?, only("sky")?)?;
+
         let output = match only("output")? {
             Some(o) => {
                 self.check_attributes(o, &["path"]);
@@ -757,6 +778,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             seed,
             confidence,
             max_bounces,
+            daylight,
             warnings: Vec::new(),
         })
     }
@@ -1093,6 +1115,55 @@ mod tests {
 
     fn parse(text: &str) -> Result<Problem, Diagnostic> {
         Problem::parse(Path::new("/p/problem.xml"), text)
+    }
+
+    /// `<site>`, `<sun>` and `<sky>` read into the problem's daylight; mistakes name
+    /// their line and show the element's form.
+    #[test]
+    fn daylight_elements() {
+        use invlight_scene::daylight::SkyKind;
+        let body = "<scene path=\"s.gltf\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives>";
+        let with = |extra: &str| parse(&format!("<input>{body}\n{extra}</input>"));
+        let p = with(
+            r#"<site latitude="-34.9" longitude="-56.2" timezone="-3" north="30"/>
+<sun date="2025-12-21" time="10:00"/><sky type="cie-overcast" horizontalLux="10000"/>"#,
+        )
+        .unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        let site = p.daylight.site.unwrap();
+        assert_eq!((site.latitude(), site.north()), (-34.9, 30.0));
+        assert_eq!(p.daylight.sun.unwrap().time.hour(), 10);
+        let sky = p.daylight.sky.unwrap();
+        assert_eq!(
+            (sky.kind, sky.horizontal_lux),
+            (SkyKind::CieOvercast, 10_000.0)
+        );
+        assert!(with("").unwrap().daylight.is_empty());
+        let night = with(
+            r#"<site latitude="-34.9" longitude="-56.2" timezone="-3"/>
+<sun date="2025-12-21" time="23:00"/>"#,
+        )
+        .unwrap();
+        assert_eq!(night.warnings.len(), 1, "{:?}", night.warnings);
+        assert_eq!(night.warnings[0].line, Some(3));
+        assert!(night.warnings[0].to_string().contains("below the horizon"));
+        for (extra, what) in [
+            (r#"<sun date="2025-12-21" time="10:00"/>"#, "needs the site"),
+            (
+                r#"<sky type="cie-sunny" horizontalLux="5"/>"#,
+                "cie-overcast or cie-clear",
+            ),
+            (r#"<sky type="cie-overcast"/>"#, "horizontalLux"),
+            (
+                r#"<site latitude="-94" longitude="0" timezone="0"/>"#,
+                "latitude",
+            ),
+            (r#"<site latitude="10" timezone="0"/>"#, "longitude"),
+        ] {
+            let e = with(extra).unwrap_err();
+            assert_eq!(e.line, Some(2), "{extra}: {e}");
+            assert!(e.to_string().contains(what), "{extra}: {e}");
+        }
     }
 
     #[test]
