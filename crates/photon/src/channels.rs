@@ -58,13 +58,13 @@ impl Side {
 }
 
 /// Which component each light and each emissive instance belongs to: the lights dimmed
-/// together (a `lightPower` variable) share one; the rest are component 0.
+/// together (a `lightPower` variable) share one; the rest, and the sky (daylight, which
+/// no variable dims), are component 0.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Components {
     count: usize,
     of_light: Vec<u32>,
     of_instance: Vec<u32>,
-    of_sky: u32,
 }
 
 impl Components {
@@ -81,7 +81,6 @@ impl Components {
             count: count.max(1),
             of_light: vec![0; scene.lights.len()],
             of_instance: vec![0; scene.instances.len()],
-            of_sky: 0,
         }
     }
 
@@ -108,22 +107,13 @@ impl Components {
         self.of_instance[instance.index()] = k as u32;
     }
 
-    /// Puts the sky's light in component `k`.
-    ///
-    /// # Panics
-    /// If `k` is not below [`Components::count`].
-    pub fn set_sky(&mut self, k: usize) {
-        assert!(k < self.count, "component {k} of {}", self.count);
-        self.of_sky = k as u32;
-    }
-
     /// The component of every source of `emitters`, by source index.
     pub fn of_sources(&self, emitters: &Emitters) -> Vec<u32> {
         (0..emitters.len() as u32)
             .map(|s| match emitters.origin(s) {
                 SourceOrigin::Light(l) => self.of_light.get(l.index()).copied().unwrap_or(0),
                 SourceOrigin::Instance(i) => self.of_instance.get(i.index()).copied().unwrap_or(0),
-                SourceOrigin::Sky => self.of_sky,
+                SourceOrigin::Sky => 0,
             })
             .collect()
     }
