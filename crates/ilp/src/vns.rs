@@ -53,6 +53,10 @@ pub enum Strategy {
     RefineOnEnd,
     /// Everything with n, never refined.
     NoRefine,
+    /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
+    /// the paired differences of their groups (common random numbers, issue 15) instead
+    /// of eq. 3.7's independent variances, wherever both kept their groups.
+    Paired,
 }
 
 impl Strategy {
@@ -62,7 +66,13 @@ impl Strategy {
             Strategy::RefineOnIntersection => "REFINE_ISOC_ON_INTERSECTION",
             Strategy::RefineOnEnd => "REFINE_ISOC_ON_END",
             Strategy::NoRefine => "NO_REFINE_ISOC",
+            Strategy::Paired => "PAIRED_ISOC",
         }
+    }
+
+    /// Whether candidates are evaluated in two stages, n then N (§4.7).
+    pub fn two_stage(self) -> bool {
+        matches!(self, Strategy::RefineOnIntersection | Strategy::Paired)
     }
 
     /// Parses the problem-file spelling.
@@ -71,6 +81,7 @@ impl Strategy {
             Strategy::RefineOnIntersection,
             Strategy::RefineOnEnd,
             Strategy::NoRefine,
+            Strategy::Paired,
         ]
         .into_iter()
         .find(|k| k.name() == s)
@@ -162,6 +173,17 @@ impl Sense {
         };
         Estimate { mean, ..*goal }
     }
+
+    /// The groups' scores ([`Evaluation::groups`]) where the score is linear in the
+    /// goal — the goal or minus it — so that the mean of the groups' scores is the
+    /// score; none for a target, whose |E − T| of a group's E is not a group of |Ē − T|.
+    pub fn score_groups(self, groups: &[f64]) -> Vec<f64> {
+        match self {
+            Sense::Maximize => groups.to_vec(),
+            Sense::Minimize => groups.iter().map(|g| -g).collect(),
+            Sense::Target(_) => Vec::new(),
+        }
+    }
 }
 
 /// What one evaluation estimated: the goal, and each constraint's quantity in the
@@ -172,6 +194,12 @@ pub struct Evaluation {
     pub goal: Estimate,
     /// The constrained quantities.
     pub constraints: Vec<Estimate>,
+    /// The goal as each independent group of samples estimates it, in group order
+    /// (their mean is `goal.mean`); group g of every configuration uses the same random
+    /// numbers, so two configurations are compared by their groups' paired differences
+    /// ([`Strategy::Paired`]). Empty when the goal is no mean of groups (a uniformity
+    /// ratio, a power) or the evaluator does not keep them: eq. 3.7 decides then.
+    pub groups: Vec<f64>,
 }
 
 impl Evaluation {
@@ -180,6 +208,7 @@ impl Evaluation {
         Evaluation {
             goal,
             constraints: Vec::new(),
+            groups: Vec::new(),
         }
     }
 }
@@ -375,7 +404,11 @@ impl<'s> Search<'s> {
         let rng = SplitMix64::new(mix(settings.seed ^ 0x5EA5_C4F0_0D15_EA5E));
         Search {
             space,
-            isoc: Isoc::new(z),
+            isoc: if settings.strategy == Strategy::Paired {
+                Isoc::paired(z)
+            } else {
+                Isoc::new(z)
+            },
             cache: Cache::default(),
             rng,
             start: space.snap(initial),
@@ -428,7 +461,7 @@ impl<'s> Search<'s> {
             let config = self.space.cell_centre(&cell);
             let member = self.member(config.clone(), cell.clone(), &rec.evaluation);
             if rec.verdict == Verdict::Final {
-                let fresh = rebuilt.get_or_insert_with(|| Isoc::new(self.isoc.z()));
+                let fresh = rebuilt.get_or_insert_with(|| self.isoc.emptied());
                 if !self.invalid(&rec.evaluation)
                     && self.feasibility(&rec.evaluation) == Feasibility::Feasible
                 {
@@ -562,7 +595,11 @@ impl<'s> Search<'s> {
             config,
             cell,
             estimate: self.settings.sense.score(&e.goal),
-            evaluation: e.clone(),
+            groups: self.settings.sense.score_groups(&e.groups),
+            evaluation: Evaluation {
+                groups: Vec::new(),
+                ..e.clone()
+            },
         }
     }
 
@@ -659,9 +696,10 @@ impl<'s> Search<'s> {
         observer: &mut O,
     ) -> Result<(), SearchError<E::Error>> {
         let (fast, full) = self.settings.sample_counts(eval);
-        let photons = match self.settings.strategy {
-            Strategy::RefineOnIntersection => full,
-            _ => fast,
+        let photons = if self.settings.strategy.two_stage() {
+            full
+        } else {
+            fast
         };
         let config = self.start.clone();
         let cell = self.space.cell(&config);
@@ -754,7 +792,7 @@ impl<'s> Search<'s> {
         observer: &mut O,
     ) -> Result<Verdict, SearchError<E::Error>> {
         let (n, full) = self.settings.sample_counts(eval);
-        if self.settings.strategy == Strategy::RefineOnIntersection && n < full {
+        if self.settings.strategy.two_stage() && n < full {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
             let verdict = if self.invalid(&fast) {
                 Some(Verdict::Invalid)
@@ -778,9 +816,10 @@ impl<'s> Search<'s> {
                 return Ok(v);
             }
         }
-        let photons = match self.settings.strategy {
-            Strategy::RefineOnIntersection => full,
-            _ => n,
+        let photons = if self.settings.strategy.two_stage() {
+            full
+        } else {
+            n
         };
         let (evaluation, seconds) =
             self.evaluate_deciding(eval, observer, (iteration, &config, &cell), (photons, full))?;
@@ -809,7 +848,7 @@ impl<'s> Search<'s> {
             return Ok(());
         }
         let members = self.isoc.members().to_vec();
-        self.isoc = Isoc::new(self.isoc.z());
+        self.isoc = self.isoc.emptied();
         for m in members {
             let (evaluation, seconds) = self.evaluate(eval, &m.config, full)?;
             if !self.invalid(&evaluation) && self.feasibility(&evaluation) == Feasibility::Feasible
@@ -836,20 +875,25 @@ impl<'s> Search<'s> {
         photons: u64,
     ) -> Result<(Evaluation, f64), SearchError<E::Error>> {
         let t = Instant::now();
-        let e = eval
+        let mut e = eval
             .evaluate(config, photons)
             .map_err(SearchError::Evaluate)?;
+        if self.settings.strategy != Strategy::Paired {
+            e.groups = Vec::new();
+        }
         self.evaluations += 1;
         Ok((e, t.elapsed().as_secs_f64()))
     }
 
-    /// Remembers the cell's estimate and verdict and tells the observer.
+    /// Remembers the cell's estimate and verdict and tells the observer. The record
+    /// goes without its groups: only ISOC members need them, and they keep their own.
     fn report<O: Observer, X>(
         &mut self,
         observer: &mut O,
         cell: Cell,
-        record: Record,
+        mut record: Record,
     ) -> Result<(), SearchError<X>> {
+        record.evaluation.groups = Vec::new();
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
         self.cache
             .insert(cell, Entry::Evaluated { estimate, verdict });
