@@ -144,6 +144,17 @@ impl Isoc {
         }
     }
 
+    /// Whether a member is better than `candidate` by their paired differences at `z`
+    /// (a sequential search's early look, with its own z): eq. 3.7 never screens here,
+    /// only pairs, and an ISOC that does not pair screens nothing out.
+    pub fn screens_out(&self, candidate: &Member, z: f64) -> bool {
+        self.paired
+            && self
+                .members
+                .iter()
+                .any(|m| compare_paired(&candidate.groups, &m.groups, z) == Some(Comparison::Worse))
+    }
+
     /// Offers a candidate (§4.6, cases A and B).
     pub fn admit(&mut self, candidate: Member) -> Admission {
         if !self.reaches(&candidate.estimate) {

@@ -55,7 +55,9 @@ pub enum Strategy {
     NoRefine,
     /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
     /// the paired differences of their groups (common random numbers, issue 15) instead
-    /// of eq. 3.7's independent variances, wherever both kept their groups.
+    /// of eq. 3.7's independent variances, wherever both kept their groups; a fast
+    /// estimate a member beats by pairs already is out (two looks with the error
+    /// split, [`Search::run`]'s stopping rule ends the search when it is decided).
     Paired,
 }
 
@@ -621,6 +623,18 @@ impl<'s> Search<'s> {
         self.cache.len() as f64 >= self.space.cell_count()
     }
 
+    /// The z of [`Strategy::Paired`]'s first look at a candidate, its n samples: the
+    /// one-sided level α/4 (α = 1 − confidence). A candidate as good as a member is
+    /// wrongly found worse at the first look with probability ≤ α/4 and at the second
+    /// (N samples, the ISOC's two-sided z: one-sided α/2) with ≤ α/2, so over both
+    /// looks with ≤ 3α/4 ≤ α by Bonferroni's inequality, whatever the correlation of
+    /// the two looks (a fixed schedule of looks with the error spent in parts; Jennison
+    /// & Turnbull, *Group Sequential Methods*, 2000, §1.3).
+    fn fast_look_z(&self) -> f64 {
+        let alpha = 1.0 - self.settings.confidence.level();
+        invlight_stats::normal_quantile(1.0 - alpha / 4.0)
+    }
+
     /// Whether the goal's whole interval lies above the cap (thesis §5.3.4).
     fn invalid(&self, e: &Evaluation) -> bool {
         self.settings
@@ -929,6 +943,13 @@ impl<'s> Search<'s> {
                 Some(Verdict::Infeasible)
             } else if !self.isoc.reaches(&self.settings.sense.score(&fast.goal)) {
                 Some(Verdict::Bad)
+            } else if self.settings.strategy == Strategy::Paired
+                && self.isoc.screens_out(
+                    &self.member(config.clone(), cell.clone(), &fast),
+                    self.fast_look_z(),
+                )
+            {
+                Some(Verdict::Beaten)
             } else {
                 None
             };
