@@ -55,9 +55,10 @@ pub enum Strategy {
     NoRefine,
     /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
     /// the paired differences of their groups (common random numbers, issue 15) instead
-    /// of eq. 3.7's independent variances, wherever both kept their groups; a fast
-    /// estimate a member beats by pairs already is out (two looks with the error
-    /// split, [`Search::run`]'s stopping rule ends the search when it is decided).
+    /// of eq. 3.7's independent variances, wherever both kept their groups; a candidate
+    /// is looked at with n, 4n, 16n, … samples ([`looks`]) and is out as soon as a
+    /// member beats it by pairs ([`early_look_z`]); [`Search::run`]'s stopping rule
+    /// ends the search when it is decided.
     Paired,
 }
 
@@ -393,6 +394,33 @@ impl Outcome {
     }
 }
 
+/// The sample counts at which [`Strategy::Paired`] looks at a candidate before its full
+/// evaluation: n, 4n, 16n, … while below N (`samples` rounds each as the evaluator
+/// will). Most candidates are told worse than a member after a few groups; those close
+/// to the ISOC go on. A fixed schedule, so the error of the looks is bounded in advance
+/// ([`early_look_z`]).
+pub fn looks(n: u64, full: u64, samples: impl Fn(u64) -> u64) -> Vec<u64> {
+    let mut out = Vec::new();
+    let mut m = n;
+    while m < full {
+        out.push(m);
+        m = samples(m.saturating_mul(4));
+    }
+    out
+}
+
+/// The z of each of `early` looks before the full evaluation: the one-sided level
+/// α/(4·early), α = 1 − confidence. A candidate as good as a member is wrongly found
+/// worse at some early look with probability ≤ α/4 and at the full one (the ISOC's
+/// two-sided z, one-sided α/2) with ≤ α/2, so over all looks with ≤ 3α/4 ≤ α by
+/// Bonferroni's inequality, whatever the correlation between looks (a fixed schedule
+/// of looks with the error spent in parts: Jennison & Turnbull, *Group Sequential
+/// Methods with Applications to Clinical Trials*, 2000, §1.3).
+pub fn early_look_z(confidence: Confidence, early: usize) -> f64 {
+    let alpha = 1.0 - confidence.level();
+    invlight_stats::normal_quantile(1.0 - alpha / (4.0 * early.max(1) as f64))
+}
+
 /// A search in progress.
 pub struct Search<'s> {
     space: &'s Space,
@@ -621,18 +649,6 @@ impl<'s> Search<'s> {
 
     fn exhausted(&self) -> bool {
         self.cache.len() as f64 >= self.space.cell_count()
-    }
-
-    /// The z of [`Strategy::Paired`]'s first look at a candidate, its n samples: the
-    /// one-sided level α/4 (α = 1 − confidence). A candidate as good as a member is
-    /// wrongly found worse at the first look with probability ≤ α/4 and at the second
-    /// (N samples, the ISOC's two-sided z: one-sided α/2) with ≤ α/2, so over both
-    /// looks with ≤ 3α/4 ≤ α by Bonferroni's inequality, whatever the correlation of
-    /// the two looks (a fixed schedule of looks with the error spent in parts; Jennison
-    /// & Turnbull, *Group Sequential Methods*, 2000, §1.3).
-    fn fast_look_z(&self) -> f64 {
-        let alpha = 1.0 - self.settings.confidence.level();
-        invlight_stats::normal_quantile(1.0 - alpha / 4.0)
     }
 
     /// Whether the goal's whole interval lies above the cap (thesis §5.3.4).
@@ -934,7 +950,13 @@ impl<'s> Search<'s> {
         observer: &mut O,
     ) -> Result<Verdict, SearchError<E::Error>> {
         let (n, full) = self.settings.sample_counts(eval);
-        if self.settings.strategy.two_stage() && n < full {
+        let looks = match self.settings.strategy {
+            Strategy::Paired => looks(n, full, |m| eval.samples(m)),
+            Strategy::RefineOnIntersection if n < full => vec![n],
+            _ => Vec::new(),
+        };
+        let z_early = early_look_z(self.settings.confidence, looks.len());
+        for n in looks {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
             let verdict = if self.invalid(&fast) {
                 Some(Verdict::Invalid)
@@ -944,10 +966,9 @@ impl<'s> Search<'s> {
             } else if !self.isoc.reaches(&self.settings.sense.score(&fast.goal)) {
                 Some(Verdict::Bad)
             } else if self.settings.strategy == Strategy::Paired
-                && self.isoc.screens_out(
-                    &self.member(config.clone(), cell.clone(), &fast),
-                    self.fast_look_z(),
-                )
+                && self
+                    .isoc
+                    .screens_out(&self.member(config.clone(), cell.clone(), &fast), z_early)
             {
                 Some(Verdict::Beaten)
             } else {

@@ -46,5 +46,5 @@ pub use estimate::{Estimate, normal_quantile};
 pub use format::{hours_or_days, significant};
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
 pub use pace::{LONG_WORK, LongWork, PACE_SAMPLE, Pace};
-pub use paired::{compare_paired, paired_difference, variance_ratio};
+pub use paired::{compare_paired, paired_difference, student_quantile, variance_ratio};
 pub use rng::{Pcg32, SplitMix64, mix};
