@@ -974,6 +974,9 @@ impl<'s> Search<'s> {
             } else {
                 None
             };
+            // A score without groups (a uniformity, a power, a target) cannot be
+            // screened by pairs: more looks would only cost photons, so N comes next.
+            let pairs = !self.settings.sense.score_groups(&fast.groups).is_empty();
             let record = Record {
                 iteration,
                 config: config.clone(),
@@ -984,6 +987,9 @@ impl<'s> Search<'s> {
             self.report(observer, cell.clone(), record)?;
             if let Some(v) = verdict {
                 return Ok(v);
+            }
+            if !pairs {
+                break;
             }
         }
         let photons = if self.settings.strategy.two_stage() {
