@@ -16,8 +16,9 @@
 //! falls back to eq. 3.7 otherwise. Paired indistinguishability over all the groups
 //! still implies overlapping intervals (var(d̄) = σx² + σy² − 2cov ≤ (σx + σy)²), but
 //! over a fast estimate's fewer groups it need not: the SIISOC is then taken as the
-//! intervals' common point nearest to both ends (low clamped to high), as before only
-//! as case A's screen, which never decides admission against a paired comparison.
+//! intervals' common point nearest to both ends (low clamped to high). Case A still
+//! screens by it: a candidate whose interval lies below it is below some member's
+//! interval, which eq. 3.7 finds worse too.
 
 use crate::space::{Cell, Configuration};
 use crate::vns::Evaluation;

@@ -58,7 +58,8 @@ pub enum Strategy {
     /// of eq. 3.7's independent variances, wherever both kept their groups; a candidate
     /// is looked at with n, 4n, 16n, … samples ([`looks`]) and is out as soon as a
     /// member beats it by pairs ([`early_look_z`]); [`Search::run`]'s stopping rule
-    /// ends the search when it is decided.
+    /// ends the search when it is decided. `solutions.csv` keeps no groups, so the
+    /// members a resumed run rebuilds from it are compared by eq. 3.7.
     Paired,
 }
 
