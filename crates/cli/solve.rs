@@ -11,6 +11,7 @@ use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
     Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
+    Strategy,
 };
 use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{Pictures, SolveFolder, SolveReport};
@@ -35,6 +36,10 @@ pub struct SolveArgs {
     /// problem's maxIterations, else 1000].
     #[arg(long, value_name = "K")]
     pub iterations: Option<u64>,
+    /// The search's strategy, as the problem file's `strategy` names it
+    /// (docs/problem-file.md) [default: the problem's], to compare two on one problem.
+    #[arg(long, value_name = "NAME", value_parser = parse_strategy)]
+    pub strategy: Option<Strategy>,
     #[command(flatten)]
     pub trace: TraceArgs,
     #[command(flatten)]
@@ -68,6 +73,13 @@ pub struct SolveArgs {
     pub grid: GridArgs,
 }
 
+/// A `strategy` name, as problem files spell it.
+fn parse_strategy(s: &str) -> std::result::Result<Strategy, String> {
+    Strategy::parse(s).ok_or_else(|| {
+        format!("'{s}' is not a strategy: REFINE_ISOC_ON_INTERSECTION, REFINE_ISOC_ON_END, NO_REFINE_ISOC or PAIRED_ISOC")
+    })
+}
+
 /// Runs `invlight solve`.
 pub fn run(args: SolveArgs) -> Result<ExitCode> {
     // 1. The problem, with command-line overrides, and its scene bound to it.
@@ -78,6 +90,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     problem.photons = args.trace.photons(problem.photons)?;
     problem.confidence = args.trace.confidence.unwrap_or(problem.confidence);
     problem.max_iterations = args.iterations.unwrap_or(problem.max_iterations);
+    problem.strategy = args.strategy.unwrap_or(problem.strategy);
     problem.seed = args.trace.seed.unwrap_or(problem.seed);
     let max_bounces = args
         .trace
@@ -137,6 +150,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;
     bar.finish();
+    reporter.output.set_stopped(outcome.stopped());
     reporter
         .output
         .write_result(search.standing())
@@ -166,6 +180,12 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
 
     // 5. Report.
     outcome.note().into_iter().for_each(|n| eprintln!("{n}"));
+    if let Some((ratio, pairs)) = search.variance_ratio() {
+        eprintln!(
+            "paired comparisons: var(X−Y)/(var X + var Y) = {} (median of {pairs} candidates against the best member)",
+            invlight_stats::significant(ratio)
+        );
+    }
     let closing = reporter.closing(search.evaluations(), eval.work(), result.seconds, &dir);
     closing.iter().for_each(|l| eprintln!("{l}"));
     if args.json {

@@ -12,6 +12,7 @@ fn args(out: &Path) -> SolveArgs {
         problem: Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ilp/lamp-room.xml"),
         output: Some(out.to_path_buf()),
         iterations: Some(40),
+        strategy: None,
         trace: TraceArgs {
             photons: Some(8000),
             threads: Some(2),
@@ -188,4 +189,31 @@ fn bad_input_is_an_input_error() {
     a.trace.photons = Some(u64::MAX);
     let err = run(a).unwrap_err();
     assert!(format!("{err:#}").contains("--photons"), "{err:#}");
+}
+
+/// `--strategy PAIRED_ISOC` (issue 15): the same `solutions.csv` on 1 and 2 threads (the
+/// groups paired are the same photons whatever the thread count), the strategy kept in
+/// run.json, and why the search stopped in result.json.
+#[test]
+fn paired_search_is_the_same_on_any_thread_count_and_says_why_it_stopped() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut runs = Vec::new();
+    for threads in [1, 2] {
+        let out = dir.path().join(format!("t{threads}"));
+        let mut a = args(&out);
+        a.iterations = Some(200);
+        a.strategy = Some(Strategy::Paired);
+        a.trace.threads = Some(threads);
+        assert_eq!(run(a).unwrap(), ExitCode::SUCCESS);
+        let result = ResultFile::read(&out.join("result.json")).unwrap();
+        let stopped = result.stopped.expect("a finished search says why");
+        assert!(
+            stopped.starts_with("decided") || stopped.starts_with("maxIterations"),
+            "{stopped}"
+        );
+        let run_file = std::fs::read_to_string(out.join("run.json")).unwrap();
+        assert!(run_file.contains("PAIRED_ISOC"), "{run_file}");
+        runs.push(untimed(&rows(&out)));
+    }
+    assert_eq!(runs[0], runs[1]);
 }

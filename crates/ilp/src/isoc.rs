@@ -10,11 +10,20 @@
 //! Pairwise indistinguishable estimates have pairwise overlapping intervals
 //! (z·sqrt(σx² + σy²) ≤ z·(σx + σy)), and overlapping intervals on a line have a common
 //! point (Helly's theorem in one dimension): the SIISOC is always a real interval.
+//!
+//! A paired ISOC ([`Isoc::paired`], issue 15) compares two configurations that both
+//! kept their groups by the groups' paired differences (common random numbers) and
+//! falls back to eq. 3.7 otherwise. Paired indistinguishability over all the groups
+//! still implies overlapping intervals (var(d̄) = σx² + σy² − 2cov ≤ (σx + σy)²), but
+//! over a fast estimate's fewer groups it need not: the SIISOC is then taken as the
+//! intervals' common point nearest to both ends (low clamped to high). Case A still
+//! screens by it: a candidate whose interval lies below it is below some member's
+//! interval, which eq. 3.7 finds worse too.
 
 use crate::space::{Cell, Configuration};
 use crate::vns::Evaluation;
 use invlight_stats::Estimate;
-use invlight_stats::{Comparison, Interval, compare};
+use invlight_stats::{Comparison, Interval, compare, compare_paired};
 
 /// A member of the ISOC.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,6 +35,9 @@ pub struct Member {
     /// Its score, the estimate the ISOC compares: the goal, or minus it for a goal to
     /// minimise, or minus its distance to a target ([`crate::Sense::score`]).
     pub estimate: Estimate,
+    /// The score of each group of samples ([`crate::Sense::score_groups`]), for paired
+    /// comparisons; empty when there are none.
+    pub groups: Vec<f64>,
     /// What was estimated: the goal and the constraints.
     pub evaluation: Evaluation,
 }
@@ -52,16 +64,44 @@ pub struct Isoc {
     members: Vec<Member>,
     siisoc: Option<Interval>,
     z: f64,
+    paired: bool,
 }
 
 impl Isoc {
-    /// An empty ISOC comparing at z (e.g. 1.96 for 95 %).
+    /// An empty ISOC comparing at z (e.g. 1.96 for 95 %) by eq. 3.7.
     pub fn new(z: f64) -> Isoc {
         Isoc {
             members: Vec::new(),
             siisoc: None,
             z,
+            paired: false,
         }
+    }
+
+    /// An empty ISOC comparing at z by paired differences of groups where both
+    /// configurations have them (see the module doc).
+    pub fn paired(z: f64) -> Isoc {
+        Isoc {
+            paired: true,
+            ..Isoc::new(z)
+        }
+    }
+
+    /// An empty ISOC comparing as this one does.
+    pub fn emptied(&self) -> Isoc {
+        Isoc {
+            paired: self.paired,
+            ..Isoc::new(self.z)
+        }
+    }
+
+    /// x against y: by their groups' paired differences in a paired ISOC when both
+    /// share at least two groups, else by eq. 3.7.
+    pub fn compare(&self, x: &Member, y: &Member) -> Comparison {
+        self.paired
+            .then(|| compare_paired(&x.groups, &y.groups, self.z))
+            .flatten()
+            .unwrap_or_else(|| compare(&x.estimate, &y.estimate, self.z))
     }
 
     /// The members, oldest first.
@@ -105,23 +145,35 @@ impl Isoc {
         }
     }
 
+    /// Whether a member is better than `candidate` by their paired differences at `z`
+    /// (a sequential search's early look, with its own z): eq. 3.7 never screens here,
+    /// only pairs, and an ISOC that does not pair screens nothing out.
+    pub fn screens_out(&self, candidate: &Member, z: f64) -> bool {
+        self.paired
+            && self
+                .members
+                .iter()
+                .any(|m| compare_paired(&candidate.groups, &m.groups, z) == Some(Comparison::Worse))
+    }
+
     /// Offers a candidate (§4.6, cases A and B).
     pub fn admit(&mut self, candidate: Member) -> Admission {
         if !self.reaches(&candidate.estimate) {
             return Admission::Below;
         }
-        let z = self.z;
-        if self
+        let order: Vec<Comparison> = self
             .members
             .iter()
-            .any(|m| compare(&candidate.estimate, &m.estimate, z) == Comparison::Worse)
-        {
+            .map(|m| self.compare(&candidate, m))
+            .collect();
+        if order.contains(&Comparison::Worse) {
             return Admission::Beaten;
         }
         let was_empty = self.members.is_empty();
         let before = self.members.len();
+        let mut order = order.into_iter();
         self.members
-            .retain(|m| compare(&candidate.estimate, &m.estimate, z) != Comparison::Better);
+            .retain(|_| order.next() != Some(Comparison::Better));
         let removed = before - self.members.len();
         self.members.push(candidate);
         self.siisoc = self.intersection();
@@ -135,7 +187,10 @@ impl Isoc {
         let first = it.next()?;
         let low = it.clone().fold(first.low, |l, i| l.max(i.low));
         let high = it.fold(first.high, |h, i| h.min(i.high));
-        debug_assert!(low <= high, "pairwise indistinguishable members overlap");
+        debug_assert!(
+            self.paired || low <= high,
+            "pairwise indistinguishable members overlap"
+        );
         Some(Interval {
             low: low.min(high),
             high,
@@ -158,6 +213,7 @@ mod tests {
                 std_error,
                 samples: 1000,
             },
+            groups: Vec::new(),
             evaluation: Evaluation::of(Estimate {
                 mean,
                 std_error,

@@ -97,5 +97,5 @@ pub use space::{
 };
 pub use vns::{
     Evaluate, Evaluation, Observer, Outcome, Record, Search, SearchError, Sense, Settings,
-    Standing, Strategy, Verdict,
+    Standing, Strategy, Verdict, early_look_z, looks,
 };

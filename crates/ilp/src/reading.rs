@@ -245,9 +245,14 @@ impl Reading {
                 samples: m.photons,
             },
         };
+        let groups = match self.goal {
+            Quantity::Mean { target, side } => m.group_means(target, side, w),
+            _ => Vec::new(),
+        };
         Evaluation {
             goal: quantity(&self.goal),
             constraints: self.constraints.iter().map(quantity).collect(),
+            groups,
         }
     }
 }

@@ -154,11 +154,16 @@ pub(crate) fn side_weights(side: Side, w: &[f64]) -> Vec<f64> {
 /// channel totals per target are summed first and folded into the target's
 /// [`ChannelSums`] at [`SurfaceTallies::end_group`]. Only the targets the group touched
 /// are visited then, so a photon costs its contributions, not the number of targets.
+/// Each group's totals are also kept in order ([`SurfaceTallies::groups`]): the search
+/// compares two configurations by their groups' paired differences (issue 15), and
+/// copying a group's few channels per target is nothing beside tracing its 64 photons.
 #[derive(Debug, Clone)]
 pub(crate) struct SurfaceTallies {
     channels: usize,
     pub(crate) sums: Vec<ChannelSums>,
     pub(crate) hits: Vec<u64>,
+    /// Every group's channel totals, group by group, target by target within a group.
+    pub(crate) groups: Vec<f64>,
     current: Vec<f64>,
     touched: Vec<u32>,
     is_touched: Vec<bool>,
@@ -172,6 +177,7 @@ impl SurfaceTallies {
             channels,
             sums: vec![ChannelSums::new(channels); targets],
             hits: vec![0; targets],
+            groups: Vec::new(),
             current: vec![0.0; targets * channels],
             touched: Vec::new(),
             is_touched: vec![false; targets],
@@ -201,6 +207,7 @@ impl SurfaceTallies {
     /// The current group ended: its totals join the sums.
     #[inline]
     pub(crate) fn end_group(&mut self) {
+        self.groups.extend_from_slice(&self.current);
         for &t in &self.touched {
             let t = t as usize;
             let x = &mut self.current[t * self.channels..(t + 1) * self.channels];
@@ -224,7 +231,8 @@ impl SurfaceTallies {
     /// Bytes held, for sizing the blocks of chunks traced at a time.
     pub(crate) fn bytes(&self) -> usize {
         let per = self.channels * (self.channels + 5) / 2;
-        8 * self.sums.len() * (per + 2)
+        let kept = (crate::chunks::CHUNK / crate::estimator::GROUP) as usize * self.current.len();
+        8 * (self.sums.len() * (per + 2) + kept)
     }
 }
 
@@ -259,5 +267,7 @@ mod tests {
         // Groups (3, 4) and (1, 0): Σ (x·1)² = 7² + 1².
         assert_eq!(t.sums[1].product(&both, &both), 50.0);
         assert_eq!(t.sums[0].total(&both), 0.0);
+        // Both groups kept in order, target 0's two channels before target 1's.
+        assert_eq!(t.groups, [0.0, 0.0, 3.0, 4.0, 0.0, 0.0, 1.0, 0.0]);
     }
 }

@@ -98,6 +98,9 @@ pub struct Measurement {
     pub hits: Vec<u64>,
     /// Each target's group sums: 2K channels, its front's per component, then its back's.
     channels: Vec<ChannelSums>,
+    /// Every group's channel totals in group order: the targets' 2K channels of group
+    /// 0, then of group 1, … ([`Measurement::group_means`]).
+    groups: Vec<f64>,
     /// The grids, in the order asked.
     pub grids: Vec<GridMeasurement>,
     /// The luminous flux of each component, lm, as traced (undimmed).
@@ -140,6 +143,26 @@ impl Measurement {
             e.std_error = w_max * self.flux * inv / self.photons as f64;
         }
         e
+    }
+
+    /// The mean illuminance of target `i` on `side` at weights `w` that each group of
+    /// photons alone estimates, lx, in group order: their mean is
+    /// [`Measurement::estimate_of`]'s, and they are the independent samples behind its
+    /// standard error. Group g of every configuration is traced from the same seeds, so
+    /// two configurations are compared by the differences of their groups (common
+    /// random numbers, issue 15).
+    pub fn group_means(&self, i: usize, side: Side, w: &[f64]) -> Vec<f64> {
+        let weights = side_weights(side, w);
+        let c = weights.len();
+        let per = self.areas.len() * c;
+        let scale = 1.0 / (self.areas[i] * GROUP as f64);
+        self.groups
+            .chunks_exact(per)
+            .map(|g| {
+                let x = &g[i * c..(i + 1) * c];
+                x.iter().zip(&weights).map(|(x, w)| x * w).sum::<f64>() * scale
+            })
+            .collect()
     }
 
     /// The luminous flux of the lights at weights `w`, lm: exact, not estimated.
@@ -346,6 +369,7 @@ pub fn measure_with(
             .collect(),
         hits: vec![0; targets.len()],
         channels: vec![ChannelSums::new(2 * k); targets.len()],
+        groups: Vec::new(),
         grids: request
             .grids
             .iter()
@@ -383,6 +407,7 @@ pub fn measure_with(
         },
         |part| {
             part.surfaces.add_to(&mut result.channels, &mut result.hits);
+            result.groups.extend_from_slice(&part.surfaces.groups);
             for (total, cells) in result.grids.iter_mut().zip(&part.cells) {
                 total.merge(&cells.sums);
             }

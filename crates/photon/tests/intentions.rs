@@ -204,3 +204,49 @@ fn sides_are_kept_apart() {
         assert_near(&m.estimate(0), above + below, 0.05, what);
     }
 }
+
+/// Each group's own estimate, as the search pairs them (issue 15): their mean and
+/// spread are the trace's estimate and standard error ([`Estimate::from_groups`] over
+/// the same groups), at any dimming; and a trace of fewer photons has the first groups
+/// of a larger one exactly (same seeds group by group), so a fast estimate pairs with
+/// the full one's prefix.
+#[test]
+fn group_means_are_the_samples_of_the_estimate() {
+    let mut scene = floor_scene();
+    scene
+        .lights
+        .push(point("A", Vec3::new(0.2, 0.5, 1.0), 100.0));
+    scene
+        .lights
+        .push(point("B", Vec3::new(0.8, 0.5, 0.6), 50.0));
+    let accel = Accel::new(&scene);
+    let floor = scene.surface("Floor").unwrap();
+    let mut components = Components::new(&scene, 2);
+    components.set_light(invlight_scene::LightId::from_index(1), 1);
+    let request = Request {
+        surfaces: &[floor],
+        grids: Vec::new(),
+        components: &components,
+        estimator: Estimator::Connected,
+    };
+    let trace = |photons| {
+        let settings = TraceSettings {
+            photons,
+            seed: 9,
+            max_bounces: 4,
+        };
+        measure_with(&scene, &accel, &request, &settings, None)
+    };
+    let full = trace(40_960);
+    let w = [0.25, 0.8];
+    let g = full.group_means(0, Side::Front, &w);
+    assert_eq!(g.len(), 40_960 / 64);
+    let e = full.estimate_of(0, Side::Front, &w);
+    let n = g.len() as f64;
+    let mean = g.iter().sum::<f64>() / n;
+    let var = g.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    assert!((mean / e.mean - 1.0).abs() < 1e-9, "{mean} vs {}", e.mean);
+    assert!(((var / n).sqrt() / e.std_error - 1.0).abs() < 1e-6);
+    let fast = trace(10_240).group_means(0, Side::Front, &w);
+    assert_eq!(fast[..], g[..fast.len()]);
+}

@@ -6,6 +6,8 @@
 //!   independent samples or of stratified groups (thesis §3.3.2, appendix C).
 //! - [`Confidence`], [`Interval`], [`compare`]: two-sided intervals `mean ± z·σ` and the
 //!   statistical order of thesis eq. 3.7; [`normal_quantile`] gives z.
+//! - [`paired_difference`], [`compare_paired`], [`variance_ratio`]: the same order from
+//!   the paired differences of per-group means traced with common random numbers.
 //! - [`SplitMix64`], [`Pcg32`], [`mix`]: reproducible random streams keyed by a seed
 //!   and an index, so results never depend on thread count or scheduling.
 //! - [`significant`]: numbers as tables and messages show them.
@@ -34,6 +36,7 @@ mod estimate;
 mod format;
 mod interval;
 mod pace;
+mod paired;
 mod rng;
 
 pub use channels::ChannelSums;
@@ -43,4 +46,5 @@ pub use estimate::{Estimate, normal_quantile};
 pub use format::{hours_or_days, significant};
 pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
 pub use pace::{LONG_WORK, LongWork, PACE_SAMPLE, Pace};
+pub use paired::{compare_paired, paired_difference, student_quantile, variance_ratio};
 pub use rng::{Pcg32, SplitMix64, mix};

@@ -195,6 +195,7 @@ pub struct Output<'b> {
     offset: f64,
     evaluations: u64,
     refused: u64,
+    stopped: Option<String>,
     z: f64,
     z_one_sided: f64,
     _lock: FolderLock,
@@ -257,6 +258,7 @@ impl<'b> Output<'b> {
             offset,
             evaluations,
             refused: 0,
+            stopped: None,
             z: settings.confidence.z(),
             z_one_sided: settings.confidence.z_one_sided(),
             _lock: lock,
@@ -290,11 +292,18 @@ impl<'b> Output<'b> {
             confidence: self.confidence,
             evaluations: self.evaluations,
             refused: self.refused,
+            stopped: self.stopped.clone(),
             seconds: self.elapsed(),
             feasible: !isoc.is_empty() || closest.is_empty(),
             isoc,
             closest,
         }
+    }
+
+    /// Records why the search stopped ([`crate::Outcome::stopped`]), for the
+    /// `result.json` written after it.
+    pub fn set_stopped(&mut self, why: &str) {
+        self.stopped = Some(why.to_string());
     }
 
     /// Rewrites `result.json` atomically: readers see the old or the new file, never

@@ -323,6 +323,10 @@ pub struct ResultFile {
     /// Candidates not traced: they put an object or light outside the scene, or two
     /// interchangeable lamps in one cell.
     pub refused: u64,
+    /// Why the search stopped ([`crate::Outcome::stopped`]); absent while it runs and
+    /// in files written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
     /// Seconds since the run (first) started.
     pub seconds: f64,
     /// Whether a configuration meeting every constraint was found: when not, `isoc` is
@@ -556,6 +560,9 @@ impl ResultFile {
             if let Some(v) = m.violation {
                 out += &format!("       short by {} %\n", significant(100.0 * v));
             }
+        }
+        if let Some(why) = &self.stopped {
+            out += &format!("stopped: {why}\n");
         }
         out
     }

@@ -322,6 +322,7 @@ impl Solutions {
                         samples,
                     },
                     constraints,
+                    groups: Vec::new(),
                 },
                 seconds,
                 elapsed,

@@ -307,6 +307,7 @@ fn constraints_and_levels_round_trip() {
                     std_error: 0.05,
                     samples: photons,
                 }],
+                groups: Vec::new(),
             })
         }
     }
