@@ -78,6 +78,11 @@ pub fn print(text: &str) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Each of `warnings` on stderr, as a warning.
+pub fn warn<W: std::fmt::Display>(warnings: impl IntoIterator<Item = W>) {
+    warnings.into_iter().for_each(|w| eprintln!("warning: {w}"));
+}
+
 /// Pretty JSON of `value` and a newline, to standard output.
 pub fn print_json(value: &impl serde::Serialize) -> anyhow::Result<()> {
     print(&(serde_json::to_string_pretty(value)? + "\n"))

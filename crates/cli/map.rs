@@ -83,9 +83,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))
         .map_err(bad)?;
     bar.finish();
-    map.warning(&args.surface)
-        .into_iter()
-        .for_each(|w| eprintln!("warning: {w}"));
+    crate::warn(map.warning(&args.surface));
     let seconds = start.elapsed().as_secs_f64();
     let report = map.report(&args.surface, &settings, confidence, seconds);
 

@@ -69,9 +69,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
         (&settings, estimator),
         (seconds, build_seconds),
     );
-    for w in report.surfaces.iter().filter_map(|s| s.warning()) {
-        eprintln!("warning: {w}");
-    }
+    crate::warn(report.surfaces.iter().filter_map(|s| s.warning()));
     if args.json {
         crate::print_json(&report)?;
     } else {

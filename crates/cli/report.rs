@@ -2,7 +2,6 @@
 //! ([`invlight_report::SolveReport`]).
 
 use crate::args::{GridArgs, LoadArgs, ReportArgs};
-use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,7 +25,7 @@ pub struct ReportCommandArgs {
 /// Runs `invlight report`.
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
     let problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
-    let bounces = problem.max_bounces.unwrap_or(DEFAULT_MAX_BOUNCES);
+    let bounces = problem.bounces();
     let requirement = args.report.requirement()?;
     let grid = args.grid.grid(problem.seed, bounces);
     let scene = args.load.load_problem(&problem)?;

@@ -20,9 +20,7 @@ pub fn run(args: SceneInfoArgs) -> anyhow::Result<std::process::ExitCode> {
     if args.json {
         crate::print_json(&summary)?;
     } else {
-        for w in &summary.warnings {
-            eprintln!("warning: {w}");
-        }
+        crate::warn(&summary.warnings);
         crate::print(&summary.tables())?;
     }
     Ok(std::process::ExitCode::SUCCESS)

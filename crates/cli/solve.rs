@@ -13,7 +13,6 @@ use invlight_ilp::{
     Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
     Strategy,
 };
-use invlight_photon::DEFAULT_MAX_BOUNCES;
 use invlight_report::{Pictures, SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -38,7 +37,7 @@ pub struct SolveArgs {
     pub iterations: Option<u64>,
     /// The search's strategy, as the problem file's `strategy` names it
     /// (docs/problem-file.md) [default: the problem's], to compare two on one problem.
-    #[arg(long, value_name = "NAME", value_parser = parse_strategy)]
+    #[arg(long, value_name = "NAME")]
     pub strategy: Option<Strategy>,
     #[command(flatten)]
     pub trace: TraceArgs,
@@ -73,36 +72,22 @@ pub struct SolveArgs {
     pub grid: GridArgs,
 }
 
-/// A `strategy` name, as problem files spell it.
-fn parse_strategy(s: &str) -> std::result::Result<Strategy, String> {
-    Strategy::parse(s).ok_or_else(|| {
-        format!("'{s}' is not a strategy: REFINE_ISOC_ON_INTERSECTION, REFINE_ISOC_ON_END, NO_REFINE_ISOC or PAIRED_ISOC")
-    })
-}
-
 /// Runs `invlight solve`.
 pub fn run(args: SolveArgs) -> Result<ExitCode> {
     // 1. The problem, with command-line overrides, and its scene bound to it.
     let mut problem = Problem::read(&args.problem)?;
-    for w in &problem.warnings {
-        eprintln!("warning: {w}");
-    }
+    crate::warn(&problem.warnings);
     problem.photons = args.trace.photons(problem.photons)?;
     problem.confidence = args.trace.confidence.unwrap_or(problem.confidence);
     problem.max_iterations = args.iterations.unwrap_or(problem.max_iterations);
     problem.strategy = args.strategy.unwrap_or(problem.strategy);
     problem.seed = args.trace.seed.unwrap_or(problem.seed);
-    let max_bounces = args
-        .trace
-        .max_bounces
-        .or(problem.max_bounces)
-        .unwrap_or(DEFAULT_MAX_BOUNCES);
+    problem.max_bounces = args.trace.max_bounces.or(problem.max_bounces);
+    let max_bounces = problem.bounces();
     let mut scene = args.load.load_problem(&problem)?;
     scene.require_light(&problem.scene.path)?;
     let binding = Binding::new(&problem, &mut scene)?;
-    for w in &binding.warnings {
-        eprintln!("warning: {w}");
-    }
+    crate::warn(&binding.warnings);
     let info = ObjectiveInfo::of(&problem, &binding);
     let pictures = (!args.no_images)
         .then(|| {
@@ -156,9 +141,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         .write_result(search.standing())
         .with_context(|| format!("writing {}", dir.join("result.json").display()))?;
     let result = reporter.output.result(search.standing());
-    for w in eval.first_sides().iter().filter_map(|s| s.warning()) {
-        eprintln!("warning: {w}");
-    }
+    crate::warn(eval.first_sides().iter().filter_map(|s| s.warning()));
 
     // 4. Pictures of the ISOC and of the search, and the report.
     if let Some(pictures) = &pictures {
@@ -180,12 +163,10 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
 
     // 5. Report.
     outcome.note().into_iter().for_each(|n| eprintln!("{n}"));
-    if let Some((ratio, pairs)) = search.variance_ratio() {
-        eprintln!(
-            "paired comparisons: var(X−Y)/(var X + var Y) = {} (median of {pairs} candidates against the best member)",
-            invlight_stats::significant(ratio)
-        );
-    }
+    search
+        .paired_note()
+        .into_iter()
+        .for_each(|n| eprintln!("{n}"));
     let closing = reporter.closing(search.evaluations(), eval.work(), result.seconds, &dir);
     closing.iter().for_each(|l| eprintln!("{l}"));
     if args.json {

@@ -92,6 +92,17 @@ impl Strategy {
     }
 }
 
+/// `--strategy NAME`: the problem-file spelling, refused with the list.
+impl std::str::FromStr for Strategy {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Strategy, String> {
+        Strategy::parse(s).ok_or_else(|| {
+            format!("'{s}' is not a strategy: REFINE_ISOC_ON_INTERSECTION, REFINE_ISOC_ON_END, NO_REFINE_ISOC or PAIRED_ISOC")
+        })
+    }
+}
+
 /// What the search decided about an evaluation (the CSV's `verdict` column).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Verdict {
@@ -510,6 +521,16 @@ impl<'s> Search<'s> {
                 0.5 * (r[n / 2 - 1] + r[n / 2])
             };
             (m, n)
+        })
+    }
+
+    /// [`Search::variance_ratio`] in words, for the end of a run.
+    pub fn paired_note(&self) -> Option<String> {
+        self.variance_ratio().map(|(ratio, pairs)| {
+            format!(
+                "paired comparisons: var(X−Y)/(var X + var Y) = {} (median of {pairs} candidates against the best member)",
+                invlight_stats::significant(ratio)
+            )
         })
     }
 

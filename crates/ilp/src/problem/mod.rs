@@ -314,6 +314,12 @@ impl Problem {
         Ok(scene)
     }
 
+    /// The bounce cap of its photon paths: `maxBounces`, else the tracer's own.
+    pub fn bounces(&self) -> u32 {
+        self.max_bounces
+            .unwrap_or(invlight_photon::DEFAULT_MAX_BOUNCES)
+    }
+
     /// The search settings the file asks for.
     pub fn settings(&self) -> Settings {
         Settings {
