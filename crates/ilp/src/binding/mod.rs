@@ -20,7 +20,7 @@ use invlight_photon::{Components, Emitters, SourceOrigin};
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
-use placement::{find_parallelogram, instance_bounds, onto_plane};
+use placement::{authored, find_parallelogram, instance_bounds, onto_plane};
 use power::Dimmed;
 
 /// A variable's value in world terms, for the outputs.
@@ -232,13 +232,7 @@ impl Binding {
                 VariableKind::HoleSize { min, max } => {
                     let s = find_surface(scene, &spec.id, spec, &err)?;
                     hole::make_hole(scene, s, &spec.id);
-                    let ids = scene.surfaces[s].instances.clone();
-                    let centre = instance_bounds(scene, &ids)
-                        .map_or(Vec3::ZERO, |b| (0.5 * (b.lo + b.hi)).as_vec3());
-                    let instances = ids
-                        .into_iter()
-                        .map(|i| (i, scene.instances[i].transform))
-                        .collect();
+                    let (instances, centre) = authored(scene, s);
                     (
                         Domain::Segment {
                             min: *min,
@@ -272,13 +266,7 @@ impl Binding {
                         }
                         None => {
                             let s = find_surface(scene, &spec.id, spec, &err)?;
-                            let ids = scene.surfaces[s].instances.clone();
-                            let centre = instance_bounds(scene, &ids)
-                                .map_or(Vec3::ZERO, |b| (0.5 * (b.lo + b.hi)).as_vec3());
-                            let instances = ids
-                                .into_iter()
-                                .map(|i| (i, scene.instances[i].transform))
-                                .collect();
+                            let (instances, centre) = authored(scene, s);
                             (instances, None, centre)
                         }
                     };

@@ -9,8 +9,8 @@
 //! beside P, and with `anchor="centre"` what P stands for.
 
 use crate::space::Parallelogram;
-use glam::{DVec3, Vec3};
-use invlight_scene::{Diagnostic, InstanceId, Scene};
+use glam::{DVec3, Mat4, Vec3};
+use invlight_scene::{Diagnostic, InstanceId, Scene, SurfaceId};
 
 /// An axis-aligned box in world space, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,6 +65,20 @@ pub fn instance_bounds(scene: &Scene, instances: &[InstanceId]) -> Option<Bounds
         }
     }
     out
+}
+
+/// A surface's instances with their authored transforms, and the centre of their world
+/// bounds (the origin when they have no vertices): what a scaling or a turn about the
+/// surface's centre starts from.
+pub fn authored(scene: &Scene, surface: SurfaceId) -> (Vec<(InstanceId, Mat4)>, Vec3) {
+    let ids = &scene.surfaces[surface].instances;
+    let centre =
+        instance_bounds(scene, ids).map_or(Vec3::ZERO, |b| (0.5 * (b.lo + b.hi)).as_vec3());
+    let instances = ids
+        .iter()
+        .map(|&i| (i, scene.instances[i].transform))
+        .collect();
+    (instances, centre)
 }
 
 /// The point `p` projected along the parallelogram's normal onto its plane.
