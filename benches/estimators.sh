@@ -36,7 +36,7 @@ print("%-40s %-10s | arrivals %9.4g ± %-8.3g (%6.3f %%) %5.2f s | connected %9.
       % (sys.argv[1], sys.argv[2], a[0], a[1], 100 * a[2], a[3], b[0], b[1], 100 * b[2], b[3], b[4] / a[4]))
 '
 grep -m1 'model name' /proc/cpuinfo
-run ../shared/peers/room_area.gltf Floor
+run tests/data/gltf/room_area.gltf Floor
 run examples/cornell-cone/cornell.dae Cone
 run examples/atrium-skylight/scene.gltf Jar
 run examples/conference-sun/scene.gltf Blackboard

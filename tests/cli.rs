@@ -568,7 +568,8 @@ mod scene_files {
         );
     }
 
-    /// The peer room of ../shared/peers: six walls, a cube and a 100 lm lamp.
+    /// The peer room (tests/data/gltf/room_area.gltf, the scene BENCHMARKS.md compares
+    /// with Mitsuba 3): six walls, a cube and a 100 lm lamp.
     #[test]
     fn peer_room_gltf() {
         let s = scene(&data("gltf/room_area.gltf"));
@@ -645,7 +646,7 @@ mod measure {
         }
     }
 
-    /// The floor of the peer room (../shared/peers/README.md) against Mitsuba 3's
+    /// The floor of the peer room (tests/data/gltf/room_area.gltf) against Mitsuba 3's
     /// 5.674 lx (Radiance: 5.707 lx). The references carry their own noise and bias:
     /// the two agree to 0.6 %, so 0.6 % of the reference is allowed for it, on top of
     /// 4 of our standard errors for ours.
