@@ -158,6 +158,8 @@ impl<'b> PhotonEvaluator<'b> {
                 grids,
                 components: &self.components,
                 estimator: Estimator::Connected,
+                // The paired search compares configurations by their groups.
+                keep_groups: true,
             };
             let settings = TraceSettings {
                 photons,

@@ -162,22 +162,26 @@ pub(crate) struct SurfaceTallies {
     channels: usize,
     pub(crate) sums: Vec<ChannelSums>,
     pub(crate) hits: Vec<u64>,
-    /// Every group's channel totals, group by group, target by target within a group.
+    /// Every group's channel totals, group by group, target by target within a group,
+    /// when kept.
     pub(crate) groups: Vec<f64>,
+    keep_groups: bool,
     current: Vec<f64>,
     touched: Vec<u32>,
     is_touched: Vec<bool>,
 }
 
 impl SurfaceTallies {
-    /// Empty sums of `targets` targets with `components` components (2 per side).
-    pub(crate) fn new(targets: usize, components: usize) -> SurfaceTallies {
+    /// Empty sums of `targets` targets with `components` components (2 per side),
+    /// keeping every group's totals when `keep_groups`.
+    pub(crate) fn new(targets: usize, components: usize, keep_groups: bool) -> SurfaceTallies {
         let channels = 2 * components;
         SurfaceTallies {
             channels,
             sums: vec![ChannelSums::new(channels); targets],
             hits: vec![0; targets],
             groups: Vec::new(),
+            keep_groups,
             current: vec![0.0; targets * channels],
             touched: Vec::new(),
             is_touched: vec![false; targets],
@@ -207,7 +211,9 @@ impl SurfaceTallies {
     /// The current group ended: its totals join the sums.
     #[inline]
     pub(crate) fn end_group(&mut self) {
-        self.groups.extend_from_slice(&self.current);
+        if self.keep_groups {
+            self.groups.extend_from_slice(&self.current);
+        }
         for &t in &self.touched {
             let t = t as usize;
             let x = &mut self.current[t * self.channels..(t + 1) * self.channels];
@@ -231,7 +237,12 @@ impl SurfaceTallies {
     /// Bytes held, for sizing the blocks of chunks traced at a time.
     pub(crate) fn bytes(&self) -> usize {
         let per = self.channels * (self.channels + 5) / 2;
-        let kept = (crate::chunks::CHUNK / crate::estimator::GROUP) as usize * self.current.len();
+        let groups = (crate::chunks::CHUNK / crate::estimator::GROUP) as usize;
+        let kept = if self.keep_groups {
+            groups * self.current.len()
+        } else {
+            0
+        };
         8 * (self.sums.len() * (per + 2) + kept)
     }
 }
@@ -255,7 +266,7 @@ mod tests {
 
     #[test]
     fn a_group_is_summed_before_it_is_squared() {
-        let mut t = SurfaceTallies::new(2, 1);
+        let mut t = SurfaceTallies::new(2, 1, true);
         t.add(1, 0, 1.0);
         t.add(1, 0, 2.0);
         t.add(1, 1, 4.0);

@@ -69,6 +69,10 @@ pub struct Request<'a> {
     pub components: &'a Components,
     /// How photons are counted.
     pub estimator: Estimator,
+    /// Whether every group's totals are kept for [`Measurement::group_means`]: memory
+    /// that grows with the photons (a 10⁹-photon measurement would hold 15.6 M groups per
+    /// target), so only a search that pairs configurations asks for it.
+    pub keep_groups: bool,
 }
 
 /// A grid to read on one of a [`Request`]'s surfaces.
@@ -150,7 +154,8 @@ impl Measurement {
     /// [`Measurement::estimate_of`]'s, and they are the independent samples behind its
     /// standard error. Group g of every configuration is traced from the same seeds, so
     /// two configurations are compared by the differences of their groups (common
-    /// random numbers, issue 15).
+    /// random numbers, issue 15). Empty unless the request kept the groups
+    /// ([`Request::keep_groups`]).
     pub fn group_means(&self, i: usize, side: Side, w: &[f64]) -> Vec<f64> {
         let weights = side_weights(side, w);
         let c = weights.len();
@@ -322,6 +327,7 @@ pub fn measure(
         grids: Vec::new(),
         components: &components,
         estimator,
+        keep_groups: false,
     };
     measure_with(scene, accel, &request, settings, progress)
 }
@@ -396,7 +402,7 @@ pub fn measure_with(
         || ChunkTally {
             plan: &plan,
             connect: connect.then_some((&shapes, accel)),
-            surfaces: SurfaceTallies::new(targets.len(), k),
+            surfaces: SurfaceTallies::new(targets.len(), k, request.keep_groups),
             cells: request
                 .grids
                 .iter()

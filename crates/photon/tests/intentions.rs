@@ -75,6 +75,7 @@ fn uniformity_intervals_cover_the_truth() {
             }],
             components: &components,
             estimator: Estimator::Connected,
+            keep_groups: false,
         };
         let settings = TraceSettings {
             photons: 16_384,
@@ -149,6 +150,7 @@ fn components_give_every_dimming_from_one_trace() {
         grids: Vec::new(),
         components: &components,
         estimator: Estimator::Connected,
+        keep_groups: false,
     };
     let settings = TraceSettings {
         photons: 200_000,
@@ -188,6 +190,7 @@ fn sides_are_kept_apart() {
             grids: Vec::new(),
             components: &components,
             estimator,
+            keep_groups: false,
         };
         let settings = TraceSettings {
             photons: 400_000,
@@ -228,6 +231,7 @@ fn group_means_are_the_samples_of_the_estimate() {
         grids: Vec::new(),
         components: &components,
         estimator: Estimator::Connected,
+        keep_groups: true,
     };
     let trace = |photons| {
         let settings = TraceSettings {
@@ -249,4 +253,18 @@ fn group_means_are_the_samples_of_the_estimate() {
     assert!(((var / n).sqrt() / e.std_error - 1.0).abs() < 1e-6);
     let fast = trace(10_240).group_means(0, Side::Front, &w);
     assert_eq!(fast[..], g[..fast.len()]);
+    // A measurement that does not ask keeps no groups (its memory stays flat in N), and
+    // the same estimate.
+    let request = Request {
+        keep_groups: false,
+        ..request
+    };
+    let settings = TraceSettings {
+        photons: 40_960,
+        seed: 9,
+        max_bounces: 4,
+    };
+    let flat = measure_with(&scene, &accel, &request, &settings, None);
+    assert!(flat.group_means(0, Side::Front, &w).is_empty());
+    assert_eq!(flat.estimate_of(0, Side::Front, &w), e);
 }

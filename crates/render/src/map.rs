@@ -188,6 +188,7 @@ pub fn illuminance_map(
         }],
         components: &components,
         estimator: settings.estimator,
+        keep_groups: false,
     };
     let measured = measure_with(scene, accel, &request, &settings.trace, progress);
     let g = &measured.grids[0];
