@@ -75,8 +75,11 @@ pub fn trace_chunks<V: PathVisitor + Send>(
     }
     let chunks = settings.photons.div_ceil(CHUNK);
     let bytes = new_visitor().bytes().max(1);
-    let block =
-        ((BLOCK_MEMORY / bytes) as u64).clamp(rayon::current_num_threads() as u64, BLOCK.max(1));
+    // At least a chunk per thread, at most BLOCK unless the threads outnumber it
+    // (`clamp` would panic with more than BLOCK threads).
+    let block = ((BLOCK_MEMORY / bytes) as u64)
+        .min(BLOCK)
+        .max(rayon::current_num_threads() as u64);
     let done = AtomicU64::new(0);
     let mut rays = 0;
     let mut block_start = 0;

@@ -3,6 +3,7 @@
 //! with a requirement at a stated confidence, and every cell's value.
 
 use crate::html::{Page, escape, figure, table};
+use invlight_photon::Side;
 use invlight_render::{
     Compliance, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
 };
@@ -294,9 +295,14 @@ impl<'a> MapPage<'a> {
         page.section(
             "How it was measured",
             &format!(
-                "<p>{} photons traced ({} estimator: each departure connected to a point on the surface unless “arrivals”), every arrival on either side and at every bounce counted; each cell's standard error from the spread of the stratified photon groups. {:.1} s.</p>",
+                "<p>{} photons traced ({} estimator: each departure connected to a point on the surface unless “arrivals”), every arrival on the {} at every bounce counted; each cell's standard error from the spread of the stratified photon groups. {:.1} s.</p>",
                 self.map.photons,
                 escape(&r.estimator),
+                match self.map.side {
+                    Side::Front => "front (the side the surface's normal faces)",
+                    Side::Back => "back",
+                    Side::Both => "either side",
+                },
                 r.seconds
             ),
         );

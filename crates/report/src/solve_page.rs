@@ -474,7 +474,9 @@ impl<'a> SolveReport<'a> {
                 trace: g.trace,
                 estimator: Estimator::Connected,
             };
-            let map = illuminance_map(&scene, &Accel::new(&scene), target, &settings, None);
+            // Nothing moves: one world-space tree, as `invlight map` builds.
+            let accel = Accel::with_movable(&scene, &[]);
+            let map = illuminance_map(&scene, &accel, target, &settings, None);
             match map {
                 Ok(map) => {
                     let mut s = grid_section(
