@@ -318,5 +318,7 @@ fn repeated_looks_keep_the_error_below_alpha() {
             wrong += 1;
         }
     }
-    assert!(wrong <= 200, "{wrong} of 4000 wrongly out");
+    // The schedule's bound, 3α/4 of 4000 = 150, with 3 binomial σ (≈ 12) of room: a
+    // wrong split of α over the looks (α/2 each) would lose about 200.
+    assert!(wrong <= 186, "{wrong} of 4000 wrongly out");
 }

@@ -3,14 +3,14 @@
 //! roulette over diffuse, mirror, refraction and absorption, and the mean illuminance
 //! of named surfaces with its standard error.
 //!
-//! - [`measure`] measures surfaces: one trace of photons, a [`Tally`] per target, from
+//! - [`measure`] measures surfaces: one trace of photons, group sums per target, from
 //!   which [`Measurement::estimate`] gives the mean illuminance in lux with its standard
 //!   error. With [`Estimator::Connected`] it also counts [`Targets::connect`]ions: each
 //!   photon departure joined to a point on each target by a ray, the two weighted by
 //!   multiple importance sampling.
 //! - The estimator, in one module: photons come in stratified groups of [`GROUP`],
 //!   the groups are the independent samples, [`photons_traced`] says how many photons a
-//!   request becomes, [`GroupTallies`] sums a chunk's groups.
+//!   request becomes; each chunk's groups are summed per target and channel.
 //! - [`trace_photon`] follows one photon and reports its departures and arrivals to a
 //!   [`PathVisitor`]; rendering stores photons and illuminance maps count cells
 //!   through it.
@@ -65,7 +65,7 @@ pub use channels::{Components, Side};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use connect::{Connection, Departure, Lobe, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
-pub use estimator::{GROUP, GroupTallies, MIN_GROUPS, MIN_PHOTONS, Tally, photons_traced};
+pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
 pub use measure::{
     Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, behind_warning,

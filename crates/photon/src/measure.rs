@@ -3,7 +3,7 @@
 //! results that do not depend on the number of threads.
 //!
 //! Photons are traced by [`trace_chunks`], each chunk tallied on its own
-//! ([`GroupTallies`]) and the chunk tallies summed in index order: the same seed gives
+//! (per target and channel, per grid cell) and the chunk tallies summed in index order: the same seed gives
 //! the same bits on one thread or many, and memory stays constant however many photons
 //! are traced.
 
