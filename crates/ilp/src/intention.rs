@@ -86,6 +86,18 @@ impl Goal {
         }
     }
 
+    /// What its value is, in words for an axis: `mean illuminance`, `uniformity U0`,
+    /// `lamp power`.
+    pub fn quantity(&self) -> &'static str {
+        match self {
+            Goal::Maximize { .. } | Goal::Minimize { .. } | Goal::Target { .. } => {
+                "mean illuminance"
+            }
+            Goal::MaximizeUniformity { .. } => "uniformity U0",
+            Goal::MinimizePower => "lamp power",
+        }
+    }
+
     /// The surface it is about, if any.
     pub fn surface(&self) -> Option<&SurfaceRef> {
         match self {

@@ -66,12 +66,15 @@ pub enum PlotKind {
         /// Which scene direction is north, for the axis ("−z").
         north: String,
     },
-    /// A colour value: `at[0]` = V in [`min`, `max`].
+    /// A scalar variable — a colour's value, a dimming level, a hole's scale, a turn:
+    /// `at[0]` in [`min`, `max`].
     Value {
-        /// Smallest V allowed.
+        /// Smallest value allowed.
         min: f64,
-        /// Largest V allowed.
+        /// Largest value allowed.
         max: f64,
+        /// What the value is, for its axis (`HSV value V`, `level`, `turn (°)`).
+        label: String,
     },
 }
 
@@ -116,6 +119,8 @@ pub struct SearchPlot {
     pub kind: PlotKind,
     /// The unit of the means (`lx`).
     pub unit: String,
+    /// What the means are, for the value axis (`mean illuminance`, `lamp power`).
+    pub quantity: String,
     /// The objective's cap, drawn as a line on a value plot.
     pub cap: Option<f64>,
     /// Evaluations in order.
@@ -295,7 +300,9 @@ impl SearchPlot {
         let frame = match &self.kind {
             PlotKind::Plan(plan) => self.plan(&main, plan, &scale)?,
             PlotKind::Sky { north } => self.sky(&main, north, &scale)?,
-            &PlotKind::Value { min, max } => self.value(&main, min, max, &scale)?,
+            PlotKind::Value { min, max, label } => {
+                self.value(&main, (*min, *max), label, &scale)?
+            }
         };
         self.key(&key)?;
         Ok(frame)
@@ -517,8 +524,8 @@ impl SearchPlot {
     fn value<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
-        min: f64,
-        max: f64,
+        (min, max): (f64, f64),
+        label: &str,
         scale: &ColourScale,
     ) -> Result<Frame, ChartError>
     where
@@ -541,11 +548,11 @@ impl SearchPlot {
             .x_label_area_size(2 * FONT + 12)
             .y_label_area_size(5 * FONT)
             .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
-        value_axes(
-            &mut chart,
-            "HSV value V",
-            &format!("mean illuminance ({})", self.unit),
-        )?;
+        let unit = match self.unit.as_str() {
+            "" | "U0" => String::new(),
+            u => format!(" ({u})"),
+        };
+        value_axes(&mut chart, label, &format!("{}{unit}", self.quantity))?;
         for p in &self.points {
             let colour = match p.mark {
                 Mark::Invalid => INVALID,
@@ -639,7 +646,11 @@ impl SearchPlot {
                     ))?;
                     Ok(())
                 },
-                "over the cap",
+                if self.cap.is_some() {
+                    "over the cap or infeasible"
+                } else {
+                    "infeasible"
+                },
             )?;
         }
         if let PlotKind::Plan(plan) = &self.kind {

@@ -92,6 +92,7 @@ fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
                 .unwrap(),
             ),
             multiplier: Vec3::splat(0.5),
+            tilt: 1.0,
         },
     ];
     for (i, kind) in lights.iter().enumerate() {
@@ -135,6 +136,7 @@ fn plane_illuminance(p: Vec3, lights: &[LightKind]) -> f32 {
                 frame,
                 ref photometry,
                 multiplier,
+                tilt,
             } => {
                 // The angles of the direction toward p in the luminaire's frame.
                 let d = position - p;
@@ -147,7 +149,7 @@ fn plane_illuminance(p: Vec3, lights: &[LightKind]) -> f32 {
                 let gamma = (-z).acos().to_degrees();
                 let c = y.atan2(x).to_degrees().rem_euclid(360.0);
                 let i = photometry.intensity(c as f64, gamma as f64) as f32;
-                multiplier.x * i * d.z / d.length().powi(3)
+                multiplier.x * tilt * i * d.z / d.length().powi(3)
             }
         })
         .sum()
@@ -671,13 +673,18 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
         PlotKind::Sky {
             north: "−z".into()
         },
-        PlotKind::Value { min: 0.0, max: 5.0 },
+        PlotKind::Value {
+            min: 0.0,
+            max: 5.0,
+            label: "dimming level (1 = as authored)".into(),
+        },
     ];
     for (k, kind) in kinds.into_iter().enumerate() {
         let plot = SearchPlot {
             title: "search".into(),
             kind,
             unit: "lx".into(),
+            quantity: "mean illuminance".into(),
             cap: (k == 2).then_some(240.0),
             points: points.clone(),
         };
@@ -685,7 +692,14 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
         plot.write(&path).unwrap();
         let img = image::open(&path).unwrap().to_rgb8();
         assert_eq!(img.dimensions(), invlight_render::PLOT_SIZE);
-        assert!(plot.svg().unwrap().starts_with("<svg"));
+        let svg = plot.svg().unwrap();
+        assert!(svg.starts_with("<svg"));
+        if k == 2 {
+            // The value axis says what the variable is; the key what an invalid mark is.
+            assert!(svg.contains("dimming level (1 = as authored)"));
+            assert!(svg.contains("mean illuminance (lx)"));
+            assert!(svg.contains("over the cap or infeasible"));
+        }
         // The colour bar runs over the valid means' range, not a rounded one.
         let scale = plot.scale();
         let valid: Vec<f64> = points

@@ -5,7 +5,7 @@
 
 use crate::describe::{compass, subject};
 use glam::DVec3;
-use invlight_ilp::{Axes, Binding, Domain, Isoc, Record, Role, Verdict, visits};
+use invlight_ilp::{Axes, Binding, Domain, Isoc, Record, Role, VariableKind, Verdict, visits};
 use invlight_render::{
     ConvergencePlot, ConvergencePoint, Mark, PlanAxis, PlanFrame, PlotKind, PlotPoint, SearchPlot,
 };
@@ -193,15 +193,35 @@ pub fn search_plot(
             (PlotKind::Sky { north }, pts)
         }
         (Axes::Value { min, max }, _) => {
-            (PlotKind::Value { min, max }, points(&|c| (c, Vec::new())))
+            let label = match spec.kind {
+                VariableKind::LightPower { .. } => "dimming level (1 = as authored)",
+                VariableKind::HoleSize { .. } => "scale of the authored size",
+                VariableKind::ObjectRotation { .. } => "turn (°)",
+                _ => "HSV value V",
+            };
+            let kind = PlotKind::Value {
+                min,
+                max,
+                label: label.into(),
+            };
+            (kind, points(&|c| (c, Vec::new())))
         }
         // A domain and axes that disagree cannot come out of `visits`.
-        (_, _) => (PlotKind::Value { min: 0.0, max: 1.0 }, Vec::new()),
+        (_, _) => {
+            let label = String::new();
+            let kind = PlotKind::Value {
+                min: 0.0,
+                max: 1.0,
+                label,
+            };
+            (kind, Vec::new())
+        }
     };
     SearchPlot {
         title,
         kind,
         unit: goal_unit(binding),
+        quantity: binding.goal.quantity().into(),
         cap,
         points,
     }
