@@ -95,7 +95,7 @@ pub fn visits(
                 360.0 / cells[first] as f64,
             ],
         ),
-        &Domain::Segment { min, max } => (
+        &Domain::Segment { min, max } | &Domain::Turn { min, max } => (
             Axes::Value { min, max },
             [(max - min) / cells[first] as f64, 0.0],
         ),
@@ -151,6 +151,6 @@ fn coords(domain: &Domain, x: &[f64]) -> [f64; 2] {
     match domain {
         Domain::Parallelogram(r) => [x[0] * r.e1.length(), x[1] * r.e2.length()],
         Domain::Hemisphere(h) => [x[1] * h.max_zenith.to_degrees(), x[0] * 360.0],
-        Domain::Segment { min, max } => [min + x[0] * (max - min), 0.0],
+        Domain::Segment { min, max } | Domain::Turn { min, max } => [min + x[0] * (max - min), 0.0],
     }
 }

@@ -74,7 +74,7 @@ mod reading;
 mod space;
 mod vns;
 
-pub use binding::{Binding, Bounds, PowerUnit, VariableValue, hsv_to_rgb};
+pub use binding::{Binding, Bounds, LuminaireUse, PowerUnit, VariableValue, hsv_to_rgb};
 pub use cache::{Cache, Entry};
 pub use history::{Axes, Role, Visit, visits};
 pub use intention::{

@@ -246,6 +246,16 @@ pub enum Domain {
         /// Upper bound.
         max: f64,
     },
+    /// A full turn, angles in [min, max) with max = min + 360° (1 dimension): its ends
+    /// are one orientation, so its neighbourhoods wrap as a sun's azimuth does and a
+    /// search near 350° may step to 10° — a [`Domain::Segment`] would have to climb
+    /// back across the whole range.
+    Turn {
+        /// The angle at normalised 0, degrees.
+        min: f64,
+        /// `min` + 360, degrees.
+        max: f64,
+    },
 }
 
 impl Domain {
@@ -253,7 +263,7 @@ impl Domain {
     pub fn dimensions(&self) -> usize {
         match self {
             Domain::Parallelogram(_) | Domain::Hemisphere(_) => 2,
-            Domain::Segment { .. } => 1,
+            Domain::Segment { .. } | Domain::Turn { .. } => 1,
         }
     }
 
@@ -271,6 +281,9 @@ impl Domain {
             }
             Domain::Segment { .. } => {
                 out[0] = rng.uniform((x[0] - r).max(0.0), (x[0] + r).min(1.0));
+            }
+            Domain::Turn { .. } => {
+                out[0] = (x[0] + rng.uniform(-0.5 * r, 0.5 * r)).rem_euclid(1.0);
             }
         }
     }

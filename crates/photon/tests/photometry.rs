@@ -49,6 +49,7 @@ fn luminaire(photometry: Photometry, position: Vec3, frame: Mat3) -> Light {
             frame,
             photometry: Arc::new(photometry),
             multiplier: Vec3::ONE,
+            tilt: 1.0,
         },
     }
 }

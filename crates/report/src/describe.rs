@@ -129,7 +129,7 @@ pub fn range(binding: &Binding, i: usize) -> String {
             cells[first],
             cells[first + 1]
         ),
-        Domain::Segment { min, max } => {
+        Domain::Segment { min, max } | Domain::Turn { min, max } => {
             let hs = match &binding.specs[i].kind {
                 VariableKind::Color {
                     hue, saturation, ..

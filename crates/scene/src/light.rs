@@ -69,8 +69,13 @@ pub enum LightKind {
         /// The candela table and its metadata.
         photometry: Arc<Photometry>,
         /// RGB factor on the table's candela (glTF `color × multiplier`, a problem
-        /// file's `multiplier`, IES tilt): its luminance scales the flux.
+        /// file's `multiplier`, dimming): its luminance scales the flux and the watts.
         multiplier: Rgb,
+        /// The IES tilt factor at the current aim ([`tilt_factor`]; 1 without tilt
+        /// data), on the candela beside `multiplier`: kept apart so that a new aim
+        /// recomputes it ([`LightKind::set_frame`]) and dimming, which sets the
+        /// multiplier, leaves it — the lamp's light changes with its tilt, not what it draws.
+        tilt: f32,
     },
 }
 
@@ -150,9 +155,8 @@ impl LightKind {
     /// draws. A multiplier of 2 is twice the light for twice the power, as two lamps
     /// would be; a light dimmed to a level draws that share. `None` for a file without
     /// watts and for every other kind of light.
-    pub fn watts(&self, up: Vec3) -> Option<f64> {
+    pub fn watts(&self) -> Option<f64> {
         let LightKind::Goniometric {
-            frame,
             photometry,
             multiplier,
             ..
@@ -160,8 +164,23 @@ impl LightKind {
         else {
             return None;
         };
-        let tilt = tilt_factor(photometry, -frame.z_axis, up).max(f32::MIN_POSITIVE);
-        Some(photometry.watts? * (luminance(*multiplier) / tilt) as f64)
+        Some(photometry.watts? * luminance(*multiplier) as f64)
+    }
+
+    /// Turns a goniometric light to the local → world rotation `to` in a scene whose
+    /// zenith is `up`, with the tilt factor of its new aim (LM-63's TILT data are for
+    /// the lamp's angle from straight down, which a new aim changes).
+    pub fn set_frame(&mut self, to: Mat3, up: Vec3) {
+        if let LightKind::Goniometric {
+            frame,
+            photometry,
+            tilt,
+            ..
+        } = self
+        {
+            *frame = to;
+            *tilt = tilt_factor(photometry, -to.z_axis, up);
+        }
     }
 
     /// `point`, `spot`, `directional` or `goniometric`.
@@ -191,8 +210,9 @@ impl LightKind {
                 frame,
                 photometry,
                 multiplier,
+                tilt,
                 ..
-            } => *multiplier * photometry.intensity_toward(frame.transpose() * w) as f32,
+            } => *multiplier * (*tilt * photometry.intensity_toward(frame.transpose() * w) as f32),
             LightKind::Directional { .. } => Vec3::ZERO,
         }
     }
@@ -240,8 +260,9 @@ impl LightKind {
             LightKind::Goniometric {
                 photometry,
                 multiplier,
+                tilt,
                 ..
-            } => *multiplier * photometry.flux() as f32,
+            } => *multiplier * (*tilt * photometry.flux() as f32),
         }
     }
 }

@@ -82,7 +82,7 @@ pub struct LuminaireSummary {
     /// the file gives no watts.
     pub watts: Option<f64>,
     /// The luminance of the factor on the table (a problem's or glTF's multiplier and
-    /// colour, an IES tilt factor).
+    /// colour, dimming) times the IES tilt factor at the light's aim.
     pub multiplier: f32,
     /// The aim, where γ = 0 points, unit.
     pub aim: [f32; 3],
@@ -240,6 +240,7 @@ impl Scene {
             frame,
             photometry: p,
             multiplier,
+            tilt,
             ..
         } = kind
         else {
@@ -256,8 +257,8 @@ impl Scene {
             table_lm: p.flux(),
             file_lm,
             file_lm_of: of.map(String::from),
-            watts: kind.watts(self.up),
-            multiplier: luminance(*multiplier),
+            watts: kind.watts(),
+            multiplier: luminance(*multiplier) * tilt,
             aim: (-frame.z_axis).to_array(),
             c0: frame.x_axis.to_array(),
         })

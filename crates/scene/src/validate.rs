@@ -620,8 +620,9 @@ fn flux_f64(kind: &LightKind, radius: f64) -> f64 {
         LightKind::Goniometric {
             ref photometry,
             multiplier,
+            tilt,
             ..
-        } => photometry.flux() * luminance64(multiplier),
+        } => photometry.flux() * luminance64(multiplier) * f64::from(tilt),
     }
 }
 

@@ -5,7 +5,7 @@
 
 use invlight_scene::{
     Light, LightKind, LoadOptions, Opening, PhotometricSystem, Photometry, PhotometryError,
-    PhotometryFormat, Scene, Vec3, load, parse_ies, parse_ldt, read_photometry,
+    PhotometryFormat, Scene, Vec3, aimed_frame, load, parse_ies, parse_ldt, read_photometry,
 };
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -343,6 +343,7 @@ fn gltf_ext_lights_ies_places_and_turns_profiles() {
         frame,
         photometry,
         multiplier,
+        ..
     } = ww
     else {
         panic!("{ww:?}")
@@ -527,14 +528,41 @@ fn set_photometry_replaces_point_and_spot_lights() {
     assert!((frame.x_axis - Vec3::X).length() < 1e-6);
     assert_eq!(*multiplier, Vec3::splat(2.0));
     let LightKind::Goniometric {
-        frame, multiplier, ..
+        frame,
+        multiplier,
+        tilt,
+        ..
     } = &scene.lights[1].kind
     else {
         panic!()
     };
     assert!((-frame.z_axis - aim).length() < 1e-6);
-    // 30° from straight down: the floodlight's tilt factor 0.97.
-    assert!((multiplier.x - 0.97).abs() < 1e-6, "{multiplier}");
+    // 30° from straight down: the floodlight's tilt factor 0.97, beside the multiplier.
+    assert_eq!(*multiplier, Vec3::ONE);
+    assert!((tilt - 0.97).abs() < 1e-6, "{tilt}");
+    let on_axis = scene.lights[1].kind.intensity_toward(aim);
+    // Aimed straight down, the tilt factor is the file's at 0° and the light follows it;
+    // the multiplier (what dimming sets, what the watts follow) is unchanged.
+    let at_0 = flood.tilt.as_ref().unwrap().factor(0.0) as f32;
+    assert!(
+        (at_0 - 0.97).abs() > 0.01,
+        "the test needs another factor at 0°"
+    );
+    scene.lights[1]
+        .kind
+        .set_frame(aimed_frame(Vec3::NEG_Y, Vec3::X), Vec3::Y);
+    let LightKind::Goniometric {
+        multiplier, tilt, ..
+    } = &scene.lights[1].kind
+    else {
+        panic!()
+    };
+    assert_eq!((*multiplier, *tilt), (Vec3::ONE, at_0));
+    let down = scene.lights[1].kind.intensity_toward(Vec3::NEG_Y);
+    assert!(
+        (down.x / on_axis.x - at_0 / 0.97).abs() < 1e-5,
+        "{down} {on_axis}"
+    );
     assert_eq!(
         scene.set_photometry("Sun", flood.clone(), 1.0),
         Err(PhotometryError::NotAtAPoint { name: "Sun".into() })

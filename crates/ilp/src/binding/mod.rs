@@ -130,6 +130,21 @@ pub struct Binding {
     electric_power: Vec<f64>,
     /// What `electric_power` and [`Binding::power`] count.
     pub power_unit: PowerUnit,
+    /// The lights that emit a photometric file's table (`--luminaire`, `<luminaire>`,
+    /// `EXT_lights_ies`), in the scene's order: a run's numbers depend on them, so
+    /// `run.json` records them and `--resume` checks them.
+    pub luminaires: Vec<LuminaireUse>,
+}
+
+/// A light that emits a photometric file's candela table, as a run used it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LuminaireUse {
+    /// The light's name.
+    pub light: String,
+    /// The IES or EULUMDAT file's name.
+    pub file: String,
+    /// The light's flux as authored (the table's times its multiplier), lm.
+    pub lm: f64,
 }
 
 /// What `minimizePower` minimises: electrical watts when every electric light's
@@ -270,11 +285,20 @@ impl Binding {
                             (instances, None, centre)
                         }
                     };
-                    (
+                    // A whole turn's ends are one orientation: its neighbourhoods wrap.
+                    let domain = if (max - min - 360.0).abs() < 1e-9 {
+                        Domain::Turn {
+                            min: *min,
+                            max: *max,
+                        }
+                    } else {
                         Domain::Segment {
                             min: *min,
                             max: *max,
-                        },
+                        }
+                    };
+                    (
+                        domain,
                         Target::Rotate {
                             instances,
                             light,
@@ -406,6 +430,18 @@ impl Binding {
             bounds,
             electric_power: Vec::new(),
             power_unit: PowerUnit::Lumens,
+            luminaires: scene
+                .lights
+                .iter()
+                .filter_map(|l| match &l.kind {
+                    LightKind::Goniometric { photometry, .. } => Some(LuminaireUse {
+                        light: l.name.clone(),
+                        file: photometry.file.clone(),
+                        lm: f64::from(invlight_scene::luminance(l.kind.flux())),
+                    }),
+                    _ => None,
+                })
+                .collect(),
         };
         (binding.electric_power, binding.power_unit) = binding.component_power(scene);
         Ok(binding)
@@ -456,7 +492,7 @@ impl Binding {
                 SourceOrigin::Light(l) => {
                     // A light drawn as several sources draws its watts once.
                     if !std::mem::replace(&mut counted[l.index()], true) {
-                        match (scene.lights[l].kind.watts(scene.up), &mut watts) {
+                        match (scene.lights[l].kind.watts(), &mut watts) {
                             (Some(w), Some(sum)) => sum[k] += w,
                             _ => watts = None,
                         }
@@ -572,10 +608,11 @@ impl Binding {
                     (Domain::Segment { min, max }, Target::Scale { .. }) => {
                         VariableValue::Scale(min + x[0] * (max - min))
                     }
-                    (Domain::Segment { min, max }, Target::Rotate { .. }) => {
-                        VariableValue::Angle(min + x[0] * (max - min))
-                    }
-                    (Domain::Segment { min, max }, target) => {
+                    (
+                        Domain::Segment { min, max } | Domain::Turn { min, max },
+                        Target::Rotate { .. },
+                    ) => VariableValue::Angle(min + x[0] * (max - min)),
+                    (Domain::Segment { min, max } | Domain::Turn { min, max }, target) => {
                         let value = min + x[0] * (max - min);
                         let rgb = match target {
                             Target::Colour {
@@ -631,7 +668,7 @@ impl Binding {
                     coords.extend([phi, theta]);
                 }
                 (
-                    Domain::Segment { min, max },
+                    Domain::Segment { min, max } | Domain::Turn { min, max },
                     VariableValue::Colour { value, .. }
                     | VariableValue::Power(value)
                     | VariableValue::Scale(value)
@@ -641,6 +678,10 @@ impl Binding {
                         (value - min) / (max - min)
                     } else {
                         0.0
+                    };
+                    let x = match var.domain {
+                        Domain::Turn { .. } => x.rem_euclid(1.0),
+                        _ => x,
                     };
                     if !inside(x) {
                         return Err(outside());
@@ -784,15 +825,15 @@ impl Binding {
                 ) => {
                     // A light turns about an axis through itself: its aim and frame turn.
                     let turn = Mat3::from_axis_angle(*axis, a.to_radians() as f32);
+                    let up = scene.up;
                     match (&mut scene.lights[*light].kind, authored) {
                         (
                             LightKind::Spot { direction, .. },
                             LightKind::Spot { direction: d0, .. },
                         ) => *direction = turn * *d0,
-                        (
-                            LightKind::Goniometric { frame, .. },
-                            LightKind::Goniometric { frame: f0, .. },
-                        ) => *frame = turn * *f0,
+                        (kind, LightKind::Goniometric { frame: f0, .. }) => {
+                            kind.set_frame(turn * *f0, up);
+                        }
                         _ => {}
                     }
                 }
@@ -842,12 +883,10 @@ impl Binding {
                 ) => {
                     // From the authored aim and frame each time, so turns never add up.
                     let turn = Quat::from_rotation_arc(*axis, d.as_vec3().normalize());
+                    let up = scene.up;
                     match &mut scene.lights[*light].kind {
                         LightKind::Spot { direction, .. } => *direction = turn * *axis,
-                        LightKind::Goniometric { frame, .. } => {
-                            *frame = Mat3::from_quat(turn) * *authored;
-                        }
-                        _ => {}
+                        kind => kind.set_frame(Mat3::from_quat(turn) * *authored, up),
                     }
                 }
                 (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
@@ -1051,7 +1090,7 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
                 .unwrap_or(*max);
             vec![((v - min) / (max - min)).clamp(0.0, 1.0)]
         }
-        (Domain::Segment { min, max }, Target::Rotate { .. }) => {
+        (Domain::Segment { min, max } | Domain::Turn { min, max }, Target::Rotate { .. }) => {
             // As authored: turned by 0° (or the nearest end of the range).
             vec![((0.0 - min) / (max - min)).clamp(0.0, 1.0)]
         }

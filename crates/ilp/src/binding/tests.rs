@@ -3,6 +3,7 @@
 use super::*;
 use glam::Vec3;
 use invlight_scene::{Light, Material, Mesh, Placement};
+use invlight_stats::SplitMix64;
 use std::path::Path;
 
 /// A 4 m × 3 m floor (z = 0, up = +Z), a box "Chair" with its corner at the origin,
@@ -418,6 +419,14 @@ fn light_aim_turns_the_frame() {
     let keys: Vec<String> = (0..3).map(|i| VariableSpec::key(&p.variables, i)).collect();
     assert_eq!(keys, ["Lamp", "Lamp.power", "Lamp.aim"]);
     let b = Binding::new(&p, &mut s).unwrap();
+    // The table sends 100 cd into the lower hemisphere: 200π lm, recorded for run.json.
+    assert_eq!(b.luminaires.len(), 1);
+    assert_eq!(b.luminaires[0].light, "Lamp");
+    assert!(
+        (b.luminaires[0].lm - 200.0 * std::f64::consts::PI).abs() < 0.5,
+        "{:?}",
+        b.luminaires
+    );
     // θ = 30° (the cone's edge) at φ = 0: the cone about the authored aim −Z has
     // zenith +Z and φ = 0 along +X, and the light comes from there, so it travels
     // toward −X.
@@ -539,4 +548,100 @@ fn object_rotation_turns_then_moves() {
     );
     let e = Problem::parse(Path::new("/p/x.xml"), &text).unwrap_err();
     assert!(e.to_string().contains("min + 360"), "{e}");
+}
+
+/// A whole turn (`max = min + 360`) is a [`Domain::Turn`]: its neighbourhoods cross 0°
+/// (from 355° a small step reaches 5°, which a segment never offers), and 360° maps back
+/// to the configuration of 0°; a part of a turn stays a segment.
+#[test]
+fn object_rotation_full_turn_wraps() {
+    let mut s = scene();
+    let p = problem(
+        "<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/><objectRotation id=\"Chair\" min=\"0\" max=\"360\"/>",
+    );
+    let b = Binding::new(&p, &mut s).unwrap();
+    assert_eq!(
+        b.space.variables()[1].domain,
+        Domain::Turn {
+            min: 0.0,
+            max: 360.0
+        }
+    );
+    let near_end = Configuration {
+        coords: vec![0.5, 0.5, 355.0 / 360.0],
+    };
+    let mut rng = SplitMix64::new(3);
+    let angles: Vec<f64> = (0..400)
+        .map(
+            |_| match b.values(&b.space.neighbour(&near_end, 0.05, &mut rng))[1] {
+                VariableValue::Angle(a) => a,
+                ref v => panic!("{v:?}"),
+            },
+        )
+        .collect();
+    assert!(
+        angles.iter().all(|&a| !(15.0..=340.0).contains(&a)),
+        "±9° of 355°"
+    );
+    assert!(angles.iter().any(|&a| a < 5.0), "the step crosses 0°");
+    let at_0 = b
+        .configuration(&[b.values(&b.initial)[0], VariableValue::Angle(0.0)])
+        .unwrap();
+    let at_360 = b
+        .configuration(&[b.values(&b.initial)[0], VariableValue::Angle(360.0)])
+        .unwrap();
+    assert_eq!(at_0, at_360);
+    let part = problem(
+        "<objectInSurface id=\"Chair\" surface=\"Floor__Geometry\"/><objectRotation id=\"Chair\" min=\"-90\" max=\"90\"/>",
+    );
+    let b = Binding::new(&part, &mut scene()).unwrap();
+    assert!(matches!(
+        b.space.variables()[1].domain,
+        Domain::Segment { .. }
+    ));
+}
+
+/// An IES file's TILT factors follow the aim a search gives the luminaire (LM-63 §5.4:
+/// the factor at the lamp's angle from straight down), and dimming, which sets the
+/// multiplier, leaves them: a floodlight aimed 30° off the vertical and dimmed to 50 %
+/// sends 0.5 × 0.97 of its table, whatever the order of the variables.
+#[test]
+fn light_aim_recomputes_the_tilt_factor() {
+    let mut table = invlight_scene::Photometry::from_table(
+        invlight_scene::PhotometricSystem::C,
+        vec![0.0, 360.0],
+        vec![0.0, 90.0],
+        vec![100.0; 4],
+    )
+    .unwrap();
+    table.tilt = Some(invlight_scene::Tilt {
+        geometry: 1,
+        angles: vec![0.0, 30.0, 60.0],
+        factors: vec![1.0, 0.97, 0.9],
+    });
+    for conditions in [
+        "<lightPower id=\"Lamp\"/><lightAim id=\"Lamp\" maxTilt=\"60\"/>",
+        "<lightAim id=\"Lamp\" maxTilt=\"60\"/><lightPower id=\"Lamp\"/>",
+    ] {
+        let mut s = scene();
+        s.set_photometry("Lamp", std::sync::Arc::new(table.clone()), 1.0)
+            .unwrap();
+        let b = Binding::new(&problem(conditions), &mut s).unwrap();
+        let power_first = conditions.starts_with("<lightPower");
+        // Level 0.5 of [0, 1]; the aim at half the cone's 60°.
+        let coords = if power_first {
+            vec![0.5, 0.0, 0.5]
+        } else {
+            vec![0.0, 0.5, 0.5]
+        };
+        b.apply(&mut s, &Configuration { coords });
+        let kind = &s.lights[0].kind;
+        let aim = kind.direction().unwrap();
+        assert!((aim.dot(Vec3::NEG_Z) - 30f32.to_radians().cos()).abs() < 1e-5);
+        let on_axis = kind.intensity_toward(aim).x;
+        assert!(
+            (on_axis - 100.0 * 0.5 * 0.97).abs() < 1e-3,
+            "{conditions}: {on_axis}"
+        );
+    }
 }

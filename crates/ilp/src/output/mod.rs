@@ -76,7 +76,7 @@ impl Start {
         }
         let note = match RunFile::read(dir)? {
             Some(old) => {
-                RunFile::new(settings, max_bounces).check_resume(&old, dir)?;
+                RunFile::new(settings, max_bounces, &binding.luminaires).check_resume(&old, dir)?;
                 None
             }
             None => Some(format!(
@@ -213,7 +213,7 @@ impl<'b> Output<'b> {
         max_bounces: u32,
         start: &Start,
     ) -> Result<Output<'b>, OutputError> {
-        let run = RunFile::new(settings, max_bounces);
+        let run = RunFile::new(settings, max_bounces, &binding.luminaires);
         std::fs::create_dir_all(dir)?;
         let lock = FolderLock::take(dir)?;
         let path = dir.join("solutions.csv");

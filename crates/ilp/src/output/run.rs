@@ -4,6 +4,7 @@
 //! (common random numbers are lost, intervals differ) while looking alike in the CSV.
 //! The iteration budget may change: resuming with more iterations is what it is for.
 
+use crate::binding::LuminaireUse;
 use crate::vns::{Settings, Strategy};
 use invlight_scene::Diagnostic;
 use serde::{Deserialize, Serialize};
@@ -33,11 +34,15 @@ pub struct RunFile {
     pub cap: Option<f64>,
     /// Bounce cap of the photon paths.
     pub max_bounces: u32,
+    /// The lights that emit a photometric file (none in folders written before they
+    /// were recorded, and in scenes without one).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub luminaires: Vec<LuminaireUse>,
 }
 
 impl RunFile {
-    /// The settings of a search and its photon tracer.
-    pub fn new(settings: &Settings, max_bounces: u32) -> RunFile {
+    /// The settings of a search and its photon tracer, and the luminaires of its scene.
+    pub fn new(settings: &Settings, max_bounces: u32, luminaires: &[LuminaireUse]) -> RunFile {
         RunFile {
             schema_version: RUN_SCHEMA,
             seed: settings.seed,
@@ -47,6 +52,7 @@ impl RunFile {
             confidence: settings.confidence.level(),
             cap: settings.cap,
             max_bounces,
+            luminaires: luminaires.to_vec(),
         }
     }
 
@@ -78,6 +84,24 @@ impl RunFile {
             self.max_bounces.to_string(),
             old.max_bounces.to_string(),
         );
+        let files = |l: &[LuminaireUse]| {
+            let named: Vec<String> = l
+                .iter()
+                .map(|l| format!("{}={}", l.light, l.file))
+                .collect();
+            if named.is_empty() {
+                "no luminaire files".into()
+            } else {
+                named.join(" ")
+            }
+        };
+        if !old.luminaires.is_empty() {
+            check(
+                "luminaires",
+                files(&self.luminaires),
+                files(&old.luminaires),
+            );
+        }
         if differ.is_empty() {
             Ok(())
         } else {
@@ -89,7 +113,7 @@ impl RunFile {
                     differ.join(", ")
                 ),
             )
-            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, the problem file's quality and strategy) or choose a new --output"))
+            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, --luminaire, the problem file's quality, strategy and <luminaire> elements) or choose a new --output"))
         }
     }
 

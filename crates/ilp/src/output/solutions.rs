@@ -48,7 +48,7 @@ pub fn header(binding: &Binding) -> Vec<String> {
                 h.extend(["x", "y", "z"].map(|c| format!("{}.anchor.{c}", v.id)));
             }
             Domain::Hemisphere(_) => h.extend(["x", "y", "z"].map(|c| format!("{}.{c}", v.id))),
-            Domain::Segment { .. } => h.push(format!("{}.value", v.id)),
+            Domain::Segment { .. } | Domain::Turn { .. } => h.push(format!("{}.value", v.id)),
         }
     }
     h.extend(
@@ -254,7 +254,7 @@ impl Solutions {
                         values.push(VariableValue::Direction(vec3(c)?));
                         c += 3;
                     }
-                    Domain::Segment { .. } => {
+                    Domain::Segment { .. } | Domain::Turn { .. } => {
                         // A colour's row holds V alone; K_d follows from it (and is not
                         // needed to map the row back to a configuration).
                         values.push(match spec.kind {

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::Configuration;
+use crate::binding::LuminaireUse;
 use crate::problem::Problem;
 use crate::vns::{Evaluate, Evaluation, Search, Sense, Settings, Strategy, Verdict};
 use glam::{Mat4, Vec3};
@@ -153,7 +154,51 @@ fn csv_and_json_round_trip() {
     assert!(matches!(m.variables["Grey"], ResultValue::Color { .. }));
     assert!(m.estimate.low <= m.estimate.mean && m.estimate.mean <= m.estimate.high);
     let run = RunFile::read(dir).unwrap().unwrap();
-    assert_eq!(run, RunFile::new(&settings(), 7));
+    assert_eq!(run, RunFile::new(&settings(), 7, &[]));
+}
+
+/// `run.json` records the luminaire files a run's scene emitted, and a resume whose
+/// lights emit other files (another `--luminaire`) is refused, naming both; a folder
+/// written before they were recorded resumes.
+#[test]
+fn resume_checks_the_luminaire_files() {
+    let lamp = |file: &str| LuminaireUse {
+        light: "Desk".into(),
+        file: file.into(),
+        lm: 3000.0,
+    };
+    let dir = Path::new("/out");
+    let old = RunFile::new(&settings(), 7, &[lamp("downlight.ies")]);
+    let text = serde_json::to_string(&old).unwrap();
+    assert!(
+        text.contains("\"luminaires\":[{\"light\":\"Desk\",\"file\":\"downlight.ies\""),
+        "{text}"
+    );
+    assert!(
+        RunFile::new(&settings(), 7, &[lamp("downlight.ies")])
+            .check_resume(&old, dir)
+            .is_ok()
+    );
+    let e = RunFile::new(&settings(), 7, &[lamp("batwing.ldt")])
+        .check_resume(&old, dir)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("luminaires Desk=batwing.ldt (the folder has Desk=downlight.ies)"),
+        "{e}"
+    );
+    let e = RunFile::new(&settings(), 7, &[])
+        .check_resume(&old, dir)
+        .unwrap_err();
+    assert!(e.to_string().contains("no luminaire files"), "{e}");
+    let before: RunFile =
+        serde_json::from_str(&serde_json::to_string(&RunFile::new(&settings(), 7, &[])).unwrap())
+            .unwrap();
+    assert!(
+        RunFile::new(&settings(), 7, &[lamp("downlight.ies")])
+            .check_resume(&before, dir)
+            .is_ok()
+    );
 }
 
 /// Rows that do not hold what a run writes are errors naming the line; only a last row

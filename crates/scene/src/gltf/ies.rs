@@ -94,7 +94,8 @@ impl Builder<'_> {
                 position,
                 frame,
                 photometry,
-                multiplier: color * (multiplier * tilt),
+                multiplier: color * multiplier,
+                tilt,
             },
         });
         Ok(())
