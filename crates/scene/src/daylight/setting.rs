@@ -231,8 +231,9 @@ fn sun_light(scene: &Scene) -> Result<Option<usize>, DaylightError> {
     }
 }
 
-/// Sets the scene's sun ([`sun_light`], added when there is none) to travel along the
-/// unit `direction` with `lux` of white light.
+/// Sets the scene's sun (its only directional light, or the one named [`SUN_NAME`]
+/// among several; added when there is none) to travel along the unit `direction` with
+/// `lux` of white light.
 pub fn set_sun(scene: &mut Scene, direction: Vec3, lux: f64) -> Result<(), DaylightError> {
     let kind = LightKind::Directional {
         direction,
