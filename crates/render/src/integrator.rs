@@ -1,7 +1,8 @@
 //! Radiance along camera rays (thesis §2.6.3; Jensen 2001 ch. 9): at a diffuse point,
-//! direct light by shadow rays to every light plus indirect light and caustics from the
-//! photon map; at mirrors and glass the ray is followed recursively, glass split by
-//! Fresnel into a reflected and a refracted ray.
+//! direct light by shadow rays to every light and to the sky plus indirect light and
+//! caustics from the photon map; at mirrors and glass the ray is followed recursively,
+//! glass split by Fresnel into a reflected and a refracted ray; a ray that leaves the
+//! scene sees the sky's luminance (black without a sky).
 //!
 //! Pixel values are luminances in cd/m² (RGB): a Lambertian surface of reflectance ρ
 //! under illuminance E has radiance ρE/π, so an image is proportional to the
@@ -215,7 +216,10 @@ impl<'a> Integrator<'a> {
     /// toward the point (from a point of their opening drawn by area), the sun E⊥·cos θ,
     /// each if its shadow ray is free; area
     /// lights by `light_samples` points drawn by area (pdf p_tri/A_tri), each adding
-    /// L·cos θ·cos θ_l/(d²·pdf) (pbrt-v4 §12.2, area sampling).
+    /// L·cos θ·cos θ_l/(d²·pdf) (pbrt-v4 §12.2, area sampling), and a CIE sky by
+    /// `light_samples` directions drawn ∝ its luminance, each adding L·cos θ/pdf when its
+    /// ray leaves the scene (under an unobstructed overcast sky the estimate varies only
+    /// with cos θ, so an open floor reads the sky's horizontal illuminance).
     pub fn direct(&self, at: &Interaction, n: Vec3, rng: &mut Pcg32) -> Rgb {
         let mut e = Vec3::ZERO;
         for light in &self.scene.lights {
@@ -289,6 +293,19 @@ impl<'a> Integrator<'a> {
             }
             e += area / self.settings.light_samples as f32;
         }
+        if let Some(sky) = &self.scene.sky
+            && self.settings.light_samples > 0
+        {
+            let mut dome = 0.0;
+            for _ in 0..self.settings.light_samples {
+                let s = sky.sample(rng.uniform(), rng.uniform());
+                let cos = n.dot(s.to_sky);
+                if cos > 0.0 && s.pdf > 0.0 && !self.accel.occluded(&at.spawn(s.to_sky)) {
+                    dome += s.luminance * cos / s.pdf;
+                }
+            }
+            e += Vec3::splat(dome / self.settings.light_samples as f32);
+        }
         e
     }
 
@@ -324,7 +341,8 @@ impl<'a> Integrator<'a> {
 
     fn radiance_at_depth(&self, ray: &Ray, rng: &mut Pcg32, depth: u32, weight: f32) -> Rgb {
         let Some(hit) = self.accel.intersect(ray) else {
-            return Vec3::ZERO;
+            let sky = self.scene.sky.as_ref();
+            return Vec3::splat(sky.map_or(0.0, |s| s.luminance(ray.dir)));
         };
         let at = self.accel.interaction(self.scene, ray, &hit);
         let m = &self.scene.materials[at.material];

@@ -752,3 +752,58 @@ fn search_plots_put_points_where_their_world_coordinates_say() {
         assert!(frame.x.0 <= 0.0 && frame.x.1 >= 6.0 && frame.y.0 <= 0.0 && frame.y.1 >= 4.0);
     }
 }
+
+/// Under a CIE overcast sky and nothing else, an open floor's direct illuminance is the
+/// sky's horizontal illuminance (the `horizontalLux` it is made from), within 4 σ of the
+/// shadow rays' own spread; a camera ray that leaves the scene sees the sky's luminance,
+/// the zenith's looking straight up, the CIE gradation's at 45°, and nothing below the
+/// horizon.
+#[test]
+fn the_sky_lights_the_render_and_is_seen_through_it() {
+    let mut scene = Scene::default();
+    let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+    let floor = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(-10.0, -10.0, 0.0),
+            Vec3::new(10.0, -10.0, 0.0),
+            Vec3::new(10.0, 10.0, 0.0),
+            Vec3::new(-10.0, 10.0, 0.0),
+        ],
+        grey,
+    ));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    let sky = invlight_scene::daylight::Sky::cie_overcast(Vec3::Z, 10_000.0).unwrap();
+    let lz = sky.zenith_luminance() as f32;
+    scene.sky = Some(Arc::new(sky));
+    let accel = Accel::new(&scene);
+    let lights = AreaLights::new(&scene);
+    let integrator = Integrator::new(&scene, &accel, &lights, None, settings(8, 8));
+    let down = invlight_trace::Ray::new(Vec3::new(0.3, 0.2, 1.0), Vec3::NEG_Z);
+    let n = 20_000;
+    let readings: Vec<f64> = (0..n)
+        .map(|i| {
+            let mut rng = Pcg32::new(11, i);
+            integrator.illuminance(&down, &mut rng).unwrap().0 as f64
+        })
+        .collect();
+    let mean = readings.iter().sum::<f64>() / n as f64;
+    let var = readings.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    let sigma = (var / n as f64).sqrt();
+    assert!(sigma > 0.0 && sigma < 0.01 * mean, "{sigma}");
+    assert!((mean - 10_000.0).abs() < 4.0 * sigma, "{mean} ± {sigma} lx");
+
+    let mut rng = Pcg32::new(1, 1);
+    let up = invlight_trace::Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::Z);
+    assert!((integrator.radiance(&up, &mut rng).x - lz).abs() < 1e-3 * lz);
+    let slant = Vec3::new(1.0, 0.0, 1.0).normalize();
+    let seen = integrator
+        .radiance(
+            &invlight_trace::Ray::new(Vec3::new(0.0, 0.0, 1.0), slant),
+            &mut rng,
+        )
+        .x;
+    let cie = lz * (1.0 + 2.0 * slant.z) / 3.0;
+    assert!((seen - cie).abs() < 1e-3 * cie, "{seen} vs {cie}");
+    let below = invlight_trace::Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::NEG_Z);
+    assert_eq!(integrator.radiance(&below, &mut rng), Vec3::ZERO);
+}
