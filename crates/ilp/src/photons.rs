@@ -7,7 +7,9 @@
 //! Every evaluation uses the same photon seed (common random numbers, DESIGN.md §2):
 //! photon i of two configurations starts from the same random numbers, so their
 //! difference is far less noisy than either value, and a fast estimate with n photons
-//! is the first n photons of the full one.
+//! is the first n photons of the full one. A configuration evaluated again with more
+//! photons continues its kept trace ([`measure_more`]): the same numbers as tracing
+//! afresh, for the photons after those traced.
 //!
 //! Dimming costs no photons: each dimmed light's light is tallied apart and weighed by
 //! its level ([`Binding::levels`]), so every dimming of one arrangement is read from
@@ -18,8 +20,8 @@ use crate::binding::Binding;
 use crate::space::Configuration;
 use crate::vns::{Evaluate, Evaluation};
 use invlight_photon::{
-    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_with,
-    photons_traced,
+    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_more,
+    measure_with, photons_traced,
 };
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
@@ -166,9 +168,28 @@ impl<'b> PhotonEvaluator<'b> {
                 seed: self.seed,
                 max_bounces: self.max_bounces,
             };
-            let m = measure_with(&self.scene, &self.accel, &request, &settings, None);
-            self.rays += m.rays + m.connection_rays;
-            self.photons += m.photons;
+            // The arrangement's largest trace of fewer photons is continued (issue 15):
+            // a candidate looked at with n, 4n, … then N photons traces N in all.
+            let previous = self
+                .kept
+                .iter()
+                .filter(|((a, p), _)| *a == key.0 && *p < photons)
+                .max_by_key(|((_, p), _)| *p)
+                .map(|(_, m)| m);
+            let (m, reused, rays_before) = match previous {
+                Some(p) => (
+                    measure_more(&self.scene, &self.accel, &request, &settings, None, p),
+                    p.resumable_photons(),
+                    p.rays + p.connection_rays,
+                ),
+                None => (
+                    measure_with(&self.scene, &self.accel, &request, &settings, None),
+                    0,
+                    0,
+                ),
+            };
+            self.rays += m.rays + m.connection_rays - rays_before;
+            self.photons += m.photons - reused;
             self.traces += 1;
             if self.kept.len() >= KEPT_TRACES {
                 self.kept.clear();

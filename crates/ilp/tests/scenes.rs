@@ -763,3 +763,32 @@ fn object_rotation_turns_a_luminaire_toward_a_wall() {
     );
     assert!((-frame.z_axis - Vec3::NEG_Y).length() < 1e-5);
 }
+
+/// A configuration evaluated again with more photons continues its trace (issue 15):
+/// the looks n, 4n and N of one candidate give the numbers fresh traces would, and cost
+/// N photons in all (and the rest of a chunk each look ended in), not n + 4n + N.
+#[test]
+fn a_refined_candidate_traces_only_the_photons_it_lacks() {
+    let (mut scene, pb) = lamp_scene();
+    let binding = Binding::new(&pb, &mut scene).unwrap();
+    let config = Configuration {
+        coords: vec![0.45, 0.55],
+    };
+    let mut refined = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+    for photons in [5_056, 20_224, 40_000] {
+        let mut fresh = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+        let want = invlight_ilp::Evaluate::evaluate(&mut fresh, &config, photons).unwrap();
+        assert_eq!(fresh.work().1, photons);
+        assert_eq!(
+            invlight_ilp::Evaluate::evaluate(&mut refined, &config, photons).unwrap(),
+            want
+        );
+    }
+    let (_, photons) = refined.work();
+    let part = 5_056 % 4_096 + 20_224 % 4_096;
+    assert_eq!(
+        photons,
+        40_000 + part,
+        "the partial chunks are traced again"
+    );
+}
