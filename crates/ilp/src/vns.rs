@@ -39,6 +39,7 @@ use crate::isoc::{Admission, Isoc, Member};
 use crate::space::{Cell, Configuration, Space};
 use invlight_stats::{Confidence, Estimate};
 use invlight_stats::{SplitMix64, mix, variance_ratio};
+use std::collections::HashSet;
 use std::fmt;
 use std::time::Instant;
 
@@ -127,10 +128,14 @@ pub enum Verdict {
     /// `REFINE_ISOC_ON_END`: an ISOC member re-evaluated with N; the final ISOC is
     /// rebuilt from these rows.
     Final,
+    /// [`Strategy::Paired`]'s global screening: a cell of a space-filling set looked at
+    /// once with the fewest samples, not offered to the ISOC (the search may evaluate
+    /// it again as a candidate).
+    Screened,
 }
 
 impl Verdict {
-    const ALL: [Verdict; 10] = [
+    const ALL: [Verdict; 11] = [
         Verdict::Initial,
         Verdict::Better,
         Verdict::Probable,
@@ -141,6 +146,7 @@ impl Verdict {
         Verdict::Undecided,
         Verdict::Refine,
         Verdict::Final,
+        Verdict::Screened,
     ];
 
     /// The CSV spelling.
@@ -156,6 +162,7 @@ impl Verdict {
             Verdict::Undecided => "undecided",
             Verdict::Refine => "refine",
             Verdict::Final => "final",
+            Verdict::Screened => "screened",
         }
     }
 
@@ -379,25 +386,35 @@ pub enum Outcome {
     /// I candidates each, admitted no configuration, nor did the cells adjacent to its
     /// members (see [`Search::run`]).
     Settled,
+    /// [`Strategy::Paired`]: the global screening found every configuration it tried
+    /// (and the initial one) indistinguishable from no light at all, until the budget
+    /// or the cells ran out.
+    Unlit,
 }
 
 impl Outcome {
-    /// Why the search stopped, for `stopped: …` in the table and `result.json`.
-    pub fn stopped(self) -> &'static str {
+    /// Why the search stopped, for `stopped: …` in the table and `result.json`;
+    /// `surface` names the goal's surface.
+    pub fn stopped(self, surface: Option<&str>) -> String {
         match self {
-            Outcome::Finished => "maxIterations candidates drawn",
-            Outcome::Exhausted => "every cell was evaluated",
-            Outcome::Interrupted => "interrupted",
+            Outcome::Finished => "maxIterations candidates drawn".into(),
+            Outcome::Exhausted => "every cell was evaluated".into(),
+            Outcome::Interrupted => "interrupted".into(),
             Outcome::Settled => {
-                "decided: a whole sweep of the radii 0.05 to 0.95 around the ISOC, and every cell next to a member, admitted no configuration"
+                "decided: a whole sweep of the radii 0.05 to 0.95 around the ISOC, and every cell next to a member, admitted no configuration".into()
             }
+            Outcome::Unlit => format!(
+                "no configuration tried lights '{}': every estimate of its light was indistinguishable from 0 (check that a light can reach it, or widen the variables' ranges)",
+                surface.unwrap_or("the goal's surface")
+            ),
         }
     }
 
-    /// What a user should know about it, if anything.
+    /// What a user should know about it, if anything (the table already ends with
+    /// [`Outcome::stopped`]).
     pub fn note(self) -> Option<&'static str> {
         match self {
-            Outcome::Finished | Outcome::Settled => None,
+            Outcome::Finished | Outcome::Settled | Outcome::Unlit => None,
             Outcome::Exhausted => Some("every cell was evaluated"),
             Outcome::Interrupted => Some(
                 "interrupted: the files are complete up to the last evaluation; continue with --resume",
@@ -455,6 +472,16 @@ pub struct Search<'s> {
     ratios: Vec<f64>,
     /// Candidates admitted to the ISOC so far, for the stopping rule.
     admissions: u64,
+    /// Points of the global screening drawn so far ([`Search::screen`]).
+    screens: u64,
+    /// The cells screened, each looked at once.
+    screened: HashSet<Cell>,
+    /// The best screened configuration that could be feasible, with its score.
+    best_screen: Option<(f64, Configuration)>,
+    /// Whether some evaluation's goal was distinguishable from 0 (the target is lit).
+    lit: bool,
+    /// The screening's current round and its permutations, one per coordinate.
+    round: Option<(u64, Vec<Vec<u32>>)>,
 }
 
 /// How many of the least-violating configurations a search keeps.
@@ -482,6 +509,11 @@ impl<'s> Search<'s> {
             closest_changed: false,
             ratios: Vec::new(),
             admissions: 0,
+            screens: 0,
+            screened: HashSet::new(),
+            best_screen: None,
+            lit: false,
+            round: None,
             settings,
         }
     }
@@ -570,6 +602,7 @@ impl<'s> Search<'s> {
                         self.isoc.admit(member);
                     }
                     Verdict::Infeasible | Verdict::Undecided => self.keep_closest(member),
+                    Verdict::Screened => self.screened_as(&cell, config.clone(), &rec.evaluation),
                     _ => {}
                 }
             }
@@ -579,9 +612,11 @@ impl<'s> Search<'s> {
             self.evaluations += 1;
             self.iteration = self.iteration.max(rec.iteration + 1);
             self.started = true;
+            self.lit |= self.lights(&rec.evaluation);
             // A fast estimate is decided by the full one on the next row; without it
-            // (a hard stop in between) the cell stays open to be drawn again.
-            if rec.verdict == Verdict::Refine {
+            // (a hard stop in between) the cell stays open to be drawn again. A
+            // screened cell stays open to the search too.
+            if matches!(rec.verdict, Verdict::Refine | Verdict::Screened) {
                 continue;
             }
             self.cache.insert(
@@ -617,6 +652,14 @@ impl<'s> Search<'s> {
     ) -> Result<Outcome, SearchError<E::Error>> {
         if !self.started {
             self.initial(eval, observer)?;
+        }
+        if self.settings.strategy == Strategy::Paired {
+            if !self.screen(eval, observer)? {
+                return Ok(Outcome::Interrupted);
+            }
+            if self.plateau() {
+                return Ok(Outcome::Unlit);
+            }
         }
         let max = self.settings.max_iterations;
         let tries = self.settings.tries(self.space.dimensions());
@@ -667,6 +710,132 @@ impl<'s> Search<'s> {
             self.refine_on_end(eval, observer)?;
         }
         Ok(outcome)
+    }
+
+    /// Global screening (issue 15), before the VNS walks: points of a space-filling
+    /// design, each looked at once with the fewest samples the evaluator takes, for at
+    /// most a tenth of `max_iterations` — then the best of them that could be feasible
+    /// is evaluated as a candidate, so the VNS starts from it if it beats the initial
+    /// configuration. On a plateau (no estimate so far distinguishable from 0, as when
+    /// a sun must come through a small window) random walks around a member learn
+    /// nothing, so screening goes on until something is lit, the cells run out or the
+    /// budget does ([`Search::plateau`]). A goal to minimise has no plateau to leave:
+    /// no light is its best. Returns `false` when the observer asked to stop.
+    ///
+    /// The design: rounds of M = max(1, ⌊max_iterations/10⌋) points, each round a Latin
+    /// hypercube over the unit cube of coordinates (McKay, Beckman & Conover 1979: every
+    /// coordinate's M strata hold one point each), from the seed and the round alone,
+    /// so a resumed run draws the same points.
+    fn screen<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<bool, SearchError<E::Error>> {
+        let max = self.settings.max_iterations;
+        let budget = (max / 10).max(1);
+        let photons = eval.samples(1);
+        loop {
+            if observer.should_stop() {
+                return Ok(false);
+            }
+            let seeking = !self.lit && self.settings.sense != Sense::Minimize;
+            if self.iteration >= max
+                || (self.screens >= budget && !seeking)
+                || self.screened.len() as f64 + self.cache.len() as f64 >= self.space.cell_count()
+            {
+                break;
+            }
+            let config = self.space.snap(&self.screen_point(self.screens, budget));
+            let cell = self.space.cell(&config);
+            self.screens += 1;
+            let iteration = self.iteration;
+            self.iteration += 1;
+            observer.iteration(self.iteration);
+            if self.screened.contains(&cell) || self.cache.get(&cell).is_some() {
+                continue;
+            }
+            if let Some(why) = eval.refuses(&config) {
+                self.cache.insert(cell, Entry::Refused);
+                observer.refused(iteration, &why);
+                continue;
+            }
+            let (evaluation, seconds) = self.evaluate(eval, &config, photons)?;
+            self.screened_as(&cell, config.clone(), &evaluation);
+            let record = Record {
+                iteration,
+                config,
+                evaluation,
+                seconds,
+                verdict: Verdict::Screened,
+            };
+            self.report(observer, cell, record)?;
+        }
+        // The best screened configuration, as a candidate; not again on a resumed run.
+        if let Some((_, config)) = self.best_screen.clone()
+            && self.lit
+            && self.iteration < max
+        {
+            let cell = self.space.cell(&config);
+            if self.cache.get(&cell).is_none() {
+                let iteration = self.iteration;
+                self.iteration += 1;
+                observer.iteration(self.iteration);
+                self.candidate(iteration, config, cell, eval, observer)?;
+            }
+        }
+        Ok(true)
+    }
+
+    /// Screening point `j`: point j mod M of round ⌊j/M⌋'s Latin hypercube, in the
+    /// middle of its strata's cells' reach (a uniform offset within its stratum).
+    fn screen_point(&mut self, j: u64, m: u64) -> Configuration {
+        let (round, k) = (j / m, (j % m) as usize);
+        let seed = self.settings.seed;
+        if self.round.as_ref().is_none_or(|(r, _)| *r != round) {
+            let mut rng = SplitMix64::new(mix(seed ^ 0x5C_4EE4 ^ mix(round)));
+            let perms = (0..self.space.dimensions())
+                .map(|_| {
+                    let mut p: Vec<u32> = (0..m as u32).collect();
+                    for i in (1..p.len()).rev() {
+                        p.swap(i, rng.below(i + 1));
+                    }
+                    p
+                })
+                .collect();
+            self.round = Some((round, perms));
+        }
+        let perms = &self.round.as_ref().expect("set above").1;
+        let mut rng = SplitMix64::new(mix(seed ^ mix(round ^ mix(k as u64 + 1))));
+        Configuration {
+            coords: perms
+                .iter()
+                .map(|p| (p[k] as f64 + rng.next_f64()) / m as f64)
+                .collect(),
+        }
+    }
+
+    /// Notes a screened evaluation: its cell, and whether it is the best so far.
+    fn screened_as(&mut self, cell: &Cell, config: Configuration, e: &Evaluation) {
+        self.screened.insert(cell.clone());
+        if self.invalid(e) || self.feasibility(e) == Feasibility::Infeasible {
+            return;
+        }
+        let score = self.settings.sense.score(&e.goal).mean;
+        if self.best_screen.as_ref().is_none_or(|(b, _)| score > *b) {
+            self.best_screen = Some((score, config));
+        }
+    }
+
+    /// Whether an evaluation's goal is distinguishable from 0 at the ISOC's z: the
+    /// target receives light.
+    fn lights(&self, e: &Evaluation) -> bool {
+        e.goal.interval(self.isoc.z()).low > 0.0
+    }
+
+    /// Whether the screening left the search on a plateau of no light: nothing
+    /// evaluated was distinguishable from 0 and the goal is not to minimise.
+    fn plateau(&self) -> bool {
+        !self.lit && self.screens > 0 && self.settings.sense != Sense::Minimize
     }
 
     fn exhausted(&self) -> bool {
@@ -1093,8 +1262,11 @@ impl<'s> Search<'s> {
     ) -> Result<(), SearchError<X>> {
         record.evaluation.groups = Vec::new();
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
-        self.cache
-            .insert(cell, Entry::Evaluated { estimate, verdict });
+        self.lit |= self.lights(&record.evaluation);
+        if verdict != Verdict::Screened {
+            self.cache
+                .insert(cell, Entry::Evaluated { estimate, verdict });
+        }
         let changed = matches!(
             verdict,
             Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final

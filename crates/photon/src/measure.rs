@@ -478,7 +478,7 @@ fn trace_into(
     // a continuation picks up ([`measure_more`]); only the search, which keeps groups,
     // continues measurements.
     let partial = (request.keep_groups && !settings.photons.is_multiple_of(CHUNK))
-        .then(|| settings.photons / CHUNK);
+        .then_some(settings.photons / CHUNK);
     let mut chunk = first_chunk;
     let mut boundary = None;
     let rays = trace_chunks_from(
