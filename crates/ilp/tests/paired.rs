@@ -575,3 +575,66 @@ fn a_resumed_screening_repeats_nothing() {
     });
     assert!(resumed.isoc().members().iter().any(|m| m.cell == peak));
 }
+
+/// The ISOC's honesty over seeds (issue 15): on 10 × 10 cells of the 2-D peak
+/// 10 − 3(|x − 0.43| + |y − 0.61|), where half the noise is each configuration's own
+/// (σ_s = σ_o = 1 per group, 100 groups at N), so the optimum's cell ([0.4, 0.5) ×
+/// [0.6, 0.7), 9.82 at its centre) is only 0.06 above its best neighbour (9.76), 0.4
+/// paired σ (√2/10 ≈ 0.14): the ISOC must keep both, and looks or comparisons that
+/// spent their error carelessly would drop the optimum. It is in the paired search's
+/// ISOC for at least 95 % of 200 seeds (200 now, with 4.2 members on average), and for
+/// at least as many as in the thesis' (198, 6.8 members).
+#[test]
+fn the_optimum_is_in_the_isoc_as_often_as_promised() {
+    let segment = |id: &str| Variable {
+        id: id.into(),
+        domain: Domain::Segment { min: 0.0, max: 1.0 },
+    };
+    let space = Space::new(vec![segment("x"), segment("y")], &[10, 10]);
+    let f = |c: &[f64]| 10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs());
+    let optimum = space.cell(&Configuration {
+        coords: vec![0.43, 0.61],
+    });
+    let seeds = 200;
+    let mut found = [0u32; 2];
+    let mut members = [0usize; 2];
+    for seed in 0..seeds {
+        for (k, strategy) in [Strategy::Paired, Strategy::RefineOnIntersection]
+            .into_iter()
+            .enumerate()
+        {
+            let mut eval = Correlated2 {
+                f,
+                shared: 1.0,
+                own: 1.0,
+                seed: mix(seed + 9_000),
+            };
+            let settings = Settings {
+                max_iterations: 300,
+                ..settings(strategy, seed)
+            };
+            let mut search = Search::new(
+                &space,
+                settings,
+                &Configuration {
+                    coords: vec![0.9, 0.1],
+                },
+            );
+            search.run(&mut eval, &mut Quiet).unwrap();
+            found[k] += search.isoc().members().iter().any(|m| m.cell == optimum) as u32;
+            members[k] += search.isoc().members().len();
+        }
+    }
+    eprintln!("found {found:?}, members {members:?}");
+    assert!(
+        found[0] >= 190,
+        "paired: optimum in {} of {seeds}",
+        found[0]
+    );
+    assert!(
+        found[0] >= found[1],
+        "paired {} vs thesis {}",
+        found[0],
+        found[1]
+    );
+}
