@@ -289,6 +289,18 @@ pub trait Evaluate {
     fn evaluate(&mut self, config: &Configuration, photons: u64)
     -> Result<Evaluation, Self::Error>;
 
+    /// Evaluates each of `configs` with `photons` samples, as [`Evaluate::evaluate`]
+    /// would one after another and with the same numbers: an evaluator that can trace
+    /// several at once on all cores does (issue 15's parallel candidates), so the
+    /// search's results do not depend on the thread count.
+    fn evaluate_all(
+        &mut self,
+        configs: &[Configuration],
+        photons: u64,
+    ) -> Vec<Result<Evaluation, Self::Error>> {
+        configs.iter().map(|c| self.evaluate(c, photons)).collect()
+    }
+
     /// The samples an evaluation asked for `requested` really takes (the photon tracer
     /// rounds up to whole groups and a minimum): the search sizes its evaluations by
     /// it, so the two layers never disagree about what a fast evaluation is.
@@ -486,6 +498,10 @@ pub struct Search<'s> {
 
 /// How many of the least-violating configurations a search keeps.
 const CLOSEST: usize = 5;
+
+/// The most screening points traced side by side: enough for every core of a large
+/// machine, few enough that a plateau's screening stops soon after light is found.
+const SCREEN_BATCH: u64 = 32;
 
 impl<'s> Search<'s> {
     /// A search of `space` from `initial` (snapped to its cell).
@@ -739,36 +755,61 @@ impl<'s> Search<'s> {
                 return Ok(false);
             }
             let seeking = !self.lit && self.settings.sense != Sense::Minimize;
-            if self.iteration >= max
-                || (self.screens >= budget && !seeking)
-                || self.screened.len() as f64 + self.cache.len() as f64 >= self.space.cell_count()
-            {
+            let cells_left =
+                self.space.cell_count() - (self.screened.len() as f64 + self.cache.len() as f64);
+            if self.iteration >= max || (self.screens >= budget && !seeking) || cells_left <= 0.0 {
                 break;
             }
-            let config = self.space.snap(&self.screen_point(self.screens, budget));
-            let cell = self.space.cell(&config);
-            self.screens += 1;
-            let iteration = self.iteration;
-            self.iteration += 1;
-            observer.iteration(self.iteration);
-            if self.screened.contains(&cell) || self.cache.get(&cell).is_some() {
-                continue;
-            }
-            if let Some(why) = eval.refuses(&config) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
-                continue;
-            }
-            let (evaluation, seconds) = self.evaluate(eval, &config, photons)?;
-            self.screened_as(&cell, config.clone(), &evaluation);
-            let record = Record {
-                iteration,
-                config,
-                evaluation,
-                seconds,
-                verdict: Verdict::Screened,
+            // A batch of points, traced side by side (Evaluate::evaluate_all); its size
+            // is fixed by the budget alone, never by the threads, so the rows are the
+            // same on any machine.
+            let room = if self.screens < budget {
+                budget - self.screens
+            } else {
+                SCREEN_BATCH
             };
-            self.report(observer, cell, record)?;
+            let mut batch: Vec<(u64, Configuration, Cell)> = Vec::new();
+            while (batch.len() as u64) < room.min(SCREEN_BATCH)
+                && self.iteration < max
+                && (batch.len() as f64) < cells_left
+            {
+                let config = self.space.snap(&self.screen_point(self.screens, budget));
+                let cell = self.space.cell(&config);
+                self.screens += 1;
+                let iteration = self.iteration;
+                self.iteration += 1;
+                observer.iteration(self.iteration);
+                if self.screened.contains(&cell)
+                    || self.cache.get(&cell).is_some()
+                    || batch.iter().any(|(_, _, c)| *c == cell)
+                {
+                    continue;
+                }
+                if let Some(why) = eval.refuses(&config) {
+                    self.cache.insert(cell, Entry::Refused);
+                    observer.refused(iteration, &why);
+                    continue;
+                }
+                batch.push((iteration, config, cell));
+            }
+            let configs: Vec<Configuration> = batch.iter().map(|(_, c, _)| c.clone()).collect();
+            let t = Instant::now();
+            let evaluations = eval.evaluate_all(&configs, photons);
+            let seconds = t.elapsed().as_secs_f64() / configs.len().max(1) as f64;
+            for ((iteration, config, cell), e) in batch.into_iter().zip(evaluations) {
+                let mut evaluation = e.map_err(SearchError::Evaluate)?;
+                self.evaluations += 1;
+                evaluation.groups = Vec::new();
+                self.screened_as(&cell, config.clone(), &evaluation);
+                let record = Record {
+                    iteration,
+                    config,
+                    evaluation,
+                    seconds,
+                    verdict: Verdict::Screened,
+                };
+                self.report(observer, cell, record)?;
+            }
         }
         // The best screened configuration, as a candidate; not again on a resumed run.
         if let Some((_, config)) = self.best_screen.clone()
