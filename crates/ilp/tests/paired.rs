@@ -425,6 +425,9 @@ fn screening_finds_the_lit_window_on_a_dark_plateau() {
         v[v.len() / 2]
     };
     let (paired, thesis) = (median(&mut costs[0]), median(&mut costs[1]));
+    eprintln!(
+        "samples until the peak joined (median of 20 seeds): paired {paired}, thesis {thesis}"
+    );
     assert!(2 * paired <= thesis, "{paired} vs {thesis} samples");
 }
 
@@ -497,6 +500,7 @@ fn a_search_that_lights_nothing_says_so() {
             .starts_with("no configuration tried lights 'Board'")
     );
     let (outcome, members, _) = run(Strategy::RefineOnIntersection);
+    eprintln!("no light: the thesis' ISOC holds {members} tied dark members");
     assert_eq!(outcome, Outcome::Finished);
     assert!(members > 50, "{members} tied dark members");
 }
