@@ -3,11 +3,13 @@
 the region its README expects (issue 6: "CI runs every example with a reduced budget
 and checks that the answer lands in the expected region").
 
-    python3 tools/check_examples.py [--bin PATH] [--only NAME] [--full]
+    python3 tools/check_examples.py [--bin PATH] [--only NAME] [--full] [--strategy S]
 
 Python 3 standard library only. `--bin` is the invlight binary (default: `cargo run
 --release --` from the repository); `--full` uses each problem file's own budget. The
-run's files go to a temporary folder. Exit status 0 when every check passes.
+run's files go to a temporary folder. `--strategy` solves with that strategy instead
+of the problem file's (BENCHMARKS.md compares them this way). Exit status 0 when every
+check passes.
 
 The regions are the geometric arguments of the READMEs, with margins of about one cell:
 the check is on the ISOC's best member, which the search returns first. office-target's
@@ -124,6 +126,7 @@ def main():
     ap.add_argument("--bin", help="the invlight binary (default: cargo run --release --)")
     ap.add_argument("--only", choices=sorted(EXAMPLES))
     ap.add_argument("--full", action="store_true", help="the problem files' own budgets")
+    ap.add_argument("--strategy", help="solve --strategy (default: the problem file's)")
     args = ap.parse_args()
     command = [args.bin] if args.bin else ["cargo", "run", "--quiet", "--release", "--"]
     failed = 0
@@ -135,6 +138,7 @@ def main():
             cmd = command + ["solve", os.path.join("examples", name, "problem.xml"),
                              "--output", out, "--json", "--no-images",
                              "--report-photons", "200000"] + ([] if args.full else budget)
+            cmd += ["--strategy", args.strategy] if args.strategy else []
             start = time.monotonic()
             run = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
             seconds = time.monotonic() - start
@@ -168,10 +172,16 @@ def main():
 
             ok, what = check(best, again) if check in (office_target, office_ies) else check(best)
             unit = result["objective"]["unit"]
-            print("%s %s: %s; %.4g %s [%.4g, %.4g]; %d evaluations, N = %d photons, %.0f s" % (
+            traced = re.search(r"(\d+) evaluations, (\d+) photons", run.stderr.decode())
+            print("%s %s: %s; %.4g %s [%.4g, %.4g]; %d evaluations, %s photons traced, N = %d, "
+                  "ISOC of %d, search %.1f s, %.0f s in all; stopped: %s" % (
                 "ok  " if ok else "FAIL", name, what, best["estimate"]["mean"], unit,
                 best["estimate"]["low"], best["estimate"]["high"], result["evaluations"],
-                result["photons"], seconds))
+                traced.group(2) if traced else "?", result["photons"], len(result["isoc"]),
+                result["seconds"], seconds, result.get("stopped", "?")))
+            ratio = re.search(r"var\(X−Y\)/\(var X \+ var Y\) = (\S+)", run.stderr.decode())
+            if ratio:
+                print("     paired variance ratio %s" % ratio.group(1))
             failed += not ok
     sys.exit(1 if failed else 0)
 

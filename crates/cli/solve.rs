@@ -135,7 +135,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;
     bar.finish();
-    reporter.output.set_stopped(outcome.stopped());
+    reporter.output.set_stopped(outcome);
     reporter
         .output
         .write_result(search.standing())

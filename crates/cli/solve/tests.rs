@@ -92,6 +92,10 @@ fn solve_resume_refuse_and_replace() {
         "{page:.2000}"
     );
     assert!(invlight_report::external_references(&page).is_empty());
+    assert!(
+        page.contains("The search stopped: maxIterations candidates drawn."),
+        "{page:.2000}"
+    );
     let first = rows(&out);
     assert_eq!(
         first[0],

@@ -7,7 +7,9 @@
 //! Every evaluation uses the same photon seed (common random numbers, DESIGN.md §2):
 //! photon i of two configurations starts from the same random numbers, so their
 //! difference is far less noisy than either value, and a fast estimate with n photons
-//! is the first n photons of the full one.
+//! is the first n photons of the full one. A configuration evaluated again with more
+//! photons continues its kept trace ([`measure_more`]): the same numbers as tracing
+//! afresh, for the photons after those traced.
 //!
 //! Dimming costs no photons: each dimmed light's light is tallied apart and weighed by
 //! its level ([`Binding::levels`]), so every dimming of one arrangement is read from
@@ -17,13 +19,15 @@
 use crate::binding::Binding;
 use crate::space::Configuration;
 use crate::vns::{Evaluate, Evaluation};
+use invlight_photon::CHUNK;
 use invlight_photon::{
-    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_with,
-    photons_traced,
+    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_more,
+    measure_with, photons_traced,
 };
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
 use invlight_trace::Accel;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// How many traces the evaluator keeps for dimmings of their arrangements.
@@ -71,8 +75,10 @@ impl SideSplit {
 /// Evaluates configurations of a bound problem by photon tracing.
 pub struct PhotonEvaluator<'b> {
     binding: &'b Binding,
-    scene: Scene,
-    accel: Accel,
+    stage: Stage,
+    /// Copies of the stage for candidates traced side by side ([`Evaluate::evaluate_all`]),
+    /// made when first needed.
+    helpers: Vec<Stage>,
     components: Components,
     seed: u64,
     max_bounces: u32,
@@ -81,7 +87,7 @@ pub struct PhotonEvaluator<'b> {
     rays: u64,
     photons: u64,
     traces: u64,
-    kept: HashMap<(Vec<u64>, u64), Measurement>,
+    kept: Kept,
     first_sides: Option<Vec<SideSplit>>,
 }
 
@@ -110,8 +116,8 @@ impl<'b> PhotonEvaluator<'b> {
         PhotonEvaluator {
             binding,
             components: binding.components(&scene),
-            scene,
-            accel,
+            stage: Stage { scene, accel },
+            helpers: Vec::new(),
             seed,
             max_bounces,
             full,
@@ -146,36 +152,166 @@ impl<'b> PhotonEvaluator<'b> {
     ) -> Result<&Measurement, EvaluationError> {
         let key = (self.binding.arrangement(config), photons);
         if !self.kept.contains_key(&key) {
-            if self.binding.apply_arrangement(&mut self.scene, config) {
-                self.accel.update_instances(&self.scene);
-            }
-            let reading = &self.binding.reading;
-            let grids = reading
-                .grid_requests(&self.scene)
-                .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
-            let request = Request {
-                surfaces: &reading.surfaces,
-                grids,
+            let previous = previous(&self.kept, &key);
+            let job = Job {
+                binding: self.binding,
                 components: &self.components,
-                estimator: Estimator::Connected,
-                // The paired search compares configurations by their groups.
-                keep_groups: true,
-            };
-            let settings = TraceSettings {
-                photons,
                 seed: self.seed,
                 max_bounces: self.max_bounces,
             };
-            let m = measure_with(&self.scene, &self.accel, &request, &settings, None);
-            self.rays += m.rays + m.connection_rays;
-            self.photons += m.photons;
-            self.traces += 1;
-            if self.kept.len() >= KEPT_TRACES {
-                self.kept.clear();
-            }
-            self.kept.insert(key.clone(), m);
+            let m = job.trace(&mut self.stage, config, photons, previous)?;
+            self.keep(key.clone(), m, previous.map(|p| p.photons));
         }
         Ok(&self.kept[&key])
+    }
+
+    /// Counts a trace's work (what it traced beyond the kept trace of `from` photons it
+    /// continued) and keeps it.
+    fn keep(&mut self, key: (Vec<u64>, u64), m: Measurement, from: Option<u64>) {
+        let before = from.and_then(|p| self.kept.get(&(key.0.clone(), p)));
+        let (reused, rays_before) = before.map_or((0, 0), |p| {
+            (p.resumable_photons(), p.rays + p.connection_rays)
+        });
+        self.rays += m.rays + m.connection_rays - rays_before;
+        self.photons += m.photons - reused;
+        self.traces += 1;
+        if self.kept.len() >= KEPT_TRACES {
+            self.kept.clear();
+        }
+        self.kept.insert(key, m);
+    }
+}
+
+impl PhotonEvaluator<'_> {
+    /// Traces the arrangements of `configs` not kept yet, on up to `threads` stages at
+    /// once, and keeps them in the order of `configs` (a failed trace is left for
+    /// [`Evaluate::evaluate`] to report).
+    fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
+        let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
+        for c in configs {
+            let key = (self.binding.arrangement(c), photons);
+            if !self.kept.contains_key(&key) && todo.iter().all(|(k, _)| *k != key) {
+                todo.push((key, c));
+            }
+        }
+        let stages = threads.min(todo.len());
+        if stages < 2 {
+            return;
+        }
+        // Room for the whole batch, so that none of it is dropped before it is read.
+        if self.kept.len() + todo.len() > KEPT_TRACES {
+            self.kept.clear();
+        }
+        while self.helpers.len() + 1 < stages {
+            let copy = Stage {
+                scene: self.stage.scene.clone(),
+                accel: self.stage.accel.clone(),
+            };
+            self.helpers.push(copy);
+        }
+        let job = Job {
+            binding: self.binding,
+            components: &self.components,
+            seed: self.seed,
+            max_bounces: self.max_bounces,
+        };
+        let previous: Vec<Option<&Measurement>> = todo
+            .iter()
+            .map(|(key, _)| previous(&self.kept, key))
+            .collect();
+        let from: Vec<Option<u64>> = previous.iter().map(|p| p.map(|m| m.photons)).collect();
+        let work: Vec<_> = todo
+            .iter()
+            .zip(&previous)
+            .map(|((_, c), p)| (*c, *p))
+            .collect();
+        let per = work.len().div_ceil(stages);
+        let mut lanes: Vec<&mut Stage> = std::iter::once(&mut self.stage)
+            .chain(self.helpers.iter_mut())
+            .take(stages)
+            .collect();
+        let traced: Vec<Vec<Result<Measurement, EvaluationError>>> = lanes
+            .par_iter_mut()
+            .zip(work.par_chunks(per))
+            .map(|(stage, part)| {
+                part.iter()
+                    .map(|(c, p)| job.trace(stage, c, photons, *p))
+                    .collect()
+            })
+            .collect();
+        for (((key, _), m), from) in todo.into_iter().zip(traced.into_iter().flatten()).zip(from) {
+            if let Ok(m) = m {
+                self.keep(key, m, from);
+            }
+        }
+    }
+}
+
+/// The kept trace that a trace of `key` continues: its arrangement's largest of fewer
+/// photons (issue 15: a candidate looked at with n, 4n, … then N photons traces N in
+/// all).
+fn previous<'k>(kept: &'k Kept, key: &(Vec<u64>, u64)) -> Option<&'k Measurement> {
+    kept.iter()
+        .filter(|((a, p), _)| *a == key.0 && *p < key.1)
+        .max_by_key(|((_, p), _)| *p)
+        .map(|(_, m)| m)
+}
+
+/// Traces kept for dimmings and continuations, by arrangement and photon count.
+type Kept = HashMap<(Vec<u64>, u64), Measurement>;
+
+/// A scene and its acceleration structure, arranged as the last configuration traced.
+struct Stage {
+    scene: Scene,
+    accel: Accel,
+}
+
+/// What every trace of one evaluator shares.
+#[derive(Clone, Copy)]
+struct Job<'a> {
+    binding: &'a Binding,
+    components: &'a Components,
+    seed: u64,
+    max_bounces: u32,
+}
+
+impl Job<'_> {
+    /// Arranges `stage` as `config` (rebuilding the top level if an instance moved) and
+    /// traces `photons`, continuing `previous` if given. The numbers depend on the
+    /// configuration and the seed alone, not on what the stage held before, so any
+    /// stage may trace any configuration.
+    fn trace(
+        &self,
+        stage: &mut Stage,
+        config: &Configuration,
+        photons: u64,
+        previous: Option<&Measurement>,
+    ) -> Result<Measurement, EvaluationError> {
+        if self.binding.apply_arrangement(&mut stage.scene, config) {
+            stage.accel.update_instances(&stage.scene);
+        }
+        let reading = &self.binding.reading;
+        let grids = reading
+            .grid_requests(&stage.scene)
+            .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
+        let request = Request {
+            surfaces: &reading.surfaces,
+            grids,
+            components: self.components,
+            estimator: Estimator::Connected,
+            // The paired search compares configurations by their groups.
+            keep_groups: true,
+        };
+        let settings = TraceSettings {
+            photons,
+            seed: self.seed,
+            max_bounces: self.max_bounces,
+        };
+        let (scene, accel) = (&stage.scene, &stage.accel);
+        Ok(match previous {
+            Some(p) => measure_more(scene, accel, &request, &settings, None, p),
+            None => measure_with(scene, accel, &request, &settings, None),
+        })
     }
 }
 
@@ -207,6 +343,29 @@ impl Evaluate for PhotonEvaluator<'_> {
             self.first_sides = Some(sides);
         }
         Ok(evaluation)
+    }
+
+    /// Traces side by side when a trace of `photons` alone would leave cores idle
+    /// (fewer chunks of [`CHUNK`] photons than threads: the screening's 2 048-photon
+    /// looks are one chunk), each thread on its own copy of the scene and acceleration
+    /// structure (made once, when first needed). Every trace's numbers depend on its
+    /// configuration and the seed alone, so the evaluations are those of
+    /// [`Evaluate::evaluate`] one after another, bit for bit, on any number of threads.
+    fn evaluate_all(
+        &mut self,
+        configs: &[Configuration],
+        photons: u64,
+    ) -> Vec<Result<Evaluation, EvaluationError>> {
+        let photons = self.samples(photons);
+        let threads = rayon::current_num_threads();
+        if configs.len() > 1
+            && threads > 1
+            && self.first_sides.is_some()
+            && photons < threads as u64 * CHUNK
+        {
+            self.trace_side_by_side(configs, photons, threads);
+        }
+        configs.iter().map(|c| self.evaluate(c, photons)).collect()
     }
 
     /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is

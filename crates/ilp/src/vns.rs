@@ -8,6 +8,7 @@
 //!
 //! Steps (Algorithm 3.1 with Algorithm 3.2 inlined):
 //! 1. evaluate the initial configuration (the scene as authored, snapped to its cell);
+//!    under [`Strategy::Paired`], then screen a space-filling set of cells (`screen`);
 //! 2. r = 0.05; while r < 1: up to I times pick a centre x (a random ISOC member — they
 //!    are indistinguishable, so any is "the current solution"), draw x′ ∈ N(x, r), snap
 //!    it to its cell; a cell already in the cache costs an iteration but no tracing;
@@ -39,8 +40,11 @@ use crate::isoc::{Admission, Isoc, Member};
 use crate::space::{Cell, Configuration, Space};
 use invlight_stats::{Confidence, Estimate};
 use invlight_stats::{SplitMix64, mix, variance_ratio};
+use std::collections::HashSet;
 use std::fmt;
 use std::time::Instant;
+
+mod screen;
 
 /// When candidates are evaluated with the full sample count N (ILPSolver's strategies).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,10 +131,14 @@ pub enum Verdict {
     /// `REFINE_ISOC_ON_END`: an ISOC member re-evaluated with N; the final ISOC is
     /// rebuilt from these rows.
     Final,
+    /// [`Strategy::Paired`]'s global screening: a cell of a space-filling set looked at
+    /// once with the fewest samples, not offered to the ISOC (the search may evaluate
+    /// it again as a candidate).
+    Screened,
 }
 
 impl Verdict {
-    const ALL: [Verdict; 10] = [
+    const ALL: [Verdict; 11] = [
         Verdict::Initial,
         Verdict::Better,
         Verdict::Probable,
@@ -141,6 +149,7 @@ impl Verdict {
         Verdict::Undecided,
         Verdict::Refine,
         Verdict::Final,
+        Verdict::Screened,
     ];
 
     /// The CSV spelling.
@@ -156,6 +165,7 @@ impl Verdict {
             Verdict::Undecided => "undecided",
             Verdict::Refine => "refine",
             Verdict::Final => "final",
+            Verdict::Screened => "screened",
         }
     }
 
@@ -282,6 +292,18 @@ pub trait Evaluate {
     fn evaluate(&mut self, config: &Configuration, photons: u64)
     -> Result<Evaluation, Self::Error>;
 
+    /// Evaluates each of `configs` with `photons` samples, as [`Evaluate::evaluate`]
+    /// would one after another and with the same numbers: an evaluator that can trace
+    /// several at once on all cores does (issue 15's parallel candidates), so the
+    /// search's results do not depend on the thread count.
+    fn evaluate_all(
+        &mut self,
+        configs: &[Configuration],
+        photons: u64,
+    ) -> Vec<Result<Evaluation, Self::Error>> {
+        configs.iter().map(|c| self.evaluate(c, photons)).collect()
+    }
+
     /// The samples an evaluation asked for `requested` really takes (the photon tracer
     /// rounds up to whole groups and a minimum): the search sizes its evaluations by
     /// it, so the two layers never disagree about what a fast evaluation is.
@@ -379,25 +401,35 @@ pub enum Outcome {
     /// I candidates each, admitted no configuration, nor did the cells adjacent to its
     /// members (see [`Search::run`]).
     Settled,
+    /// [`Strategy::Paired`]: the global screening found every configuration it tried
+    /// (and the initial one) indistinguishable from no light at all, until the budget
+    /// or the cells ran out.
+    Unlit,
 }
 
 impl Outcome {
-    /// Why the search stopped, for `stopped: …` in the table and `result.json`.
-    pub fn stopped(self) -> &'static str {
+    /// Why the search stopped, for `stopped: …` in the table and `result.json`;
+    /// `surface` names the goal's surface.
+    pub fn stopped(self, surface: Option<&str>) -> String {
         match self {
-            Outcome::Finished => "maxIterations candidates drawn",
-            Outcome::Exhausted => "every cell was evaluated",
-            Outcome::Interrupted => "interrupted",
+            Outcome::Finished => "maxIterations candidates drawn".into(),
+            Outcome::Exhausted => "every cell was evaluated".into(),
+            Outcome::Interrupted => "interrupted".into(),
             Outcome::Settled => {
-                "decided: a whole sweep of the radii 0.05 to 0.95 around the ISOC, and every cell next to a member, admitted no configuration"
+                "decided: a whole sweep of the radii 0.05 to 0.95 around the ISOC, and every cell next to a member, admitted no configuration".into()
             }
+            Outcome::Unlit => format!(
+                "no configuration tried lights '{}': every estimate of its light was indistinguishable from 0 (check that a light can reach it, or widen the variables' ranges)",
+                surface.unwrap_or("the goal's surface")
+            ),
         }
     }
 
-    /// What a user should know about it, if anything.
+    /// What a user should know about it, if anything (the table already ends with
+    /// [`Outcome::stopped`]).
     pub fn note(self) -> Option<&'static str> {
         match self {
-            Outcome::Finished | Outcome::Settled => None,
+            Outcome::Finished | Outcome::Settled | Outcome::Unlit => None,
             Outcome::Exhausted => Some("every cell was evaluated"),
             Outcome::Interrupted => Some(
                 "interrupted: the files are complete up to the last evaluation; continue with --resume",
@@ -455,6 +487,16 @@ pub struct Search<'s> {
     ratios: Vec<f64>,
     /// Candidates admitted to the ISOC so far, for the stopping rule.
     admissions: u64,
+    /// Points of the global screening drawn so far ([`Search::screen`]).
+    screens: u64,
+    /// The cells screened, each looked at once.
+    screened: HashSet<Cell>,
+    /// The best screened configuration that could be feasible, with its score.
+    best_screen: Option<(f64, Configuration)>,
+    /// Whether some evaluation's goal was distinguishable from 0 (the target is lit).
+    lit: bool,
+    /// The screening's current round and its permutations, one per coordinate.
+    round: Option<(u64, Vec<Vec<u32>>)>,
 }
 
 /// How many of the least-violating configurations a search keeps.
@@ -482,6 +524,11 @@ impl<'s> Search<'s> {
             closest_changed: false,
             ratios: Vec::new(),
             admissions: 0,
+            screens: 0,
+            screened: HashSet::new(),
+            best_screen: None,
+            lit: false,
+            round: None,
             settings,
         }
     }
@@ -570,6 +617,7 @@ impl<'s> Search<'s> {
                         self.isoc.admit(member);
                     }
                     Verdict::Infeasible | Verdict::Undecided => self.keep_closest(member),
+                    Verdict::Screened => self.screened_as(&cell, config.clone(), &rec.evaluation),
                     _ => {}
                 }
             }
@@ -579,9 +627,11 @@ impl<'s> Search<'s> {
             self.evaluations += 1;
             self.iteration = self.iteration.max(rec.iteration + 1);
             self.started = true;
+            self.lit |= self.lights(&rec.evaluation);
             // A fast estimate is decided by the full one on the next row; without it
-            // (a hard stop in between) the cell stays open to be drawn again.
-            if rec.verdict == Verdict::Refine {
+            // (a hard stop in between) the cell stays open to be drawn again. A
+            // screened cell stays open to the search too.
+            if matches!(rec.verdict, Verdict::Refine | Verdict::Screened) {
                 continue;
             }
             self.cache.insert(
@@ -617,6 +667,14 @@ impl<'s> Search<'s> {
     ) -> Result<Outcome, SearchError<E::Error>> {
         if !self.started {
             self.initial(eval, observer)?;
+        }
+        if self.settings.strategy == Strategy::Paired {
+            if !self.screen(eval, observer)? {
+                return Ok(Outcome::Interrupted);
+            }
+            if self.plateau() {
+                return Ok(Outcome::Unlit);
+            }
         }
         let max = self.settings.max_iterations;
         let tries = self.settings.tries(self.space.dimensions());
@@ -1093,8 +1151,11 @@ impl<'s> Search<'s> {
     ) -> Result<(), SearchError<X>> {
         record.evaluation.groups = Vec::new();
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
-        self.cache
-            .insert(cell, Entry::Evaluated { estimate, verdict });
+        self.lit |= self.lights(&record.evaluation);
+        if verdict != Verdict::Screened {
+            self.cache
+                .insert(cell, Entry::Evaluated { estimate, verdict });
+        }
         let changed = matches!(
             verdict,
             Verdict::Initial | Verdict::Better | Verdict::Probable | Verdict::Final

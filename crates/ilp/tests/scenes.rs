@@ -11,7 +11,7 @@
 use glam::{DVec3, Mat4, Vec3};
 use invlight_ilp::{
     Binding, Configuration, Isoc, Member, ObjectiveInfo, Observer, Output, PhotonEvaluator,
-    Problem, Record, Search, Solutions, Standing, Start, VariableValue,
+    Problem, Record, Search, Settings, Solutions, Standing, Start, Strategy, VariableValue,
 };
 use invlight_scene::{Light, LightKind, Material, MaterialId, Mesh, Placement, Scene};
 use std::path::Path;
@@ -295,8 +295,8 @@ fn emissive_panel_on_ceiling_goes_above_the_desk() {
     );
 }
 
-#[test]
-fn object_on_floor_goes_under_the_lamp() {
+/// A flat black box on a 4 m × 4 m floor under a lamp; the box is the goal.
+fn statue_scene() -> (Scene, Problem) {
     let mut s = Scene::default();
     let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
     let p = Vec3::new;
@@ -328,6 +328,13 @@ fn object_on_floor_goes_under_the_lamp() {
         "maxIterations=\"300\" photons=\"20000\" seed=\"2\"",
         "<maximizeRadiance surface=\"Statue\"/>",
     );
+    (s, pb)
+}
+
+#[test]
+fn object_on_floor_goes_under_the_lamp() {
+    let (s, pb) = statue_scene();
+    let lamp = Vec3::new(1.3, 0.8, 2.7);
     let solved = solve("object", &pb, s);
     // Box centre under the lamp: its reference corner at (1.1, 0, 2.5).
     let optimum = Configuration {
@@ -531,15 +538,24 @@ fn sun_through_window_onto_board() {
     check(&solved, &optimum, truth);
 }
 
-/// Runs the lamp problem on a pool of `threads` threads, writing the files to `dir`.
-fn lamp_files(threads: usize, dir: &Path) -> String {
-    let (mut scene, pb) = lamp_scene();
+/// Runs a problem with `strategy` on a pool of `threads` threads, writing the files to
+/// `dir`.
+fn files(
+    threads: usize,
+    dir: &Path,
+    (mut scene, pb): (Scene, Problem),
+    strategy: Strategy,
+) -> String {
     let binding = Binding::new(&pb, &mut scene).unwrap();
-    let mut search = Search::new(&binding.space, pb.settings(), &binding.initial);
+    let settings = Settings {
+        strategy,
+        ..pb.settings()
+    };
+    let mut search = Search::new(&binding.space, settings.clone(), &binding.initial);
     let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
     let info = ObjectiveInfo::of(&pb, &binding);
     let start = Start::Fresh { replace: false };
-    let mut out = Output::create(dir, &binding, info, &pb.settings(), 64, &start).unwrap();
+    let mut out = Output::create(dir, &binding, info, &settings, 64, &start).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -564,10 +580,52 @@ fn lamp_files(threads: usize, dir: &Path) -> String {
 #[test]
 fn same_solutions_on_one_and_two_threads() {
     let base = tempfile::tempdir().unwrap();
-    let one = lamp_files(1, &base.path().join("1"));
-    let two = lamp_files(2, &base.path().join("2"));
+    let thesis = Strategy::RefineOnIntersection;
+    let one = files(1, &base.path().join("1"), lamp_scene(), thesis);
+    let two = files(2, &base.path().join("2"), lamp_scene(), thesis);
     assert!(one.lines().count() > 10);
     assert_eq!(one, two);
+}
+
+/// The paired search's screening traces its small looks side by side on all cores
+/// (issue 15's parallel candidates), a moving box rebuilding each copy's top level:
+/// the same solutions.csv on 1 and 2 threads, its screened rows included.
+#[test]
+fn paired_search_screens_side_by_side_with_the_same_rows() {
+    let base = tempfile::tempdir().unwrap();
+    let one = files(1, &base.path().join("1"), statue_scene(), Strategy::Paired);
+    let two = files(2, &base.path().join("2"), statue_scene(), Strategy::Paired);
+    assert!(one.lines().filter(|l| l.ends_with(",screened")).count() >= 30);
+    assert_eq!(one, two);
+}
+
+/// Candidates traced side by side are traced as one after another would, bit for bit:
+/// 2 048-photon looks at 12 placements of the box on a pool of 2 threads.
+#[test]
+fn candidates_side_by_side_are_candidates_one_by_one() {
+    let (mut scene, pb) = statue_scene();
+    let binding = Binding::new(&pb, &mut scene).unwrap();
+    let configs: Vec<Configuration> = (0..12)
+        .map(|k| Configuration {
+            coords: vec![0.05 + 0.08 * k as f64, 0.9 - 0.07 * k as f64],
+        })
+        .collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let mut one = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+    let mut all = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
+    let first = Configuration {
+        coords: vec![0.5, 0.5],
+    };
+    invlight_ilp::Evaluate::evaluate(&mut all, &first, 2048).unwrap();
+    let together = pool.install(|| invlight_ilp::Evaluate::evaluate_all(&mut all, &configs, 2048));
+    for (c, e) in configs.iter().zip(together) {
+        let alone = invlight_ilp::Evaluate::evaluate(&mut one, c, 2048).unwrap();
+        assert_eq!(e.unwrap(), alone, "{c:?}");
+    }
+    assert!(all.traces() == 13 && one.traces() == 12);
 }
 
 /// `lightAim` (issue 14): a spot authored straight down at the middle of a black room
@@ -762,4 +820,33 @@ fn object_rotation_turns_a_luminaire_toward_a_wall() {
         frame.x_axis
     );
     assert!((-frame.z_axis - Vec3::NEG_Y).length() < 1e-5);
+}
+
+/// A configuration evaluated again with more photons continues its trace (issue 15):
+/// the looks n, 4n and N of one candidate give the numbers fresh traces would, and cost
+/// N photons in all (and the rest of a chunk each look ended in), not n + 4n + N.
+#[test]
+fn a_refined_candidate_traces_only_the_photons_it_lacks() {
+    let (mut scene, pb) = lamp_scene();
+    let binding = Binding::new(&pb, &mut scene).unwrap();
+    let config = Configuration {
+        coords: vec![0.45, 0.55],
+    };
+    let mut refined = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+    for photons in [5_056, 20_224, 40_000] {
+        let mut fresh = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+        let want = invlight_ilp::Evaluate::evaluate(&mut fresh, &config, photons).unwrap();
+        assert_eq!(fresh.work().1, photons);
+        assert_eq!(
+            invlight_ilp::Evaluate::evaluate(&mut refined, &config, photons).unwrap(),
+            want
+        );
+    }
+    let (_, photons) = refined.work();
+    let part = 5_056 % 4_096 + 20_224 % 4_096;
+    assert_eq!(
+        photons,
+        40_000 + part,
+        "the partial chunks are traced again"
+    );
 }

@@ -69,7 +69,7 @@ pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
 pub use measure::{
     Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, behind_warning,
-    measure, measure_with, much_from_behind,
+    measure, measure_more, measure_with, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use sampler::{GroupKeys, Sampler};

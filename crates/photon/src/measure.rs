@@ -9,7 +9,7 @@
 
 use crate::cells::{CellTallies, GridMeasurement};
 use crate::channels::{Components, Side, SurfaceTallies, channel, side_weights};
-use crate::chunks::{TraceSettings, trace_chunks};
+use crate::chunks::{CHUNK, TraceSettings, trace_chunks_from};
 use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
 use crate::estimator::{GROUP, photons_traced};
@@ -113,9 +113,29 @@ pub struct Measurement {
     pub escaped: f64,
     /// The scene's total luminous flux Φ, lm: what each photon carries.
     pub flux: f64,
+    /// The sums at the start of the last chunk when it is partial and the groups are
+    /// kept, without the groups ([`measure_more`] continues from there).
+    boundary: Option<Box<Measurement>>,
 }
 
 impl Measurement {
+    /// The measurement [`measure_more`] continues from: this one when it ends on a chunk
+    /// boundary, else its sums at the last boundary if it kept them.
+    fn boundary(&self) -> Option<&Measurement> {
+        if self.photons.is_multiple_of(CHUNK) {
+            Some(self)
+        } else {
+            self.boundary.as_deref()
+        }
+    }
+
+    /// The photons [`measure_more`] would not trace again when continuing this
+    /// measurement: all of them on a chunk boundary, those before the last boundary when
+    /// it kept its groups, none otherwise.
+    pub fn resumable_photons(&self) -> u64 {
+        self.boundary().map_or(0, |b| b.photons)
+    }
+
     /// The number of components.
     pub fn components(&self) -> usize {
         self.component_flux.len()
@@ -344,6 +364,60 @@ pub fn measure_with(
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Measurement {
+    trace_into(scene, accel, request, settings, progress, None)
+}
+
+/// [`measure_with`] of `settings.photons` photons continued from `previous`, a
+/// measurement of fewer photons with the same scene, request and seed: only the photons
+/// after it are traced, so a candidate the search refines from n to N photons costs
+/// N − n more, not N again (the thesis re-traced; issue 15). Photon i draws from the
+/// stream (seed, i) and the chunks are folded in index order, so the result is the
+/// same, bit for bit, as tracing `settings.photons` at once (its `rays` aside, which
+/// count what this call cast too). `previous` continues from its last photon when it
+/// ends on a chunk boundary ([`CHUNK`](crate::CHUNK)), else from the boundary before, which a measurement
+/// keeping its groups remembers (the part of a chunk after it is traced again); any
+/// other `previous`, or one of at least as many photons, is traced from the start or
+/// returned as it is.
+///
+/// # Panics
+/// As [`measure_with`].
+pub fn measure_more(
+    scene: &Scene,
+    accel: &Accel,
+    request: &Request,
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    previous: &Measurement,
+) -> Measurement {
+    let photons = photons_traced(settings.photons).expect("a photon count that fits in u64");
+    if photons == previous.photons {
+        return previous.clone();
+    }
+    match previous.boundary() {
+        Some(state) if photons > previous.photons => {
+            let mut state = state.clone();
+            // The boundary's groups are a prefix of the previous measurement's.
+            state.groups = previous.groups[..previous.groups.len().min(
+                (state.photons / GROUP) as usize * previous.areas.len() * 2 * previous.components(),
+            )]
+                .to_vec();
+            state.rays = previous.rays;
+            trace_into(scene, accel, request, settings, progress, Some(state))
+        }
+        _ => measure_with(scene, accel, request, settings, progress),
+    }
+}
+
+/// Traces the photons of `settings` after those `from` holds (all of them when `None`)
+/// and adds them to it.
+fn trace_into(
+    scene: &Scene,
+    accel: &Accel,
+    request: &Request,
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    from: Option<Measurement>,
+) -> Measurement {
     let settings = &TraceSettings {
         photons: photons_traced(settings.photons).expect("a photon count that fits in u64"),
         ..*settings
@@ -365,8 +439,8 @@ pub fn measure_with(
     let shapes = Targets::new(scene, targets);
     let connect = request.estimator == Estimator::Connected;
     let flux = emitters.total_flux();
-    let mut result = Measurement {
-        photons: settings.photons,
+    let mut result = from.unwrap_or_else(|| Measurement {
+        photons: 0,
         rays: 0,
         connection_rays: 0,
         areas: targets
@@ -385,7 +459,6 @@ pub fn measure_with(
                     g.side,
                     CellTallies::new(g.grid.cells(), k).sums,
                 );
-                m.photons = settings.photons;
                 m.flux = flux;
                 m
             })
@@ -393,8 +466,23 @@ pub fn measure_with(
         component_flux: request.components.flux(&emitters),
         escaped: 0.0,
         flux,
-    };
-    result.rays = trace_chunks(
+        boundary: None,
+    });
+    debug_assert!(result.photons.is_multiple_of(CHUNK));
+    let first_chunk = result.photons / CHUNK;
+    result.photons = settings.photons;
+    for g in &mut result.grids {
+        g.photons = settings.photons;
+    }
+    // A measurement ending inside a chunk remembers its sums at the chunk's start, where
+    // a continuation picks up ([`measure_more`]); only the search, which keeps groups,
+    // continues measurements.
+    let partial = (request.keep_groups && !settings.photons.is_multiple_of(CHUNK))
+        .then_some(settings.photons / CHUNK);
+    let mut chunk = first_chunk;
+    let mut boundary = None;
+    let rays = trace_chunks_from(
+        first_chunk,
         scene,
         accel,
         &emitters,
@@ -412,6 +500,18 @@ pub fn measure_with(
             connection_rays: 0,
         },
         |part| {
+            if partial == Some(chunk) {
+                let groups = std::mem::take(&mut result.groups);
+                let mut state = result.clone();
+                state.photons = chunk * CHUNK;
+                state.rays = 0;
+                for g in &mut state.grids {
+                    g.photons = state.photons;
+                }
+                boundary = Some(Box::new(state));
+                result.groups = groups;
+            }
+            chunk += 1;
             part.surfaces.add_to(&mut result.channels, &mut result.hits);
             result.groups.extend_from_slice(&part.surfaces.groups);
             for (total, cells) in result.grids.iter_mut().zip(&part.cells) {
@@ -422,6 +522,8 @@ pub fn measure_with(
         },
         progress,
     );
+    result.rays += rays;
+    result.boundary = boundary;
     result
 }
 

@@ -8,7 +8,8 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle};
 use invlight_photon::{
-    Components, Estimator, GridRequest, Request, Side, SurfaceGrid, TraceSettings, measure_with,
+    Components, Estimator, GridRequest, Measurement, Request, Side, SurfaceGrid, TraceSettings,
+    measure_more, measure_with,
 };
 use invlight_scene::{Mat4, Material, Scene, Vec3};
 use invlight_trace::Accel;
@@ -267,4 +268,67 @@ fn group_means_are_the_samples_of_the_estimate() {
     let flat = measure_with(&scene, &accel, &request, &settings, None);
     assert!(flat.group_means(0, Side::Front, &w).is_empty());
     assert_eq!(flat.estimate_of(0, Side::Front, &w), e);
+}
+
+/// A measurement continued from a smaller one is the measurement traced at once, bit
+/// for bit (issue 15: refining a candidate from n to N photons traces N − n more): from
+/// a chunk boundary (8 192 photons), from inside a chunk (2 048: the rest of that chunk
+/// is traced again), and along a chain of looks n, 4n, 16n, N, with a grid and two
+/// lamps apart; the photons each step did not trace again are what was already there.
+#[test]
+fn a_continued_measurement_is_the_measurement_at_once() {
+    let mut scene = floor_scene();
+    scene
+        .lights
+        .push(point("A", Vec3::new(0.2, 0.5, 1.0), 100.0));
+    scene
+        .lights
+        .push(point("B", Vec3::new(0.8, 0.5, 0.6), 50.0));
+    let accel = Accel::new(&scene);
+    let floor = scene.surface("Floor").unwrap();
+    let mut components = Components::new(&scene, 2);
+    components.set_light(invlight_scene::LightId::from_index(1), 1);
+    let request = Request {
+        surfaces: &[floor],
+        grids: vec![GridRequest {
+            target: 0,
+            side: Side::Front,
+            grid: SurfaceGrid::new(&scene, floor, 0.25).unwrap(),
+        }],
+        components: &components,
+        estimator: Estimator::Connected,
+        keep_groups: true,
+    };
+    let settings = |photons| TraceSettings {
+        photons,
+        seed: 5,
+        max_bounces: 4,
+    };
+    let at_once = |photons| measure_with(&scene, &accel, &request, &settings(photons), None);
+    let more = |photons, previous: &Measurement| {
+        measure_more(&scene, &accel, &request, &settings(photons), None, previous)
+    };
+    let same = |mut continued: Measurement, whole: &Measurement| {
+        continued.rays = whole.rays;
+        assert_eq!(&continued, whole, "{} photons", whole.photons);
+    };
+    let aligned = at_once(8192);
+    assert_eq!(aligned.resumable_photons(), 8192);
+    let whole = at_once(40_000);
+    same(more(40_000, &aligned), &whole);
+    let inside = at_once(2048);
+    assert_eq!(inside.resumable_photons(), 0);
+    same(more(40_000, &inside), &whole);
+    // n, 4n, 16n, N: each look continues the one before.
+    let mut m = at_once(2496);
+    for photons in [9984, 39_936, 100_032] {
+        let before = m.resumable_photons();
+        assert_eq!(before, m.photons / 4096 * 4096);
+        m = more(photons, &m);
+        same(m.clone(), &at_once(photons));
+        assert!(m.rays > 0);
+    }
+    // Fewer photons than before are traced afresh; as many return what was there.
+    same(more(9984, &m), &at_once(9984));
+    assert_eq!(more(100_032, &m), m);
 }

@@ -344,6 +344,12 @@ impl<'a> SolveReport<'a> {
             }
             None => "<div class=\"answer\"><p>No configuration could be ranked: every one tried was invalid.</p></div>".into(),
         };
+        // Why the search ended: above all that no configuration tried lit the goal's
+        // surface, which the answer's figures alone would not say.
+        let answer = match &f.result.stopped {
+            Some(why) => format!("{answer}<p>The search stopped: {}.</p>", escape(why)),
+            None => answer,
+        };
         page.section("The answer", &answer);
 
         // 2. The problem in words.

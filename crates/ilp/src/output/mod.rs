@@ -196,6 +196,7 @@ pub struct Output<'b> {
     evaluations: u64,
     refused: u64,
     stopped: Option<String>,
+    unlit: bool,
     z: f64,
     z_one_sided: f64,
     _lock: FolderLock,
@@ -259,6 +260,7 @@ impl<'b> Output<'b> {
             evaluations,
             refused: 0,
             stopped: None,
+            unlit: false,
             z: settings.confidence.z(),
             z_one_sided: settings.confidence.z_one_sided(),
             _lock: lock,
@@ -293,6 +295,7 @@ impl<'b> Output<'b> {
             evaluations: self.evaluations,
             refused: self.refused,
             stopped: self.stopped.clone(),
+            unlit: self.unlit,
             seconds: self.elapsed(),
             feasible: !isoc.is_empty() || closest.is_empty(),
             isoc,
@@ -300,10 +303,11 @@ impl<'b> Output<'b> {
         }
     }
 
-    /// Records why the search stopped ([`crate::Outcome::stopped`]), for the
-    /// `result.json` written after it.
-    pub fn set_stopped(&mut self, why: &str) {
-        self.stopped = Some(why.to_string());
+    /// Records why the search stopped ([`crate::Outcome::stopped`], naming the goal's
+    /// surface), for the `result.json` written after it.
+    pub fn set_stopped(&mut self, outcome: crate::Outcome) {
+        self.stopped = Some(outcome.stopped(self.objective.surface.as_deref()));
+        self.unlit = outcome == crate::Outcome::Unlit;
     }
 
     /// Rewrites `result.json` atomically: readers see the old or the new file, never

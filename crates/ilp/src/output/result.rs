@@ -327,6 +327,10 @@ pub struct ResultFile {
     /// in files written before it was recorded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
+    /// The search stopped because no configuration it tried lit the goal's surface
+    /// ([`crate::Outcome::Unlit`]): the ISOC is the initial configuration, in the dark.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub unlit: bool,
     /// Seconds since the run (first) started.
     pub seconds: f64,
     /// Whether a configuration meeting every constraint was found: when not, `isoc` is
@@ -462,6 +466,13 @@ impl ResultFile {
             }
         };
         let mut out = match (self.isoc.len(), self.closest.is_empty()) {
+            _ if self.unlit => format!(
+                "No configuration tried lights {}: none could be told from 0 at {level} % confidence. The initial one:\n",
+                self.objective
+                    .surface
+                    .as_ref()
+                    .map_or("the goal's surface".into(), |s| format!("'{s}'"))
+            ),
             (0, true) => {
                 "No configuration could be ranked: every one tried was invalid.\n".to_string()
             }

@@ -426,3 +426,61 @@ fn constraints_and_levels_round_trip() {
         }
     }
 }
+
+/// A search that lights nothing (issue 15): result.json says so (`unlit`, and
+/// `stopped` naming the surface), the table opens with it instead of calling the dark
+/// initial configuration the best, the screened rows read back as `screened`, and a
+/// search replaying them rebuilds the same one-member ISOC.
+#[test]
+fn an_unlit_search_says_so_in_its_files() {
+    struct Dark;
+    impl Evaluate for Dark {
+        type Error = ();
+        fn evaluate(&mut self, _: &Configuration, photons: u64) -> Result<Evaluation, ()> {
+            Ok(Evaluation::of(Estimate {
+                mean: 0.0,
+                std_error: 0.01,
+                samples: photons,
+            }))
+        }
+    }
+    let (b, _) = binding();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let settings = Settings {
+        strategy: Strategy::Paired,
+        cap: None,
+        ..settings()
+    };
+    let mut search = Search::new(&b.space, settings.clone(), &b.initial);
+    let mut out = Output::create(dir, &b, info(), &settings, 7, &fresh(false)).unwrap();
+    let outcome = search.run(&mut Dark, &mut out).unwrap();
+    assert_eq!(outcome, crate::Outcome::Unlit);
+    out.set_stopped(outcome);
+    out.write_result(search.standing()).unwrap();
+    drop(out);
+    let result = ResultFile::read(&dir.join("result.json")).unwrap();
+    assert!(result.unlit);
+    let stopped = result.stopped.as_deref().unwrap();
+    assert!(
+        stopped.starts_with("no configuration tried lights 'Floor, left'"),
+        "{stopped}"
+    );
+    assert_eq!(result.isoc.len(), 1);
+    let table = result.table(&b);
+    assert!(
+        table.starts_with("No configuration tried lights 'Floor, left'"),
+        "{table}"
+    );
+    let rows = Solutions::read(&dir.join("solutions.csv"), &b).unwrap();
+    assert_eq!(
+        rows.records
+            .iter()
+            .filter(|r| r.verdict == Verdict::Screened)
+            .count() as u64,
+        search.evaluations() - 1
+    );
+    let mut again = Search::new(&b.space, settings, &b.initial);
+    again.replay(&rows.records);
+    assert_eq!(again.isoc().members(), search.isoc().members());
+}
