@@ -4,7 +4,6 @@
 mod args;
 mod map;
 mod measure;
-mod progress;
 mod render;
 mod report;
 mod scene;

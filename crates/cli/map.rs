@@ -4,12 +4,11 @@
 
 use crate::InputError;
 use crate::args::{ReportArgs, SceneArgs, TraceArgs};
-use crate::progress::Progress;
 use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, Side, photons_traced};
 use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
-use invlight_report::{MapPage, file_safe};
+use invlight_report::{MapPage, Progress, file_safe};
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -2,9 +2,9 @@
 //! ([`invlight_photon::measure`]).
 
 use crate::args::{SceneArgs, TraceArgs};
-use crate::progress::Progress;
 use clap::Args;
 use invlight_photon::{Estimator, Side, measure, photons_traced};
+use invlight_report::Progress;
 use invlight_trace::Accel;
 use std::process::ExitCode;
 use std::time::Instant;

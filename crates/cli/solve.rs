@@ -7,13 +7,12 @@
 
 use crate::InputError;
 use crate::args::{GridArgs, LoadArgs, ReportArgs, TraceArgs};
-use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
     Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
     Strategy,
 };
-use invlight_report::{Pictures, SolveFolder, SolveReport};
+use invlight_report::{Pictures, Progress, SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};

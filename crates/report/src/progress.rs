@@ -1,6 +1,7 @@
-//! Progress on stderr: a bar drawn only when stderr is a terminal, so that logs and
-//! pipes stay clean, and — terminal or not — one warning when the work under way will
-//! take more than an hour ([`invlight_stats::Pace`]).
+//! Progress on stderr for the command line: a bar drawn only when stderr is a terminal,
+//! so that logs and pipes stay clean, and — terminal or not — one warning when the work
+//! under way will take more than an hour ([`invlight_stats::Pace`]). It lives here,
+//! beside the other things made for people to look at, so that the CLI only wires.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use invlight_stats::Pace;
