@@ -28,7 +28,7 @@ pub struct MapArgs {
     pub grid: GridSpacing,
     /// The side of the surface that counts: the front (the side its area-weighted
     /// counter-clockwise normal faces, a floor's top), the back, or both.
-    #[arg(long, default_value = "both", value_parser = crate::args::side())]
+    #[arg(long, default_value = "both", value_name = "front|back|both")]
     pub side: Side,
     #[command(flatten)]
     pub trace: TraceArgs,

@@ -54,6 +54,19 @@ impl Progress {
         self.bar.set_message(msg);
     }
 
+    /// Shows what a solve's [`invlight_ilp::Recorder`] tells: the best member after the
+    /// counts, the candidate reached, and the first candidate refused as a warning.
+    pub fn show(&self, told: invlight_ilp::Progress<'_>) {
+        use invlight_ilp::Progress as Told;
+        match told {
+            Told::Best(line) => self.message(line),
+            Told::Iteration(i) => self.set(i),
+            Told::FirstRefusal(i, why) => eprintln!(
+                "warning: candidate {i} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
+            ),
+        }
+    }
+
     /// Removes the bar.
     pub fn finish(&self) {
         self.bar.finish_and_clear();

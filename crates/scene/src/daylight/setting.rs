@@ -101,6 +101,41 @@ impl FromStr for SkySpec {
     }
 }
 
+/// The command line's daylight ([`Daylight::flags`]): a [`Daylight`] and the `--north`
+/// that turns its site, or the problem's.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DaylightFlags {
+    /// `--site`, `--sun` and `--sky`.
+    pub daylight: Daylight,
+    /// `--north`: degrees clockwise seen from above from the scene's default north to
+    /// true north ([`Site::with_north`]).
+    pub north: Option<f64>,
+}
+
+impl DaylightFlags {
+    /// Puts these flags on a scene that already has `base` on it (a problem file's
+    /// daylight, or none for a scene file): each part given replaces `base`'s and the
+    /// parts not given are `base`'s, so that `--sun` alone moves a problem's sun at its
+    /// own `<site>`, and `--north` turns whichever site there is. Nothing is done when
+    /// no flag is given (the scene keeps what it has). Returns [`Daylight::apply`]'s
+    /// warnings.
+    pub fn over(
+        &self,
+        base: Option<&Daylight>,
+        scene: &mut Scene,
+    ) -> Result<Vec<String>, DaylightError> {
+        if self.daylight.is_empty() && self.north.is_none() {
+            return Ok(Vec::new());
+        }
+        let mut daylight = self.daylight.or(&base.copied().unwrap_or_default());
+        if let Some(north) = self.north {
+            let site = daylight.site.ok_or(DaylightError::NorthNeedsSite)?;
+            daylight.site = Some(site.with_north(north)?);
+        }
+        daylight.apply(scene)
+    }
+}
+
 /// Daylight to put on a scene; each part is optional.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Daylight {
@@ -126,7 +161,29 @@ impl Site {
     }
 }
 
+impl FromStr for Site {
+    type Err = DaylightError;
+
+    /// Reads `LAT,LON,TZ` ([`Site::parse_triple`]), as the command line's `--site` gives it.
+    fn from_str(text: &str) -> Result<Site, DaylightError> {
+        Site::parse_triple(text)
+    }
+}
+
 impl Daylight {
+    /// The command line's daylight: `--site`, `--north`, `--sun` and `--sky`.
+    pub fn flags(
+        site: Option<Site>,
+        north: Option<f64>,
+        sun: Option<SunAt>,
+        sky: Option<SkySpec>,
+    ) -> DaylightFlags {
+        DaylightFlags {
+            daylight: Daylight { site, sun, sky },
+            north,
+        }
+    }
+
     /// Whether it says nothing.
     pub fn is_empty(&self) -> bool {
         self.site.is_none() && self.sun.is_none() && self.sky.is_none()
@@ -304,6 +361,61 @@ mod tests {
         assert_eq!(site.longitude(), -56.2);
         assert!(Site::parse_triple("-34.9,-56.2").is_err());
         assert!(Site::parse_triple("-94,0,0").is_err());
+        assert_eq!(
+            "-34.9,-56.2,-3".parse::<Site>(),
+            Site::parse_triple("-34.9,-56.2,-3")
+        );
+    }
+
+    /// The command line's parts replace a problem's and take the rest from it: `--sun`
+    /// alone shines at the problem's site; no flag leaves the scene alone.
+    #[test]
+    fn flags_go_over_a_problems_daylight() {
+        let base = Daylight {
+            site: Some(Site::new(-34.9, -56.2, -3.0).unwrap()),
+            sun: Some("2025-12-21,10:00".parse().unwrap()),
+            sky: None,
+        };
+        let mut scene = Scene::default();
+        base.apply(&mut scene).unwrap();
+        let before = scene.clone();
+        let none = Daylight::flags(None, None, None, None);
+        assert!(none.over(Some(&base), &mut scene).unwrap().is_empty());
+        assert_eq!(scene, before);
+        let travel = |scene: &Scene| match scene.lights[..] {
+            [
+                Light {
+                    kind: LightKind::Directional { direction, .. },
+                    ..
+                },
+            ] => direction,
+            _ => panic!("{:?}", scene.lights),
+        };
+        let afternoon =
+            Daylight::flags(None, None, Some("2025-12-21,16:00".parse().unwrap()), None);
+        afternoon.over(Some(&base), &mut scene).unwrap();
+        // The afternoon sun stands in the west (−X of a Y-up scene): its light travels east.
+        let east = travel(&scene);
+        assert!(east.x > 0.5, "{east}");
+        // North turned 90° clockwise onto +X puts east on +Z and west on −Z: the light
+        // travels +Z, each vector turned with the compass.
+        let turned = DaylightFlags {
+            north: Some(90.0),
+            ..afternoon
+        };
+        turned.over(Some(&base), &mut scene).unwrap();
+        let d = travel(&scene);
+        assert!(
+            (d - Vec3::new(-east.z, east.y, east.x)).length() < 1e-5,
+            "{d} {east}"
+        );
+        let e = afternoon.over(None, &mut Scene::default());
+        assert_eq!(e, Err(DaylightError::NeedsSite));
+        let north_alone = Daylight::flags(None, Some(10.0), None, None);
+        let e = north_alone.over(None, &mut Scene::default()).unwrap_err();
+        assert!(e.to_string().contains("--site"), "{e}");
+        let bad = Daylight::flags(base.site, Some(f64::NAN), None, None);
+        assert!(bad.over(None, &mut Scene::default()).is_err());
     }
 
     /// A sun is added to a scene without one, set on its only directional light, and
