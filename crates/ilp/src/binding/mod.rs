@@ -17,6 +17,7 @@ use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
+use invlight_scene::daylight::daylight_factor_scene;
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
@@ -157,9 +158,18 @@ impl PowerUnit {
 
 impl Binding {
     /// Binds `problem` to `scene`. The scene is changed once here: the objects of
-    /// `holeInSurface` variables get a hole material on a copy of their meshes.
+    /// `holeInSurface` variables get a hole material on a copy of their meshes, and a
+    /// problem that asks for a daylight factor ([`Problem::daylight_factor_line`]) has
+    /// its lights and emission turned off under its overcast sky, or one of 10 000 lx
+    /// ([`daylight_factor_scene`]): the factor is that sky's light alone.
     pub fn new(problem: &Problem, scene: &mut Scene) -> Result<Binding, Diagnostic> {
         let path = problem.path.as_path();
+        if let Some(line) = problem.daylight_factor_line() {
+            daylight_factor_scene(scene).map_err(|e| {
+                Diagnostic::at_line(path, line, e.to_string())
+                    .with_hint("a daylight factor is measured under the CIE overcast sky alone, every light off")
+            })?;
+        }
         let mut variables = Vec::new();
         let mut targets = Vec::new();
         let mut initial = Vec::new();

@@ -23,7 +23,8 @@ pub const RESULT_SCHEMA: u32 = 2;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObjectiveInfo {
     /// The goal's problem-file element: `maximizeRadiance`, `minimizeRadiance`,
-    /// `targetRadiance`, `maximizeUniformity` or `minimizePower`.
+    /// `targetRadiance`, `maximizeUniformity`, `minimizePower` or
+    /// `maximizeDaylightFactor`.
     #[serde(default = "maximize_radiance")]
     pub element: String,
     /// The surface it is about (none for `minimizePower`).
@@ -102,6 +103,7 @@ impl ObjectiveInfo {
                 significant(self.target.unwrap_or_default())
             )),
             "maximizeUniformity" => on("the most uniform light (U0)"),
+            "maximizeDaylightFactor" => on("the largest daylight factor (DF %, CIE overcast sky)"),
             "minimizePower" if self.unit == "W" => "the least electrical power (W)".into(),
             "minimizePower" => {
                 "the least lamp power as luminous flux (lm: not every lamp's file gives watts)"
@@ -121,11 +123,12 @@ pub struct ConstraintInfo {
     pub surface: String,
     /// The side counted.
     pub side: String,
-    /// The bound's attribute: `minLux`, `maxLux`, `minUniformity` or `minPointLux`.
+    /// The bound's attribute: `minLux`, `maxLux`, `minUniformity`, `minPointLux` or
+    /// `minDaylightFactor`.
     pub bound: String,
     /// The limit, in `unit`.
     pub limit: f64,
-    /// `lx`, or `` for a uniformity.
+    /// `lx`, `` for a uniformity, or `DF %` for a daylight factor.
     pub unit: String,
 }
 

@@ -243,6 +243,7 @@ const GOALS: &[&str] = &[
     "targetRadiance",
     "maximizeUniformity",
     "minimizePower",
+    "maximizeDaylightFactor",
 ];
 const VARIABLES: &[&str] = &[
     "objectInSurface",
@@ -320,6 +321,19 @@ impl Problem {
             .unwrap_or(invlight_photon::DEFAULT_MAX_BOUNCES)
     }
 
+    /// The line of the first intention that asks for a daylight factor
+    /// (`<maximizeDaylightFactor>`, `minDaylightFactor`), if one does: such a problem
+    /// is measured under the overcast sky alone ([`crate::Binding::new`]).
+    pub fn daylight_factor_line(&self) -> Option<u32> {
+        let goal = matches!(self.goal, Goal::MaximizeDaylightFactor { .. });
+        goal.then_some(self.goal_line).or_else(|| {
+            self.constraints
+                .iter()
+                .find(|c| matches!(c.bound, Bound::MinDaylightFactor(_)))
+                .map(|c| c.line)
+        })
+    }
+
     /// The search settings the file asks for.
     pub fn settings(&self) -> Settings {
         Settings {
@@ -333,7 +347,9 @@ impl Problem {
                 _ => None,
             },
             sense: match self.goal {
-                Goal::Maximize { .. } | Goal::MaximizeUniformity { .. } => Sense::Maximize,
+                Goal::Maximize { .. }
+                | Goal::MaximizeUniformity { .. }
+                | Goal::MaximizeDaylightFactor { .. } => Sense::Maximize,
                 Goal::Minimize { .. } | Goal::MinimizePower => Sense::Minimize,
                 Goal::Target { lux, .. } => Sense::Target(lux),
             },
@@ -881,6 +897,12 @@ impl<'a, 'i> Reader<'a, 'i> {
                 self.check_attributes(o, &[]);
                 Goal::MinimizePower
             }
+            "maximizeDaylightFactor" => {
+                self.check_attributes(o, &["surface", "side"]);
+                Goal::MaximizeDaylightFactor {
+                    surface: self.surface_ref(o)?,
+                }
+            }
             _ => return Ok(None),
         };
         Ok(Some(goal))
@@ -888,19 +910,14 @@ impl<'a, 'i> Reader<'a, 'i> {
 
     /// A `<constraint>`: a surface and exactly one bound.
     fn constraint(&self, c: Node) -> Result<Constraint, Diagnostic> {
-        const BOUNDS: [&str; 4] = ["minLux", "maxLux", "minUniformity", "minPointLux"];
-        self.check_attributes(
-            c,
-            &[
-                "surface",
-                "side",
-                "grid",
-                "minLux",
-                "maxLux",
-                "minUniformity",
-                "minPointLux",
-            ],
-        );
+        const BOUNDS: [&str; 5] = [
+            "minLux",
+            "maxLux",
+            "minUniformity",
+            "minPointLux",
+            "minDaylightFactor",
+        ];
+        self.check_attributes(c, &[&["surface", "side", "grid"][..], &BOUNDS].concat());
         let given: Vec<&str> = BOUNDS
             .into_iter()
             .filter(|b| c.attribute(*b).is_some())
@@ -927,6 +944,10 @@ impl<'a, 'i> Reader<'a, 'i> {
             "minPointLux" => Bound::MinPointLux(
                 self.lux(c, "minPointLux")?.unwrap_or_default(),
                 self.grid(c)?,
+            ),
+            "minDaylightFactor" => Bound::MinDaylightFactor(
+                self.unit(c, "minDaylightFactor", 0.0, 100.0)?
+                    .unwrap_or_default(),
             ),
             _ => Bound::MinUniformity(
                 self.unit(c, "minUniformity", 0.0, 1.0)?.unwrap_or_default(),
@@ -1170,6 +1191,41 @@ mod tests {
             assert_eq!(e.line, Some(2), "{extra}: {e}");
             assert!(e.to_string().contains(what), "{extra}: {e}");
         }
+    }
+
+    /// `<maximizeDaylightFactor>` and `minDaylightFactor` read as the goal and bound of
+    /// that name, in per cent, with the line a daylight-factor problem reports.
+    #[test]
+    fn daylight_factor_intentions() {
+        let p = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeDaylightFactor surface="Desk" side="front"/>
+<constraint surface="Floor" minDaylightFactor="2"/></objectives></input>"#,
+        )
+        .unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        assert_eq!(p.goal.element(), "maximizeDaylightFactor");
+        assert_eq!(p.goal.unit(), "DF %");
+        assert_eq!(p.goal.surface().unwrap().side, Side::Front);
+        assert_eq!(p.settings().sense, Sense::Maximize);
+        assert_eq!(p.constraints[0].bound, Bound::MinDaylightFactor(2.0));
+        assert_eq!(p.constraints[0].label(), "Floor.minDaylightFactor");
+        assert_eq!(p.daylight_factor_line(), Some(2));
+        let lux = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeRadiance surface="Desk"/>
+<constraint surface="Floor" minDaylightFactor="2"/></objectives></input>"#,
+        )
+        .unwrap();
+        assert_eq!(lux.daylight_factor_line(), Some(3));
+        let e = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeRadiance surface="Desk"/>
+<constraint surface="Floor" minDaylightFactor="120"/></objectives></input>"#,
+        )
+        .unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        assert!(e.to_string().contains("[0, 100]"), "{e}");
     }
 
     #[test]
