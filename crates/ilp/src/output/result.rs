@@ -451,17 +451,13 @@ impl ResultFile {
     pub fn table(&self, binding: &Binding) -> String {
         let level = self.confidence * 100.0;
         let goal = self.objective.words();
-        let lights_best = match (&self.objective.surface, self.objective.element.as_str()) {
-            (Some(s), "maximizeRadiance") => format!("light '{s}' best"),
-            _ => format!("give {goal}"),
-        };
+        // The verb agrees with the count; the goal's words are left alone (they may hold
+        // "light" too: "the most light of 'Desk'", "the largest daylight factor").
         let subject = |one: bool| {
-            if one {
-                lights_best
-                    .replacen("light ", "lights ", 1)
-                    .replacen("give ", "gives ", 1)
-            } else {
-                lights_best.clone()
+            let s = if one { "s" } else { "" };
+            match (&self.objective.surface, self.objective.element.as_str()) {
+                (Some(name), "maximizeRadiance") => format!("light{s} '{name}' best"),
+                _ => format!("give{s} {goal}"),
             }
         };
         let mut out = match (self.isoc.len(), self.closest.is_empty()) {
