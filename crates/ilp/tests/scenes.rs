@@ -858,3 +858,121 @@ fn skylight_goes_over_the_board_for_the_most_daylight_factor() {
     assert!(want > 2.0 && want < 10.0, "{want}");
     assert_eq!(best.evaluation.constraints[0].mean, got.mean);
 }
+
+/// `<sunTime>`: the time of day that puts the sun through a window onto a board on the
+/// floor, known from geometry. On the equator at the March equinox the sun climbs
+/// straight up from the east (+X of a Y-up scene), 15° an hour; through a 0.6 m window
+/// in the east wall (x = 6, y ∈ [2, 2.6], z ∈ [1.7, 2.3]) it reaches a 0.6 m board on the
+/// floor (x ∈ [3, 3.6]) when it stands about 40° high, some 08:50 on the clock of
+/// Greenwich. The truth at a time is the sun's position there (SPA, tested on its own
+/// in invlight-scene) and the lit share of the board: 20 × 20 points of it, each lit
+/// when the ray toward the sun passes the window. The sun gives 1000 lx (`<sun
+/// illuminance>`), so the board reads 1000 · cos Z · lit share.
+#[test]
+fn sun_time_finds_the_hour_the_sun_enters_the_window() {
+    use invlight_scene::daylight::{Date, Site, SunOptions, SunPosition, TimeOfDay};
+    let mut s = Scene::default();
+    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let hole = s.add_material(Material::hole("Opening"));
+    room(&mut s, 6.0, 3.0, 4.0, black, black, black);
+    let p = Vec3::new;
+    let window = s.add_mesh(Mesh::cuboid(p(5.9, 2.0, 1.7), p(6.1, 2.6, 2.3), hole));
+    s.add_instance("Window", window, Mat4::IDENTITY);
+    quad(
+        &mut s,
+        "Board",
+        [
+            p(3.0, 0.01, 1.7),
+            p(3.6, 0.01, 1.7),
+            p(3.6, 0.01, 2.3),
+            p(3.0, 0.01, 2.3),
+        ],
+        black,
+    );
+    let text = r#"<input><scene path="built-in-code.gltf"/>
+<site latitude="0" longitude="0" timezone="0"/>
+<sun date="2026-03-20" time="12:00" illuminance="1000"/>
+<conditions><sunTime id="Sun" date="2026-03-20" from="06:30" to="11:30" step="5"/></conditions>
+<objectives maxIterations="150" photons="40000" seed="4"><maximizeRadiance surface="Board"/></objectives></input>"#;
+    let mut pb = Problem::parse(Path::new("/tests/problem.xml"), text).unwrap();
+    assert!(pb.warnings.is_empty(), "{:?}", pb.warnings);
+    pb.daylight.apply(&mut s).unwrap();
+    let site = Site::new(0.0, 0.0, 0.0).unwrap();
+    let compass = site.compass(Vec3::Y).unwrap();
+    let date: Date = "2026-03-20".parse().unwrap();
+    let lit = |minutes: f64| {
+        let time = TimeOfDay::from_minutes(minutes);
+        let sun = SunPosition::new(&site, &date, &time, &SunOptions::default()).unwrap();
+        let u = sun.to_sky(&compass).as_dvec3();
+        if u.x <= 0.0 || u.y <= 0.0 {
+            return 0.0;
+        }
+        let n = 20;
+        let mut hits = 0;
+        for i in 0..n {
+            for k in 0..n {
+                let x = DVec3::new(
+                    3.0 + 0.6 * (i as f64 + 0.5) / n as f64,
+                    0.01,
+                    1.7 + 0.6 * (k as f64 + 0.5) / n as f64,
+                );
+                let h = x + u * ((6.0 - x.x) / u.x);
+                hits += ((2.0..=2.6).contains(&h.y) && (1.7..=2.3).contains(&h.z)) as u32;
+            }
+        }
+        1000.0 * u.y * hits as f64 / (n * n) as f64
+    };
+    let solved = solve("sun time", &pb, s);
+    let minutes = |v: &[VariableValue]| match v[0] {
+        VariableValue::Time { minutes, .. } => minutes,
+        ref other => panic!("{other:?} is not a time"),
+    };
+    let truth = |v: &[VariableValue]| lit(minutes(v));
+    // The steps are cell centres: 06:30, 06:35, … 11:30 (61 cells).
+    let space = &solved.binding.space;
+    assert_eq!(space.cells_per_dimension(), &[61]);
+    let times: Vec<f64> = (0..61).map(|k| 390.0 + 5.0 * k as f64).collect();
+    let best_k = (0..61)
+        .max_by(|&a, &b| lit(times[a]).total_cmp(&lit(times[b])))
+        .unwrap();
+    let optimum = Configuration {
+        coords: vec![(best_k as f64 + 0.5) / 61.0],
+    };
+    assert_eq!(
+        minutes(&solved.binding.values(&optimum)),
+        times[best_k],
+        "a cell's centre is its step"
+    );
+    check(&solved, &optimum, truth);
+    // A member's world values (a time and the sun's direction) map back to its cell.
+    let member = &solved.isoc.members()[0].config;
+    let values = solved.binding.values(member);
+    assert_eq!(solved.binding.configuration(&values).unwrap(), *member);
+    // The times the whole board is in the window's sunlight, from the geometry: the
+    // best member's time is one of them, between about 08:30 and 09:10.
+    let full: Vec<f64> = times
+        .iter()
+        .copied()
+        .filter(|&t| {
+            lit(t)
+                >= 0.999 * 1000.0 * {
+                    let sun = SunPosition::new(
+                        &site,
+                        &date,
+                        &TimeOfDay::from_minutes(t),
+                        &SunOptions::default(),
+                    )
+                    .unwrap();
+                    sun.to_sky(&compass).y as f64
+                }
+        })
+        .collect();
+    let (first, last) = (full[0], full[full.len() - 1]);
+    assert!(first > 8.0 * 60.0 && last < 9.5 * 60.0, "{first}..{last}");
+    let best = minutes(&solved.binding.values(&solved.isoc.members()[0].config));
+    eprintln!("sun time: best {best} min, the board fully lit from {first} to {last} min");
+    assert!(
+        (first - 5.0..=last + 5.0).contains(&best),
+        "best at {best} min, the board fully lit from {first} to {last} min"
+    );
+}

@@ -17,7 +17,9 @@ use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
-use invlight_scene::daylight::daylight_factor_scene;
+use invlight_scene::daylight::{
+    Compass, Date, Site, SunOptions, SunPosition, TimeOfDay, daylight_factor_scene,
+};
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
@@ -51,6 +53,14 @@ pub enum VariableValue {
     Scale(f64),
     /// A turn about the placement's normal, degrees.
     Angle(f64),
+    /// A `sunTime`: minutes after local midnight, and the unit vector the sunlight
+    /// travels along then (zero when it is not known, as in a row read back).
+    Time {
+        /// Minutes after local midnight.
+        minutes: f64,
+        /// The sunlight's travel direction.
+        direction: DVec3,
+    },
 }
 
 /// What a placement moves, and how P turns into a translation.
@@ -93,6 +103,15 @@ enum Target {
     Scale {
         instances: Vec<(InstanceId, Mat4)>,
         centre: Vec3,
+    },
+    /// A directional light set where the sun stands at a time of `date` at `site`
+    /// (SPA), with `lux` or else the clear-sky beam of IES RP-21 then.
+    SunTime {
+        light: LightId,
+        site: Site,
+        date: Date,
+        compass: Compass,
+        lux: Option<f64>,
     },
     /// An object's instances, or a light as authored, turned about `axis` (unit)
     /// through `centre` (the box's centre, the light's position).
@@ -174,6 +193,8 @@ impl Binding {
         let mut targets = Vec::new();
         let mut initial = Vec::new();
         let mut warnings = Vec::new();
+        // Each sunTime's variable index and its cells: one per step, centred on it.
+        let mut steps = Vec::new();
         for spec in &problem.variables {
             let err = |msg: String| Diagnostic::at_line(path, spec.line, msg);
             let (domain, target) = match &spec.kind {
@@ -238,6 +259,35 @@ impl Binding {
                         })?;
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
+                }
+                VariableKind::SunTime {
+                    date,
+                    from,
+                    to,
+                    step,
+                } => {
+                    let site = problem
+                        .daylight
+                        .site
+                        .ok_or_else(|| err("<sunTime> needs the problem's <site>".into()))?;
+                    let compass = site.compass(scene.up).map_err(|e| err(e.to_string()))?;
+                    let lux = problem.daylight.sun.and_then(|s| s.illuminance);
+                    let light = sun_time_light(scene, &spec.id).map_err(err)?;
+                    let target = Target::SunTime {
+                        light,
+                        site,
+                        date: *date,
+                        compass,
+                        lux,
+                    };
+                    sun_at(&target, (from + to) / 2.0).map_err(err)?;
+                    let half = step / 2.0;
+                    let domain = Domain::Segment {
+                        min: from - half,
+                        max: to + half,
+                    };
+                    steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
+                    (domain, target)
                 }
                 VariableKind::HoleSize { min, max } => {
                     let s = find_surface(scene, &spec.id, spec, &err)?;
@@ -401,9 +451,12 @@ impl Binding {
             .map(|(i, _)| i)
             .collect();
         let exchangeable = exchangeable(scene, &problem.variables, &targets);
-        let space = Space::new(variables, &problem.cells_per_dimension)
+        let mut space = Space::new(variables, &problem.cells_per_dimension)
             .with_exchangeable(exchangeable)
             .with_cheap(&cheap);
+        for (v, cells) in steps {
+            space = space.with_cells(v, cells);
+        }
         let mut binding = Binding {
             initial: Configuration { coords: initial },
             space,
@@ -585,6 +638,11 @@ impl Binding {
                     (Domain::Segment { min, max }, Target::Rotate { .. }) => {
                         VariableValue::Angle(min + x[0] * (max - min))
                     }
+                    (Domain::Segment { min, max }, target @ Target::SunTime { .. }) => {
+                        let minutes = min + x[0] * (max - min);
+                        let direction = sun_at(target, minutes).map_or(DVec3::ZERO, |(d, _)| d);
+                        VariableValue::Time { minutes, direction }
+                    }
                     (Domain::Segment { min, max }, target) => {
                         let value = min + x[0] * (max - min);
                         let rgb = match target {
@@ -645,7 +703,8 @@ impl Binding {
                     VariableValue::Colour { value, .. }
                     | VariableValue::Power(value)
                     | VariableValue::Scale(value)
-                    | VariableValue::Angle(value),
+                    | VariableValue::Angle(value)
+                    | VariableValue::Time { minutes: value, .. },
                 ) => {
                     let x = if max > min {
                         (value - min) / (max - min)
@@ -834,6 +893,19 @@ impl Binding {
                         if let Some(position) = scene.lights[light].kind.position_mut() {
                             *position = original + delta;
                         }
+                    }
+                }
+                (VariableValue::Time { minutes, .. }, target @ Target::SunTime { light, .. }) => {
+                    if let (
+                        Ok((d, lux)),
+                        LightKind::Directional {
+                            direction,
+                            illuminance,
+                        },
+                    ) = (sun_at(target, minutes), &mut scene.lights[*light].kind)
+                    {
+                        *direction = d.as_vec3();
+                        *illuminance = Vec3::splat(lux as f32);
                     }
                 }
                 (VariableValue::Direction(d), Target::Sun { light }) => {
@@ -1034,6 +1106,66 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         }
     }
     out
+}
+
+/// The directional light a `sunTime` of id `id` sets: the one of that name, else one of
+/// that name added to a scene without any.
+fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, String> {
+    let directional = |k: &LightKind| matches!(k, LightKind::Directional { .. });
+    if let Some(l) = scene.light(id) {
+        return match directional(&scene.lights[l].kind) {
+            true => Ok(l),
+            false => Err(format!(
+                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
+            )),
+        };
+    }
+    let suns: Vec<&str> = scene
+        .lights
+        .iter()
+        .filter(|l| directional(&l.kind))
+        .map(|l| l.name.as_str())
+        .collect();
+    if !suns.is_empty() {
+        return Err(format!(
+            "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
+            suns.join(", ")
+        ));
+    }
+    scene.lights.push(invlight_scene::Light {
+        name: id.into(),
+        kind: LightKind::Directional {
+            direction: -scene.up,
+            illuminance: Vec3::ZERO,
+        },
+    });
+    Ok(LightId::from_index(scene.lights.len() - 1))
+}
+
+/// Where a `sunTime` target's sun stands `minutes` after local midnight (to the second,
+/// held within the day): the direction its light travels and its direct normal
+/// illuminance, lx (the problem's `<sun illuminance>`, else IES RP-21's clear-sky beam;
+/// 0 below the horizon).
+fn sun_at(target: &Target, minutes: f64) -> Result<(DVec3, f64), String> {
+    let Target::SunTime {
+        site,
+        date,
+        compass,
+        lux,
+        ..
+    } = target
+    else {
+        return Err("not a sunTime".into());
+    };
+    let time = TimeOfDay::from_minutes(minutes);
+    let sun =
+        SunPosition::new(site, date, &time, &SunOptions::default()).map_err(|e| e.to_string())?;
+    let beam = match (sun.is_up(), lux) {
+        (false, _) => 0.0,
+        (true, Some(l)) => *l,
+        (true, None) => sun.clear_sky_direct_normal(),
+    };
+    Ok((sun.travel(compass).as_dvec3(), beam))
 }
 
 /// The normalised coordinates of the scene as authored.

@@ -9,6 +9,7 @@ use crate::problem::{VariableKind, VariableSpec};
 use crate::vns::Standing;
 use glam::DVec3;
 use invlight_scene::Diagnostic;
+use invlight_scene::daylight::TimeOfDay;
 use invlight_stats::significant;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -240,6 +241,16 @@ pub enum ResultValue {
         /// The angle, degrees, counter-clockwise about the normal.
         degrees: f64,
     },
+    /// `sunTime`: the local clock time, and the sunlight's direction then.
+    #[serde(rename = "sunTime")]
+    SunTime {
+        /// `HH:MM:SS`, local.
+        time: TimeOfDay,
+        /// Minutes after local midnight.
+        minutes: f64,
+        /// The unit vector the sunlight travels along.
+        direction: [f64; 3],
+    },
 }
 
 impl ResultValue {
@@ -268,6 +279,11 @@ impl ResultValue {
             (VariableValue::Power(value), _) => ResultValue::LightPower { value },
             (VariableValue::Scale(scale), _) => ResultValue::HoleSize { scale },
             (VariableValue::Angle(degrees), _) => ResultValue::ObjectRotation { degrees },
+            (VariableValue::Time { minutes, direction }, _) => ResultValue::SunTime {
+                time: TimeOfDay::from_minutes(minutes),
+                minutes,
+                direction: direction.to_array(),
+            },
         }
     }
 
@@ -287,6 +303,12 @@ impl ResultValue {
             ResultValue::LightPower { value } => VariableValue::Power(value),
             ResultValue::HoleSize { scale } => VariableValue::Scale(scale),
             ResultValue::ObjectRotation { degrees } => VariableValue::Angle(degrees),
+            ResultValue::SunTime {
+                minutes, direction, ..
+            } => VariableValue::Time {
+                minutes,
+                direction: DVec3::from_array(direction),
+            },
         }
     }
 }
@@ -516,6 +538,9 @@ impl ResultFile {
                     ResultValue::LightAim { direction } => {
                         format!("{id} aimed along {}", v3(direction))
                     }
+                    ResultValue::SunTime {
+                        time, direction, ..
+                    } => format!("{id} at {time}, along {}", v3(direction)),
                     ResultValue::Color { value, .. } => format!("{id} V = {}", significant(value)),
                     ResultValue::LightPower { value } => {
                         format!("{id} at {} %", significant(100.0 * value))

@@ -14,7 +14,7 @@ mod daylight;
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
-use invlight_scene::daylight::Daylight;
+use invlight_scene::daylight::{Date, Daylight, SkyKind, TimeOfDay};
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
@@ -96,6 +96,20 @@ pub enum VariableKind {
         /// Highest level.
         max: f64,
     },
+    /// `sunTime` (invlight): the time of day on `date` at the problem's `<site>`, from
+    /// `from` to `to` in whole steps of `step` minutes; the directional light `id`
+    /// stands where NREL's SPA puts the sun then (docs/daylight.md).
+    SunTime {
+        /// The local date.
+        date: Date,
+        /// The first time, minutes after local midnight.
+        from: f64,
+        /// The last time, minutes after local midnight, a whole number of steps after
+        /// `from`.
+        to: f64,
+        /// The step, minutes.
+        step: f64,
+    },
     /// `color`: the HSV value V of a material with fixed hue and saturation.
     Color {
         /// Hue, degrees.
@@ -122,6 +136,7 @@ impl VariableKind {
             VariableKind::ObjectRotation { .. } => "objectRotation",
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
+            VariableKind::SunTime { .. } => "sunTime",
         }
     }
 
@@ -255,6 +270,7 @@ const VARIABLES: &[&str] = &[
     "lightAim",
     "color",
     "lightPower",
+    "sunTime",
 ];
 const VERTEX_ATTRS: [&str; 4] = [
     "vertexAIndex",
@@ -669,6 +685,22 @@ impl<'a, 'i> Reader<'a, 'i> {
                 )
                 .with_hint(format!("variables are: {}", VARIABLES.join(", "))));
         }
+        // A sun by the time of day needs the place it shines on; a clear sky is drawn
+        // about one sun, and would not follow it.
+        for spec in &variables {
+            if !matches!(spec.kind, VariableKind::SunTime { .. }) {
+                continue;
+            }
+            let at = |msg: &str| Diagnostic::at_line(self.path, spec.line, msg);
+            if daylight.site.is_none() {
+                return Err(at("<sunTime> moves the sun over a day at a place, and the problem has no <site>")
+                    .with_hint("add <site latitude=\"-34.9\" longitude=\"-56.2\" timezone=\"-3\"/> under <input>"));
+            }
+            if daylight.sky.is_some_and(|s| s.kind == SkyKind::CieClear) {
+                return Err(at("<sunTime> with a cie-clear <sky> is not supported: the clear sky is drawn about one sun and would not follow it")
+                    .with_hint("use the cie-overcast sky, or no sky"));
+            }
+        }
 
         let objectives = only("objectives")?.ok_or_else(|| {
             self.error(
@@ -970,6 +1002,49 @@ impl<'a, 'i> Reader<'a, 'i> {
         })
     }
 
+    /// `<sunTime id date from to [step]>`: whole steps (10 minutes by default) from
+    /// `from` to `to` on one day, at most a day of minutes.
+    fn sun_time(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        const EXAMPLE: &str =
+            "<sunTime id=\"Sun\" date=\"2026-12-21\" from=\"08:00\" to=\"18:00\" step=\"10\"/>";
+        self.check_attributes(v, &["id", "date", "from", "to", "step"]);
+        let bad = |e: invlight_scene::daylight::DaylightError| {
+            self.error(v, format!("<sunTime>: {e}"))
+                .with_hint(format!("for example {EXAMPLE}"))
+        };
+        let date: Date = self.required(v, "date")?.parse().map_err(bad)?;
+        let minutes = |attr: &str| -> Result<f64, Diagnostic> {
+            let t: TimeOfDay = self.required(v, attr)?.parse().map_err(bad)?;
+            Ok(t.seconds_of_day() / 60.0)
+        };
+        let (from, to) = (minutes("from")?, minutes("to")?);
+        let step = match self.real(v, "step", "minutes")? {
+            None => 10.0,
+            Some(s) if s > 0.0 && s <= 1440.0 => s,
+            Some(s) => {
+                return Err(self.error(
+                    v,
+                    format!("'step' of <sunTime> is {s}, expected minutes in (0, 1440]"),
+                ));
+            }
+        };
+        let steps = (to - from) / step;
+        if !(from < to && (steps - steps.round()).abs() < 1e-6) {
+            return Err(self
+                .error(
+                    v,
+                    format!("<sunTime> runs from {from} to {to} minutes after midnight in steps of {step}, expected from before to and a whole number of steps between them"),
+                )
+                .with_hint(format!("for example {EXAMPLE}")));
+        }
+        Ok(VariableKind::SunTime {
+            date,
+            from,
+            to,
+            step,
+        })
+    }
+
     fn vertices(&self, v: Node) -> Result<[usize; 4], Diagnostic> {
         let mut out = [0, 1, 2, 3];
         for (k, attr) in VERTEX_ATTRS.iter().enumerate() {
@@ -1031,6 +1106,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 VariableKind::HoleSize { min, max }
             }
+            "sunTime" => self.sun_time(v)?,
             "objectRotation" => {
                 self.check_attributes(v, &["id", "min", "max"]);
                 let what = "an angle in degrees";
@@ -1190,6 +1266,77 @@ mod tests {
             let e = with(extra).unwrap_err();
             assert_eq!(e.line, Some(2), "{extra}: {e}");
             assert!(e.to_string().contains(what), "{extra}: {e}");
+        }
+    }
+
+    /// `<sunTime>`: whole steps between two clock times of one date, at the problem's
+    /// site; mistakes name their line.
+    #[test]
+    fn sun_time_variable() {
+        let with = |site: &str, sky: &str, var: &str| {
+            parse(&format!(
+                "<input><scene path=\"s.gltf\"/>{site}{sky}\n<conditions>{var}</conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>"
+            ))
+        };
+        let site = r#"<site latitude="0" longitude="0" timezone="0"/>"#;
+        let var = r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="18:00" step="30"/>"#;
+        let p = with(site, "", var).unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        let VariableKind::SunTime {
+            date,
+            from,
+            to,
+            step,
+        } = &p.variables[0].kind
+        else {
+            panic!("{:?}", p.variables);
+        };
+        assert_eq!((date.day(), *from, *to, *step), (21, 480.0, 1080.0, 30.0));
+        let default_step = r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="09:00"/>"#;
+        let p = with(site, "", default_step).unwrap();
+        assert!(matches!(
+            p.variables[0].kind,
+            VariableKind::SunTime { step: 10.0, .. }
+        ));
+        let clear =
+            r#"<sun date="2026-12-21" time="12:00"/><sky type="cie-clear" horizontalLux="9000"/>"#;
+        for (site, sky, var, what) in [
+            ("", "", var, "no <site>"),
+            (site, clear, var, "cie-clear"),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="18:05" step="30"/>"#,
+                "whole number of steps",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="18:00" to="08:00"/>"#,
+                "from before to",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-02-30" from="08:00" to="09:00"/>"#,
+                "28 days",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="24:00"/>"#,
+                "24:00",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="09:00" step="0"/>"#,
+                "step",
+            ),
+        ] {
+            let e = with(site, sky, var).unwrap_err();
+            assert_eq!(e.line, Some(2), "{var}: {e}");
+            assert!(e.to_string().contains(what), "{var}: {e}");
         }
     }
 

@@ -7,7 +7,7 @@
 //! calendar before 1582-10-15; no building problem reaches back that far.
 
 use super::DaylightError;
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
 
@@ -289,6 +289,27 @@ impl Serialize for TimeOfDay {
     }
 }
 
+impl<'de> Deserialize<'de> for TimeOfDay {
+    /// As [`TimeOfDay`]'s `FromStr` reads it, so that what is written reads back.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<TimeOfDay, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+impl TimeOfDay {
+    /// The clock time `minutes` after midnight, to the nearest second (held within the
+    /// day: 00:00:00 to 23:59:59).
+    pub fn from_minutes(minutes: f64) -> TimeOfDay {
+        let s = (minutes * 60.0).round().clamp(0.0, 86_399.0) as u32;
+        TimeOfDay {
+            hour: s / 3600,
+            minute: s / 60 % 60,
+            second: (s % 60) as f64,
+        }
+    }
+}
+
 /// The Julian day (UT) of local clock time `time` on `date` at `timezone` hours east of
 /// Greenwich: days since noon UT of 1 January 4713 BC (Julian calendar), the time scale
 /// of SPA's step 3.1.1 (Reda & Andreas 2004, eq. 4). 1970-01-01 00:00 UT is
@@ -303,6 +324,21 @@ pub fn julian_day(date: &Date, time: &TimeOfDay, timezone: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A clock time from minutes (a `sunTime`'s steps) rounds to the second and stays in
+    /// the day; what is serialised reads back.
+    #[test]
+    fn times_from_minutes_and_back_from_json() {
+        let t = TimeOfDay::from_minutes(530.25);
+        assert_eq!(t.to_string(), "08:50:15");
+        assert_eq!(TimeOfDay::from_minutes(-3.0).to_string(), "00:00:00");
+        assert_eq!(TimeOfDay::from_minutes(1440.0).to_string(), "23:59:59");
+        let json = serde_json::to_string(&t).unwrap();
+        assert_eq!(json, "\"08:50:15\"");
+        assert_eq!(serde_json::from_str::<TimeOfDay>(&json).unwrap(), t);
+        let e = serde_json::from_str::<TimeOfDay>("\"24:00\"").unwrap_err();
+        assert!(e.to_string().contains("24:00"), "{e}");
+    }
 
     fn date_problem(text: &str) -> String {
         match text.parse::<Date>() {
