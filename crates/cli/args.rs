@@ -45,15 +45,15 @@ pub struct LoadArgs {
     #[arg(long)]
     pub luminaire: Vec<Luminaire>,
     /// LAT,LON,TZ: the site of --sun (degrees, longitude east positive; the clock's hours
-    /// east of UTC, e.g. -34.9,-56.2,-3 for Montevideo) [default: a problem's <site>].
+    /// east of UTC, e.g. -34.9,-56.2,-3 for Montevideo), else the problem file's site.
     #[arg(long, value_name = "LAT,LON,TZ", allow_hyphen_values = true)]
     pub site: Option<Site>,
     /// True north, degrees clockwise seen from above from the scene's −Z (Y-up) or +Y
-    /// (Z-up), of --site or a problem's <site>.
+    /// (Z-up), of --site or the problem file's site.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub north: Option<f64>,
-    /// DATE,TIME[,LUX]: the sun at that local time at the site (NREL SPA), with LUX or the IES
-    /// RP-21 clear-sky beam, as the scene's directional light (docs/daylight.md).
+    /// DATE,TIME or DATE,TIME,LUX: the sun at that local time at the site (NREL SPA), with LUX
+    /// or the IES RP-21 clear-sky beam, as the scene's directional light (docs/daylight.md).
     #[arg(long, value_name = "DATE,TIME[,LUX]")]
     pub sun: Option<SunAt>,
     /// KIND:LUX: a CIE sky (cie-overcast, cie-clear) giving LUX on an open horizontal plane.

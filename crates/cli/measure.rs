@@ -32,7 +32,7 @@ pub struct MeasureArgs {
     #[arg(long)]
     pub arrivals_only: bool,
     /// Report each surface's daylight factor, E / E_unobstructed × 100 %, under the CIE
-    /// overcast sky (the scene's --sky or <sky>, else 10 000 lx) with every light off.
+    /// overcast sky (--sky's or the problem file's, else 10 000 lx) with every light off.
     #[arg(long)]
     pub daylight_factor: bool,
     /// Print one JSON object (surfaces with mean, low, high, std_error, hits, side,

@@ -14,7 +14,7 @@ pub struct SunArgs {
     /// The local date, YYYY-MM-DD.
     #[arg(long)]
     pub date: Date,
-    /// The local clock time, HH:MM[:SS] (24-hour, in the zone of --site).
+    /// The local clock time, HH:MM or HH:MM:SS (24-hour, in the zone of --site).
     #[arg(long)]
     pub time: TimeOfDay,
     /// Metres above sea level: SPA's parallax, and the ISO 2533 air that refracts.

@@ -894,7 +894,7 @@ fn sun_time_finds_the_hour_the_sun_enters_the_window() {
 <sun date="2026-03-20" time="12:00" illuminance="1000"/>
 <conditions><sunTime id="Sun" date="2026-03-20" from="06:30" to="11:30" step="5"/></conditions>
 <objectives maxIterations="150" photons="40000" seed="4"><maximizeRadiance surface="Board"/></objectives></input>"#;
-    let mut pb = Problem::parse(Path::new("/tests/problem.xml"), text).unwrap();
+    let pb = Problem::parse(Path::new("/tests/problem.xml"), text).unwrap();
     assert!(pb.warnings.is_empty(), "{:?}", pb.warnings);
     pb.daylight.apply(&mut s).unwrap();
     let site = Site::new(0.0, 0.0, 0.0).unwrap();
