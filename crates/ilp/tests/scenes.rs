@@ -944,6 +944,15 @@ fn sun_time_finds_the_hour_the_sun_enters_the_window() {
         "a cell's centre is its step"
     );
     check(&solved, &optimum, truth);
+    // No sun in a daylight factor: the two are refused together, at the sunTime's line.
+    let df = text.replace(
+        "<maximizeRadiance surface=\"Board\"/>",
+        "<maximizeDaylightFactor surface=\"Board\"/>",
+    );
+    let df = Problem::parse(Path::new("/tests/problem.xml"), &df).unwrap();
+    let e = Binding::new(&df, &mut Scene::default()).unwrap_err();
+    assert_eq!(e.line, Some(4), "{e}");
+    assert!(e.to_string().contains("daylight-factor"), "{e}");
     // A member's world values (a time and the sun's direction) map back to its cell.
     let member = &solved.isoc.members()[0].config;
     let values = solved.binding.values(member);

@@ -266,6 +266,10 @@ impl Binding {
                     to,
                     step,
                 } => {
+                    if problem.daylight_factor_line().is_some() {
+                        return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
+                            .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
+                    }
                     let site = problem
                         .daylight
                         .site
