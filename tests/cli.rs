@@ -2453,6 +2453,39 @@ mod daylight {
         );
     }
 
+    /// `<sunTime days … objective="mean">`: the open plane reads the mean over the
+    /// instants of 1000 lx × cos Z (0 while the sun is down), cos Z from SPA for each
+    /// instant here (invlight-scene's SunPosition, tested against the SPA paper).
+    #[test]
+    fn sun_schedule_reads_the_mean_over_its_instants() {
+        use invlight_scene::daylight::{Date, Site, SunOptions, SunPosition, TimeOfDay};
+        let site = Site::new(0.0, 0.0, 0.0).unwrap();
+        let mut sum = 0.0;
+        for day in ["2026-03-16", "2026-03-20", "2026-03-24"] {
+            let date: Date = day.parse().unwrap();
+            for hour in 6..=18 {
+                let time = TimeOfDay::new(hour, 0, 0.0).unwrap();
+                let sun = SunPosition::new(&site, &date, &time, &SunOptions::default()).unwrap();
+                if sun.is_up() {
+                    sum += 1000.0 * sun.zenith.to_radians().cos();
+                }
+            }
+        }
+        let expected = sum / 39.0;
+        let m = measure(
+            &data("daylight/mean.xml"),
+            &["Open"],
+            &["--side", "front", "-n", "200000"],
+        );
+        let s = named(&m["surfaces"], "Open");
+        let (mean, sigma) = (f64_of(&s["mean"]), f64_of(&s["std_error"]));
+        assert!(
+            (mean - expected).abs() <= 4.0 * sigma,
+            "{mean} ± {sigma} vs {expected}"
+        );
+        assert!(expected > 500.0 && expected < 650.0, "{expected}");
+    }
+
     /// `--daylight-factor`: an unobstructed horizontal plane has DF = 100 %, and an
     /// unobstructed vertical one (no ground) (π/6 + 4/9) / (7π/9) = 39.62 % (the CIE
     /// overcast sky's L_z(1 + 2 cos Z)/3 integrated over the half of the upper hemisphere

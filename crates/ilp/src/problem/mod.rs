@@ -14,7 +14,7 @@ mod daylight;
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
-use invlight_scene::daylight::{Date, Daylight, SkyKind, TimeOfDay};
+use invlight_scene::daylight::{Date, Daylight, SkyKind, SunSchedule, TimeOfDay};
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
@@ -239,6 +239,10 @@ pub struct Problem {
     /// `<site>`, `<sun>` and `<sky>`: the daylight [`Problem::load_scene`] puts on the
     /// scene.
     pub daylight: Daylight,
+    /// `<sunTime id days|date from to step dayStep objective="mean">`: the sun `id`
+    /// replaced by one sun per instant with 1/K of its beam, so that every light read is
+    /// the mean over the instants ([`SunSchedule::apply`]), with its line.
+    pub sun_schedule: Option<(String, SunSchedule, u32)>,
     /// Warnings: unknown elements and attributes, repaired syntax.
     pub warnings: Vec<Diagnostic>,
 }
@@ -291,10 +295,10 @@ impl Problem {
     /// unless `scale` and `up` (the command line's) say otherwise, its lights given
     /// their `<luminaire>` files (relative to the problem file) and then `luminaires`
     /// (the command line's, which thus win), and puts the file's daylight on it
-    /// ([`Problem::daylight`]; its warnings were given when the file was read). A
-    /// missing file is
-    /// named with the problem file's line: its path is relative to the problem file,
-    /// not to the current directory.
+    /// ([`Problem::daylight`]; its warnings were given when the file was read), its sun
+    /// spread over the instants of a `<sunTime objective="mean">`
+    /// ([`Problem::sun_schedule`]). A missing file is named with the problem file's
+    /// line: its path is relative to the problem file, not to the current directory.
     pub fn load_scene(
         &self,
         base: &LoadOptions,
@@ -328,6 +332,12 @@ impl Problem {
         self.daylight
             .apply(&mut scene)
             .map_err(|e| Diagnostic::new(&self.path, format!("daylight: {e}")))?;
+        if let (Some((id, schedule, line)), Some(site)) = (&self.sun_schedule, self.daylight.site) {
+            let lux = self.daylight.sun.and_then(|s| s.illuminance);
+            schedule
+                .apply(id, &site, lux, &mut scene)
+                .map_err(|e| Diagnostic::at_line(&self.path, *line, format!("<sunTime>: {e}")))?;
+        }
         Ok(scene)
     }
 
@@ -631,7 +641,18 @@ impl<'a, 'i> Reader<'a, 'i> {
             })?,
         };
         let mut variables = Vec::new();
+        let mut sun_schedule = None;
         for v in self.elements(conditions) {
+            if v.tag_name().name() == "sunTime" && v.attribute("objective").is_some() {
+                if sun_schedule.is_some() {
+                    return Err(
+                        self.error(v, "a second <sunTime objective=\"mean\">, expected one")
+                    );
+                }
+                let id = self.required(v, "id")?.to_string();
+                sun_schedule = Some((id, self.sun_schedule(v)?, self.line(v)));
+                continue;
+            }
             if let Some(spec) = self.variable(v)? {
                 // A light may be placed, dimmed and aimed: one lightInSurface, one
                 // lightPower and one lightAim of the same id; a hole placed and sized:
@@ -687,11 +708,12 @@ impl<'a, 'i> Reader<'a, 'i> {
         }
         // A sun by the time of day needs the place it shines on; a clear sky is drawn
         // about one sun, and would not follow it.
-        for spec in &variables {
-            if !matches!(spec.kind, VariableKind::SunTime { .. }) {
-                continue;
-            }
-            let at = |msg: &str| Diagnostic::at_line(self.path, spec.line, msg);
+        let timed = variables
+            .iter()
+            .filter(|s| matches!(s.kind, VariableKind::SunTime { .. }))
+            .map(|s| s.line);
+        for line in timed.chain(sun_schedule.as_ref().map(|s| s.2)) {
+            let at = |msg: &str| Diagnostic::at_line(self.path, line, msg);
             if daylight.site.is_none() {
                 return Err(at("<sunTime> moves the sun over a day at a place, and the problem has no <site>")
                     .with_hint("add <site latitude=\"-34.9\" longitude=\"-56.2\" timezone=\"-3\"/> under <input>"));
@@ -816,6 +838,18 @@ impl<'a, 'i> Reader<'a, 'i> {
             )
         })?;
 
+        let df = matches!(goal, Goal::MaximizeDaylightFactor { .. })
+            || constraints
+                .iter()
+                .any(|c: &Constraint| matches!(c.bound, Bound::MinDaylightFactor(_)));
+        if let (true, Some((_, _, line))) = (df, &sun_schedule) {
+            return Err(Diagnostic::at_line(
+                self.path,
+                *line,
+                "<sunTime objective=\"mean\"> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun",
+            ));
+        }
+
         Ok(Problem {
             path: self.path.to_path_buf(),
             scene,
@@ -833,6 +867,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             confidence,
             max_bounces,
             daylight,
+            sun_schedule,
             warnings: Vec::new(),
         })
     }
@@ -1002,19 +1037,124 @@ impl<'a, 'i> Reader<'a, 'i> {
         })
     }
 
-    /// `<sunTime id date from to [step]>`: whole steps (10 minutes by default) from
-    /// `from` to `to` on one day, at most a day of minutes.
+    /// `<sunTime id days|date from to [step] [dayStep] objective="mean">`: the instants
+    /// of [`SunSchedule`], `days="2026-01-01..2026-12-31"` (or one `date`) every
+    /// `dayStep` days (default 1), each at the times of [`Reader::sun_time`].
+    fn sun_schedule(&self, v: Node) -> Result<SunSchedule, Diagnostic> {
+        const EXAMPLE: &str = "<sunTime id=\"Sun\" days=\"2026-01-01..2026-12-31\" dayStep=\"7\" from=\"08:00\" to=\"18:00\" step=\"60\" objective=\"mean\"/>";
+        self.check_attributes(
+            v,
+            &[
+                "id",
+                "days",
+                "date",
+                "from",
+                "to",
+                "step",
+                "dayStep",
+                "objective",
+            ],
+        );
+        let objective = self.required(v, "objective")?;
+        if objective != "mean" {
+            return Err(self
+                .error(
+                    v,
+                    format!("'objective' of <sunTime> is '{objective}', expected mean"),
+                )
+                .with_hint(format!("for example {EXAMPLE}")));
+        }
+        let bad = |e| self.sun_time_error(v, e, EXAMPLE);
+        let (first, last): (Date, Date) = match (v.attribute("days"), v.attribute("date")) {
+            (Some(days), None) => {
+                let (a, b) = days.split_once("..").ok_or_else(|| {
+                    self.error(
+                        v,
+                        format!("'days' of <sunTime> is '{days}', expected FIRST..LAST"),
+                    )
+                    .with_hint(format!("for example {EXAMPLE}"))
+                })?;
+                (
+                    a.trim().parse().map_err(bad)?,
+                    b.trim().parse().map_err(bad)?,
+                )
+            }
+            (None, Some(date)) => {
+                let d: Date = date.parse().map_err(bad)?;
+                (d, d)
+            }
+            _ => {
+                return Err(self
+                    .error(
+                        v,
+                        "<sunTime objective=\"mean\"> needs 'days' or 'date', not both",
+                    )
+                    .with_hint(format!("for example {EXAMPLE}")));
+            }
+        };
+        if last < first {
+            return Err(self.error(v, format!("'days' of <sunTime> runs from {first} back to {last}, expected the first day first")));
+        }
+        let day_step = match self.number(v, "dayStep", "a whole number of days")? {
+            None => 1,
+            Some(0) => {
+                return Err(self.error(v, "'dayStep' of <sunTime> is 0, expected at least 1 day"));
+            }
+            Some(n) => n as u32,
+        };
+        let (from, to, step) = self.sun_times(v, EXAMPLE)?;
+        let schedule = SunSchedule {
+            first,
+            last,
+            day_step,
+            from,
+            to,
+            step,
+        };
+        let n = schedule.instants().len();
+        if n > 20_000 {
+            return Err(self.error(v, format!("<sunTime> has {n} instants, expected at most 20 000 (one sun each): take a longer step or dayStep")));
+        }
+        Ok(schedule)
+    }
+
+    /// `<sunTime id date from to [step]>`: the time of day as a variable, on `date`.
     fn sun_time(&self, v: Node) -> Result<VariableKind, Diagnostic> {
         const EXAMPLE: &str =
             "<sunTime id=\"Sun\" date=\"2026-12-21\" from=\"08:00\" to=\"18:00\" step=\"10\"/>";
         self.check_attributes(v, &["id", "date", "from", "to", "step"]);
-        let bad = |e: invlight_scene::daylight::DaylightError| {
-            self.error(v, format!("<sunTime>: {e}"))
-                .with_hint(format!("for example {EXAMPLE}"))
-        };
-        let date: Date = self.required(v, "date")?.parse().map_err(bad)?;
+        let date: Date = self
+            .required(v, "date")?
+            .parse()
+            .map_err(|e| self.sun_time_error(v, e, EXAMPLE))?;
+        let (from, to, step) = self.sun_times(v, EXAMPLE)?;
+        Ok(VariableKind::SunTime {
+            date,
+            from,
+            to,
+            step,
+        })
+    }
+
+    /// A daylight error of `<sunTime>` `v`, with what the element looks like.
+    fn sun_time_error(
+        &self,
+        v: Node,
+        e: invlight_scene::daylight::DaylightError,
+        example: &str,
+    ) -> Diagnostic {
+        self.error(v, format!("<sunTime>: {e}"))
+            .with_hint(format!("for example {example}"))
+    }
+
+    /// A `<sunTime>`'s `from`, `to` (minutes after local midnight) and `step` (minutes,
+    /// 10 by default): whole steps from `from` to `to` within one day.
+    fn sun_times(&self, v: Node, example: &str) -> Result<(f64, f64, f64), Diagnostic> {
         let minutes = |attr: &str| -> Result<f64, Diagnostic> {
-            let t: TimeOfDay = self.required(v, attr)?.parse().map_err(bad)?;
+            let t: TimeOfDay = self
+                .required(v, attr)?
+                .parse()
+                .map_err(|e| self.sun_time_error(v, e, example))?;
             Ok(t.seconds_of_day() / 60.0)
         };
         let (from, to) = (minutes("from")?, minutes("to")?);
@@ -1035,14 +1175,9 @@ impl<'a, 'i> Reader<'a, 'i> {
                     v,
                     format!("<sunTime> runs from {from} to {to} minutes after midnight in steps of {step}, expected from before to and a whole number of steps between them"),
                 )
-                .with_hint(format!("for example {EXAMPLE}")));
+                .with_hint(format!("for example {example}")));
         }
-        Ok(VariableKind::SunTime {
-            date,
-            from,
-            to,
-            step,
-        })
+        Ok((from, to, step))
     }
 
     fn vertices(&self, v: Node) -> Result<[usize; 4], Diagnostic> {
@@ -1300,7 +1435,45 @@ mod tests {
         ));
         let clear =
             r#"<sun date="2026-12-21" time="12:00"/><sky type="cie-clear" horizontalLux="9000"/>"#;
+        let mean = r#"<color id="W" hue="0" saturation="0"/><sunTime id="Sun" days="2026-01-01..2026-12-31" dayStep="7" from="08:00" to="18:00" step="60" objective="mean"/>"#;
+        let p = with(site, "", mean).unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        assert_eq!(p.variables.len(), 1);
+        let (id, schedule, line) = p.sun_schedule.as_ref().unwrap();
+        assert_eq!((id.as_str(), *line), ("Sun", 2));
+        assert_eq!(schedule.instants().len(), 53 * 11);
+        let df = parse(&format!(
+            "<input><scene path=\"s.gltf\"/>{site}\n<conditions>{mean}</conditions><objectives><maximizeDaylightFactor surface=\"F\"/></objectives></input>"
+        ))
+        .unwrap_err();
+        assert!(df.to_string().contains("daylight-factor"), "{df}");
         for (site, sky, var, what) in [
+            ("", "", mean, "no <site>"),
+            (site, "", &mean.replace("..", "/"), "FIRST..LAST"),
+            (
+                site,
+                "",
+                &mean.replace("\"mean\"", "\"max\""),
+                "expected mean",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("days=", "date=\"2026-01-01\" days="),
+                "not both",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("dayStep=\"7\"", "dayStep=\"0\""),
+                "dayStep",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("2026-12-31", "2025-12-31"),
+                "first day first",
+            ),
             ("", "", var, "no <site>"),
             (site, clear, var, "cie-clear"),
             (

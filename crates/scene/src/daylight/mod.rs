@@ -42,8 +42,8 @@ mod sun;
 mod time;
 
 pub use setting::{
-    DAYLIGHT_FACTOR_LUX, Daylight, DaylightFlags, SUN_NAME, SkySpec, SunAt, daylight_factor_scene,
-    set_sun,
+    DAYLIGHT_FACTOR_LUX, Daylight, DaylightFlags, SUN_NAME, SkySpec, SunAt, SunSchedule,
+    daylight_factor_scene, set_sun,
 };
 pub use site::{Compass, Site};
 pub use sky::{Sky, SkyKind, SkySample};

@@ -288,6 +288,92 @@ fn sun_light(scene: &Scene) -> Result<Option<usize>, DaylightError> {
     }
 }
 
+/// The sun at every step of a set of days and hours, for the mean of their light: a
+/// problem's `<sunTime days objective="mean">`. Illuminance is linear in the light, so
+/// the mean over K instants is what K suns give together, each with 1/K of its beam
+/// then; one trace measures it, with its interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunSchedule {
+    /// The first day.
+    pub first: Date,
+    /// The last day (included when a whole number of `day_step`s after `first`).
+    pub last: Date,
+    /// Days from one day to the next (1: every day; 7: one day a week).
+    pub day_step: u32,
+    /// The first time of each day, minutes after local midnight.
+    pub from: f64,
+    /// The last time, minutes after local midnight.
+    pub to: f64,
+    /// Minutes from one time to the next.
+    pub step: f64,
+}
+
+impl SunSchedule {
+    /// Every instant: each day from `first` to `last` by `day_step`, each time from
+    /// `from` to `to` by `step`.
+    pub fn instants(&self) -> Vec<(Date, TimeOfDay)> {
+        let times = ((self.to - self.from) / self.step).round() as usize + 1;
+        let (a, b) = (self.first.days_since_1970(), self.last.days_since_1970());
+        (a..=b)
+            .step_by(self.day_step.max(1) as usize)
+            .flat_map(|d| {
+                (0..times).map(move |k| {
+                    let minutes = self.from + k as f64 * self.step;
+                    (
+                        Date::from_days_since_1970(d),
+                        TimeOfDay::from_minutes(minutes),
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// Replaces the scene's sun (the directional light `id`, else [`sun_light`]'s) by one
+    /// directional light per instant
+    /// the sun is up at `site`, each with 1/K of its beam (`lux`, or IES RP-21's
+    /// clear-sky beam then), K every instant, night ones included: the scene's light is
+    /// then the mean over the instants. Returns K and how many had the sun up.
+    pub fn apply(
+        &self,
+        id: &str,
+        site: &Site,
+        lux: Option<f64>,
+        scene: &mut Scene,
+    ) -> Result<(usize, usize), DaylightError> {
+        let named = (0..scene.lights.len()).find(|&l| {
+            scene.lights[l].name == id
+                && matches!(scene.lights[l].kind, LightKind::Directional { .. })
+        });
+        let sun = match named {
+            Some(l) => Some(l),
+            None => sun_light(scene)?,
+        };
+        if let Some(l) = sun {
+            scene.lights.remove(l);
+        }
+        let compass = site.compass(scene.up)?;
+        let instants = self.instants();
+        let k = instants.len();
+        let mut up = 0;
+        for (date, time) in &instants {
+            let sun = SunPosition::new(site, date, time, &SunOptions::default())?;
+            if !sun.is_up() {
+                continue;
+            }
+            up += 1;
+            let beam = lux.unwrap_or_else(|| sun.clear_sky_direct_normal());
+            scene.lights.push(Light {
+                name: format!("{SUN_NAME} {date} {time}"),
+                kind: LightKind::Directional {
+                    direction: sun.travel(&compass),
+                    illuminance: Vec3::splat((beam / k as f64) as f32),
+                },
+            });
+        }
+        Ok((k, up))
+    }
+}
+
 /// Sets the scene's sun ([`sun_light`], added when there is none) to travel along the
 /// unit `direction` with `lux` of white light.
 pub fn set_sun(scene: &mut Scene, direction: Vec3, lux: f64) -> Result<(), DaylightError> {
@@ -470,6 +556,39 @@ mod tests {
         let warnings = night.apply(&mut scene).unwrap();
         assert!(warnings[0].contains("below the horizon"), "{warnings:?}");
         assert_eq!(scene.lights[0].kind.flux(), Vec3::ZERO);
+    }
+
+    /// One day a week over four weeks, three hours a day; the suns carry 1/K of the beam
+    /// and the night's instants none.
+    #[test]
+    fn a_schedule_is_the_mean_of_its_suns() {
+        let s = SunSchedule {
+            first: "2026-03-02".parse().unwrap(),
+            last: "2026-03-23".parse().unwrap(),
+            day_step: 7,
+            from: 5.0 * 60.0,
+            to: 7.0 * 60.0,
+            step: 60.0,
+        };
+        let instants = s.instants();
+        assert_eq!(instants.len(), 12);
+        assert_eq!(instants[3].0.to_string(), "2026-03-09");
+        assert_eq!(instants[3].1.to_string(), "05:00:00");
+        assert_eq!(instants[11].1.to_string(), "07:00:00");
+        let mut scene = Scene::default();
+        set_sun(&mut scene, -Vec3::Y, 1.0).unwrap();
+        // On the equator at 05:00 the sun is down, at 06:00 (about) rising, at 07:00 up.
+        let site = Site::new(0.0, 0.0, 0.0).unwrap();
+        let (k, up) = s.apply(SUN_NAME, &site, Some(1200.0), &mut scene).unwrap();
+        assert_eq!(k, 12);
+        assert_eq!(scene.lights.len(), up);
+        assert!((4..=8).contains(&up), "{up}");
+        for l in &scene.lights {
+            let LightKind::Directional { illuminance, .. } = l.kind else {
+                panic!("{l:?}");
+            };
+            assert_eq!(illuminance, Vec3::splat(100.0), "{l:?}");
+        }
     }
 
     #[test]

@@ -119,6 +119,22 @@ impl Date {
         let day_of_era = year_of_era * 365 + year_of_era / 4 - year_of_era / 100 + day_of_year;
         era * 146_097 + day_of_era - 719_468
     }
+
+    /// The date `days` after 1970-01-01 (before it when negative): the inverse of
+    /// [`Date::days_since_1970`], H. Hinnant's `civil_from_days` (same paper).
+    pub fn from_days_since_1970(days: i64) -> Date {
+        let z = days + 719_468;
+        let era = z.div_euclid(146_097);
+        let day_of_era = z - era * 146_097;
+        let year_of_era =
+            (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+        let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+        let mp = (5 * day_of_year + 2) / 153;
+        let day = (day_of_year - (153 * mp + 2) / 5 + 1) as u32;
+        let month = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+        let year = (year_of_era + era * 400 + (month <= 2) as i64) as i32;
+        Date { year, month, day }
+    }
 }
 
 impl FromStr for Date {
@@ -327,6 +343,27 @@ mod tests {
 
     /// A clock time from minutes (a `sunTime`'s steps) rounds to the second and stays in
     /// the day; what is serialised reads back.
+    #[test]
+    fn dates_from_day_counts() {
+        for text in [
+            "1970-01-01",
+            "2000-02-29",
+            "2026-12-31",
+            "1900-03-01",
+            "1969-12-31",
+        ] {
+            let d: Date = text.parse().unwrap();
+            assert_eq!(Date::from_days_since_1970(d.days_since_1970()), d, "{text}");
+        }
+        let mut d: Date = "2023-12-30".parse().unwrap();
+        for _ in 0..800 {
+            let next = Date::from_days_since_1970(d.days_since_1970() + 1);
+            assert!(next > d && Date::new(next.year(), next.month(), next.day()).is_ok());
+            d = next;
+        }
+        assert_eq!(d.to_string(), "2026-03-09");
+    }
+
     #[test]
     fn times_from_minutes_and_back_from_json() {
         let t = TimeOfDay::from_minutes(530.25);
