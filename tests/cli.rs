@@ -2453,6 +2453,39 @@ mod daylight {
         );
     }
 
+    /// `solve` with a `<sunTime>` on a scene without a sun: the sun is added, the search
+    /// finds the step next to solar noon (12:43, the problem file says why; the steps
+    /// are 30 min apart, so within 15 min and SPA's and the ephemeris' few minutes), and
+    /// result.json gives the time and the direction.
+    #[test]
+    fn solve_finds_solar_noon_with_sun_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let problem = data("daylight/noon.xml");
+        let r = json([
+            "solve".as_ref(),
+            problem.as_os_str(),
+            "-o".as_ref(),
+            dir.path().as_os_str(),
+            "--no-images".as_ref(),
+            "--no-report".as_ref(),
+            "--json".as_ref(),
+        ]);
+        let sun = &r["isoc"][0]["variables"]["Sun"];
+        assert_eq!(sun["kind"], "sunTime", "{sun}");
+        let minutes = f64_of(&sun["minutes"]);
+        assert!((minutes - (12.0 * 60.0 + 43.0)).abs() <= 20.0, "{sun}");
+        assert_eq!(
+            sun["time"],
+            if minutes < 750.1 {
+                "12:30:00"
+            } else {
+                "13:00:00"
+            }
+        );
+        let d = vec3_of(&sun["direction"]);
+        assert!(d[1] < -0.95, "a high summer sun: {sun}");
+    }
+
     /// `<sunTime days … objective="mean">`: the open plane reads the mean over the
     /// instants of 1000 lx × cos Z (0 while the sun is down), cos Z from SPA for each
     /// instant here (invlight-scene's SunPosition, tested against the SPA paper).

@@ -106,7 +106,8 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
             format!("turned {}°", significant(b - a))
         }
         (VariableValue::Time { minutes: a, .. }, VariableValue::Time { minutes: b, .. }) => {
-            format!("{} min later", significant(b - a))
+            let later = if b >= a { "later" } else { "earlier" };
+            format!("{} min {later}", significant((b - a).abs()))
         }
         _ => String::new(),
     }

@@ -260,31 +260,12 @@ impl Binding {
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
                 }
-                VariableKind::SunTime {
-                    date,
-                    from,
-                    to,
-                    step,
-                } => {
+                VariableKind::SunTime { from, to, step, .. } => {
                     if problem.daylight_factor_line().is_some() {
                         return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
                             .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
                     }
-                    let site = problem
-                        .daylight
-                        .site
-                        .ok_or_else(|| err("<sunTime> needs the problem's <site>".into()))?;
-                    let compass = site.compass(scene.up).map_err(|e| err(e.to_string()))?;
-                    let lux = problem.daylight.sun.and_then(|s| s.illuminance);
-                    let light = sun_time_light(scene, &spec.id).map_err(err)?;
-                    let target = Target::SunTime {
-                        light,
-                        site,
-                        date: *date,
-                        compass,
-                        lux,
-                    };
-                    sun_at(&target, (from + to) / 2.0).map_err(err)?;
+                    let target = sun_time_target(problem, spec, scene).map_err(err)?;
                     let half = step / 2.0;
                     let domain = Domain::Segment {
                         min: from - half,
@@ -1110,6 +1091,47 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         }
     }
     out
+}
+
+/// Puts the sun of `sunTime` `spec` where it stands at the middle of its range (the
+/// directional light `spec.id`, added to a scene without any): what the problem's scene
+/// shows before a configuration sets the time.
+pub(crate) fn place_sun_time(
+    problem: &Problem,
+    spec: &VariableSpec,
+    scene: &mut Scene,
+) -> Result<(), String> {
+    sun_time_target(problem, spec, scene).map(|_| ())
+}
+
+/// [`place_sun_time`], returning the variable's target.
+fn sun_time_target(
+    problem: &Problem,
+    spec: &VariableSpec,
+    scene: &mut Scene,
+) -> Result<Target, String> {
+    let VariableKind::SunTime { date, from, to, .. } = &spec.kind else {
+        return Err(format!("'{}' is not a sunTime", spec.id));
+    };
+    let site = problem
+        .daylight
+        .site
+        .ok_or("<sunTime> needs the problem's <site>")?;
+    let compass = site.compass(scene.up).map_err(|e| e.to_string())?;
+    let light = sun_time_light(scene, &spec.id)?;
+    let target = Target::SunTime {
+        light,
+        site,
+        date: *date,
+        compass,
+        lux: problem.daylight.sun.and_then(|s| s.illuminance),
+    };
+    let (d, lux) = sun_at(&target, (from + to) / 2.0)?;
+    scene.lights[light].kind = LightKind::Directional {
+        direction: d.as_vec3(),
+        illuminance: Vec3::splat(lux as f32),
+    };
+    Ok(target)
 }
 
 /// The directional light a `sunTime` of id `id` sets: the one of that name, else one of

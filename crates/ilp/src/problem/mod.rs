@@ -296,8 +296,8 @@ impl Problem {
     /// their `<luminaire>` files (relative to the problem file) and then `luminaires`
     /// (the command line's, which thus win), and puts the file's daylight on it
     /// ([`Problem::daylight`]; its warnings were given when the file was read), its sun
-    /// spread over the instants of a `<sunTime objective="mean">`
-    /// ([`Problem::sun_schedule`]). A missing file is named with the problem file's
+    /// placed at the middle of a `<sunTime>`'s range, or spread over the instants of a
+    /// `<sunTime objective="mean">` ([`Problem::sun_schedule`]). A missing file is named with the problem file's
     /// line: its path is relative to the problem file, not to the current directory.
     pub fn load_scene(
         &self,
@@ -332,6 +332,12 @@ impl Problem {
         self.daylight
             .apply(&mut scene)
             .map_err(|e| Diagnostic::new(&self.path, format!("daylight: {e}")))?;
+        for spec in &self.variables {
+            if matches!(spec.kind, VariableKind::SunTime { .. }) {
+                crate::binding::place_sun_time(self, spec, &mut scene)
+                    .map_err(|e| Diagnostic::at_line(&self.path, spec.line, e))?;
+            }
+        }
         if let (Some((id, schedule, line)), Some(site)) = (&self.sun_schedule, self.daylight.site) {
             let lux = self.daylight.sun.and_then(|s| s.illuminance);
             schedule
