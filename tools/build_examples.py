@@ -7,8 +7,9 @@ Python 3 standard library only. Reads the original models from their zips
 (DIR/sponza/sponza.zip, DIR/conference/conference.zip; DIR defaults to ../shared/scenes
 beside the repository) and writes glTF 2.0 scenes (`scene.gltf` + `scene.bin`) into
 examples/atrium-skylight, examples/atrium-colour, examples/conference-sun and
-examples/office-target and examples/office-ies (the same office, built from nothing, no
-source geometry; office-ies also gets tests/data/photometry/downlight.ldt). The output
+examples/office-target, examples/office-ies and examples/office-daylight (the same
+office, built from nothing, no source geometry; office-ies also gets
+tests/data/photometry/downlight.ldt, office-daylight a skylight instead of lamps). The output
 is byte-for-byte the same on every run, so a reader can redo it and diff.
 
 What is added to the original geometry (a roof, a hole, a jar, lamps, the sun, ceiling
@@ -547,9 +548,13 @@ LAMP_CONES = (30.0, 60.0)  # inner, outer half-angles, degrees
 LAMP_Y = OFFICE[1] - 0.01
 LAMP_ZONE = ((1.0, 0.5), (4.0, 3.5))  # (x, z) corners of the ceiling zone lamps may take
 LAMPS = ((1.5, 1.0), (3.5, 3.0))  # as authored: not where a designer would put them
+SKYLIGHT_SIZE = 1.0  # m, a square
+SKYLIGHT_ZONE = ((0.5, 0.5), (4.5, 3.5))  # (x, z) corners its centre may take: the ceiling less half its size
 
 
-def office(_scenes_dir, out, name="office-target"):
+def office(_scenes_dir, out, name="office-target", skylight=False):
+    """The office; with `skylight`, office-daylight's: no screen and no lamps, and a
+    hole that may go anywhere in the ceiling's SKYLIGHT_ZONE."""
     w, h, d = OFFICE
     gl = Gltf("invlight tools/build_examples.py: " + name)
     room = gl.node("Room")
@@ -583,6 +588,21 @@ def office(_scenes_dir, out, name="office-target"):
     for k, (x, z) in enumerate([(x0 + 0.05, z0 + 0.05), (x1 - 0.05, z0 + 0.05),
                                 (x0 + 0.05, z1 - 0.05), (x1 - 0.05, z1 - 0.05)]):
         gl.node("Leg%d" % (k + 1), mesh=leg, translation=(x, (DESK_TOP - 0.03) / 2, z))
+    if skylight:
+        # The zone the skylight's centre may take, on the ceiling, and the hole: a
+        # SKYLIGHT_SIZE square box 0.3 m tall straddling the ceiling, authored with its
+        # centre at vertex A so that the placement point P is the skylight's centre.
+        (ax, az), (bx, bz) = SKYLIGHT_ZONE
+        corners = [(ax, h, az), (bx, h, az), (bx, h, bz), (ax, h, bz)]
+        gl.node("Roof__Geometry", mesh=gl.mesh("Roof__Geometry", *quad(*corners),
+                                                gl.material("Zone", (0.7, 0.7, 0.7))))
+        half = SKYLIGHT_SIZE / 2
+        gl.node("Skylight", mesh=gl.mesh("Skylight", *box((half, 0.15, half)),
+                                          gl.material("Aperture", hole=True)),
+                translation=corners[0])
+        gl.camera("Camera", (0.6, 1.6, 0.4), (2.5, 0.8, 2.1), 60.0)
+        gl.write(out)
+        return
     # The screen: its display faces -z, toward the user; a 3 cm body behind it.
     (sx0, sx1), (sy0, sy1) = SCREEN_X, SCREEN_Y
     z = SCREEN_Z
@@ -614,13 +634,19 @@ def office_ies(scenes_dir, out):
         g.write(f.read())
 
 
+def office_daylight(scenes_dir, out):
+    """The office of office-target with no lamps and a skylight to place for the most
+    daylight factor on the desk under the CIE overcast sky."""
+    office(scenes_dir, out, "office-daylight", skylight=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=os.path.join(os.path.dirname(REPO), "shared", "scenes"),
                     help="folder holding sponza/sponza.zip and conference/conference.zip")
     ap.add_argument("--out", default=os.path.join(REPO, "examples"), help="examples folder")
     ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun",
-                                       "office-target", "office-ies"])
+                                       "office-target", "office-ies", "office-daylight"])
     ap.add_argument("--wall-value", type=float,
                     help="write only atrium-colour, with this inner-wall HSV value, into --out")
     args = ap.parse_args()
@@ -629,7 +655,7 @@ def main():
         return
     builders = {"atrium-skylight": atrium_skylight, "atrium-colour": atrium_colour,
                 "conference-sun": conference, "office-target": office,
-                "office-ies": office_ies}
+                "office-ies": office_ies, "office-daylight": office_daylight}
     for name, build in builders.items():
         if args.only in (None, name):
             build(args.scenes, os.path.join(args.out, name))

@@ -6,11 +6,11 @@
 use crate::InputError;
 use anyhow::Context;
 use clap::Args;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
 use invlight_ilp::{Problem, configured_scene};
-use invlight_photon::{DEFAULT_MAX_BOUNCES, Side, TraceSettings, photons_traced};
+use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photon_count};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
+use invlight_scene::daylight::{Daylight, Site, SkySpec, SunAt};
 use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -27,7 +27,7 @@ pub struct LoadArgs {
     /// The file's up axis when it does not say (OBJ) or says wrongly [default: the
     /// file's, or a problem file's <scene up>]. Positions are never swapped; the axis
     /// orients sun directions and default views.
-    #[arg(long, value_name = "AXIS", value_parser = up_axis())]
+    #[arg(long, value_name = "y|z")]
     pub up: Option<UpAxis>,
     /// Memory the scene may take, loading and tracing: 8G, 512M, 64K or bytes (powers of
     /// 1024). A file whose declared sizes (buffers, vertex counts, texture pixels), or
@@ -44,21 +44,21 @@ pub struct LoadArgs {
     /// NAME=FILE: light NAME emits an IES or EULUMDAT file's table (repeatable; wins over <luminaire>)
     #[arg(long)]
     pub luminaire: Vec<Luminaire>,
-}
-
-/// An up axis (`y` or `z`), as a flag's value parser that lists both in --help.
-fn up_axis() -> impl TypedValueParser<Value = UpAxis> {
-    PossibleValuesParser::new(["y", "z"]).map(|s| if s == "z" { UpAxis::Z } else { UpAxis::Y })
-}
-
-/// A side of a surface (`front`, `back` or `both`), as a flag's value parser that lists
-/// them in --help.
-pub fn side() -> impl TypedValueParser<Value = Side> {
-    PossibleValuesParser::new(["front", "back", "both"]).map(|s| match s.as_str() {
-        "front" => Side::Front,
-        "back" => Side::Back,
-        _ => Side::Both,
-    })
+    /// LAT,LON,TZ: the site of --sun (degrees, longitude east positive; the clock's hours
+    /// east of UTC, e.g. -34.9,-56.2,-3 for Montevideo), else the problem file's site.
+    #[arg(long, value_name = "LAT,LON,TZ", allow_hyphen_values = true)]
+    pub site: Option<Site>,
+    /// True north, degrees clockwise seen from above from the scene's −Z (Y-up) or +Y
+    /// (Z-up), of --site or the problem file's site.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub north: Option<f64>,
+    /// DATE,TIME or DATE,TIME,LUX: the sun at that local time at the site (NREL SPA), with LUX
+    /// or the IES RP-21 clear-sky beam, as the scene's directional light (docs/daylight.md).
+    #[arg(long, value_name = "DATE,TIME[,LUX]")]
+    pub sun: Option<SunAt>,
+    /// KIND:LUX: a CIE sky (cie-overcast, cie-clear) giving LUX on an open horizontal plane.
+    #[arg(long, value_name = "KIND:LUX")]
+    pub sky: Option<SkySpec>,
 }
 
 /// A positive finite number, as a flag's value parser.
@@ -79,12 +79,6 @@ pub fn finite(s: &str) -> Result<f32, String> {
     }
 }
 
-/// A confidence level, as a flag's value parser.
-fn confidence(s: &str) -> Result<Confidence, String> {
-    let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-    Confidence::new(c).map_err(|e| e.to_string())
-}
-
 impl LoadArgs {
     /// The loader's options.
     pub fn options(&self) -> LoadOptions {
@@ -97,8 +91,12 @@ impl LoadArgs {
         }
     }
 
-    /// Refuses a scene whose ray-tracing structure would not fit the memory limit.
-    fn fits(&self, scene: Scene, path: &Path) -> anyhow::Result<Scene> {
+    /// Puts --site, --north, --sun and --sky on the scene over a problem's daylight `of`
+    /// ([`invlight_scene::daylight::DaylightFlags::over`]); refuses a scene whose
+    /// ray-tracing structure would not fit the memory limit.
+    fn fits(&self, mut scene: Scene, path: &Path, of: Option<&Daylight>) -> anyhow::Result<Scene> {
+        let flags = Daylight::flags(self.site, self.north, self.sun, self.sky);
+        crate::warn(flags.over(of, &mut scene)?);
         Accel::check_memory(&scene, path, self.options().max_memory)?;
         Ok(scene)
     }
@@ -106,7 +104,7 @@ impl LoadArgs {
     /// Loads a problem file's scene, these options overriding its `<scene>`'s.
     pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
         let scene = problem.load_scene(&self.options(), self.scale, self.up, &self.luminaire)?;
-        self.fits(scene, &problem.scene.path)
+        self.fits(scene, &problem.scene.path, Some(&problem.daylight))
     }
 }
 
@@ -131,7 +129,7 @@ impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
         let (path, options, lum) = (&self.scene, self.load.options(), &self.load.luminaire);
-        let file = || self.load.fits(load_with(path, &options, lum)?, path);
+        let file = || self.load.fits(load_with(path, &options, lum)?, path, None);
         configured_scene(path, self.config.as_deref(), file, |p| {
             self.load.load_problem(p)
         })
@@ -157,7 +155,7 @@ pub struct TraceArgs {
     pub max_bounces: Option<u32>,
     /// Confidence level of the intervals and comparisons, in (0, 1) [default: 0.95,
     /// solve the problem's `confidence`].
-    #[arg(long, value_name = "C", value_parser = confidence)]
+    #[arg(long, value_name = "C")]
     pub confidence: Option<Confidence>,
     /// Worker threads [default: one per core].
     #[arg(long, short = 'j', value_name = "T")]
@@ -168,15 +166,8 @@ impl TraceArgs {
     /// The photons to trace, `default` unless given, refused when 0 or when rounding up
     /// to whole groups would overflow.
     pub fn photons(&self, default: u64) -> anyhow::Result<u64> {
-        let n = self.photons.unwrap_or(default);
-        if n == 0 || photons_traced(n).is_none() {
-            return Err(InputError(format!(
-                "--photons {n}: expected a positive count below {}",
-                u64::MAX - 63
-            ))
-            .into());
-        }
-        Ok(n)
+        let n = photon_count(self.photons.unwrap_or(default));
+        Ok(n.map_err(|e| InputError(format!("--photons {e}")))?)
     }
 
     /// The tracing settings with `default` photons.

@@ -4,11 +4,11 @@
 mod args;
 mod map;
 mod measure;
-mod progress;
 mod render;
 mod report;
 mod scene;
 mod solve;
+mod sun;
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -54,6 +54,8 @@ enum Command {
     /// Illuminance on a regular grid over a planar surface (CSV and a plan), with
     /// Emin, Eavg, Emax and uniformity U0 as lighting standards ask.
     Map(map::MapArgs),
+    /// Where the sun stands at a site, date and time (NREL SPA), as a scene direction.
+    Sun(sun::SunArgs),
 }
 
 /// An error caused by what the user gave us (a file, a name, a value): exit code 2.
@@ -95,6 +97,7 @@ pub fn is_input(err: &anyhow::Error) -> bool {
     err.chain().any(|e| {
         e.is::<InputError>()
             || e.is::<invlight_scene::Diagnostic>()
+            || e.is::<invlight_scene::daylight::DaylightError>()
             || e.downcast_ref::<invlight_ilp::OutputError>()
                 .is_some_and(|e| e.is_input())
     })
@@ -109,6 +112,7 @@ fn main() -> ExitCode {
         Command::Report(args) => report::run(args),
         Command::Render(args) => render::run(args),
         Command::Map(args) => map::run(args),
+        Command::Sun(args) => sun::run(args),
     };
     match result {
         Ok(code) => code,

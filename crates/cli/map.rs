@@ -4,12 +4,11 @@
 
 use crate::InputError;
 use crate::args::{ReportArgs, SceneArgs, TraceArgs};
-use crate::progress::Progress;
 use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, Side, photons_traced};
 use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
-use invlight_report::{MapPage, file_safe};
+use invlight_report::{MapPage, Progress, file_safe};
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -29,7 +28,7 @@ pub struct MapArgs {
     pub grid: GridSpacing,
     /// The side of the surface that counts: the front (the side its area-weighted
     /// counter-clockwise normal faces, a floor's top), the back, or both.
-    #[arg(long, default_value = "both", value_parser = crate::args::side())]
+    #[arg(long, default_value = "both", value_name = "front|back|both")]
     pub side: Side,
     #[command(flatten)]
     pub trace: TraceArgs,

@@ -2,9 +2,10 @@
 //! ([`invlight_photon::measure`]).
 
 use crate::args::{SceneArgs, TraceArgs};
-use crate::progress::Progress;
 use clap::Args;
 use invlight_photon::{Estimator, Side, measure, photons_traced};
+use invlight_report::Progress;
+use invlight_scene::daylight::daylight_factor_scene;
 use invlight_trace::Accel;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -21,7 +22,7 @@ pub struct MeasureArgs {
     /// The side of the surfaces that counts: the front (the side the surface's
     /// counter-clockwise normal faces, a desk's top), the back, or both. Front and back
     /// are reported apart either way.
-    #[arg(long, default_value = "both", value_parser = crate::args::side())]
+    #[arg(long, default_value = "both", value_name = "front|back|both")]
     pub side: Side,
     #[command(flatten)]
     pub trace: TraceArgs,
@@ -30,9 +31,13 @@ pub struct MeasureArgs {
     /// standard error, except when nearly every photon reaches the surface anyway.
     #[arg(long)]
     pub arrivals_only: bool,
+    /// Report each surface's daylight factor, E / E_unobstructed × 100 %, under the CIE
+    /// overcast sky (--sky's or the problem file's, else 10 000 lx) with every light off.
+    #[arg(long)]
+    pub daylight_factor: bool,
     /// Print one JSON object (surfaces with mean, low, high, std_error, hits, side,
-    /// front, back; photons, rays, estimator, flux, settings, seconds) instead of a
-    /// table.
+    /// front, back, daylight_factor; photons, rays, estimator, flux, settings, seconds,
+    /// unobstructed_lux) instead of a table.
     #[arg(long)]
     pub json: bool,
 }
@@ -42,7 +47,11 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
     let settings = args.trace.settings(1_000_000)?;
     let confidence = args.trace.confidence.unwrap_or_default();
     let path = &args.scene.scene;
-    let scene = args.scene.load()?;
+    let mut scene = args.scene.load()?;
+    let df = args
+        .daylight_factor
+        .then(|| daylight_factor_scene(&mut scene));
+    let unobstructed = df.transpose()?;
     let ids = args
         .surfaces
         .iter()
@@ -69,6 +78,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
         (&settings, estimator),
         (seconds, build_seconds),
     );
+    let report = report.with_daylight_factor(unobstructed);
     crate::warn(report.surfaces.iter().filter_map(|s| s.warning()));
     if args.json {
         crate::print_json(&report)?;

@@ -4,12 +4,12 @@
 
 use crate::InputError;
 use crate::args::{SceneArgs, TraceArgs, finite, positive};
-use crate::progress::Progress;
 use clap::Args;
 use invlight_render::{
     Exposure, Look, PictureSettings, Renderer, SaveError, ToneMap, choose_view, picture_format,
     save_picture,
 };
+use invlight_report::Progress;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;

@@ -7,13 +7,11 @@
 
 use crate::InputError;
 use crate::args::{GridArgs, LoadArgs, ReportArgs, TraceArgs};
-use crate::progress::Progress;
 use anyhow::{Context, Result};
 use invlight_ilp::{
-    Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Progress as Shown, Recorder, Run,
-    Strategy,
+    Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Recorder, Run, Strategy,
 };
-use invlight_report::{Pictures, SolveFolder, SolveReport};
+use invlight_report::{Pictures, Progress, SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -124,13 +122,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     });
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
     bar.set(search.iteration());
-    let mut reporter = Recorder::new(output, records, &STOP, |p| match p {
-        Shown::Best(line) => bar.message(line),
-        Shown::Iteration(i) => bar.set(i),
-        Shown::FirstRefusal(i, why) => eprintln!(
-            "warning: candidate {i} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
-        ),
-    });
+    let mut reporter = Recorder::new(output, records, &STOP, |p| bar.show(p));
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;

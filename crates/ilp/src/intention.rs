@@ -72,6 +72,13 @@ pub enum Goal {
     /// `<minimizePower/>`: the least power of the scene's lights as dimmed: watts when
     /// every light's file gives them, lumens otherwise ([`crate::PowerUnit`]).
     MinimizePower,
+    /// `<maximizeDaylightFactor surface>`: the largest daylight factor, % — the mean
+    /// illuminance under the CIE overcast sky alone over that sky's unobstructed
+    /// horizontal illuminance (CIE S 017:2020, "daylight factor"; docs/daylight.md).
+    MaximizeDaylightFactor {
+        /// The surface.
+        surface: SurfaceRef,
+    },
 }
 
 impl Goal {
@@ -83,6 +90,7 @@ impl Goal {
             Goal::Target { .. } => "targetRadiance",
             Goal::MaximizeUniformity { .. } => "maximizeUniformity",
             Goal::MinimizePower => "minimizePower",
+            Goal::MaximizeDaylightFactor { .. } => "maximizeDaylightFactor",
         }
     }
 
@@ -94,6 +102,7 @@ impl Goal {
                 "mean illuminance"
             }
             Goal::MaximizeUniformity { .. } => "uniformity U0",
+            Goal::MaximizeDaylightFactor { .. } => "daylight factor",
             Goal::MinimizePower => "lamp power",
         }
     }
@@ -104,17 +113,20 @@ impl Goal {
             Goal::Maximize { surface, .. }
             | Goal::Minimize { surface }
             | Goal::Target { surface, .. }
-            | Goal::MaximizeUniformity { surface, .. } => Some(surface),
+            | Goal::MaximizeUniformity { surface, .. }
+            | Goal::MaximizeDaylightFactor { surface } => Some(surface),
             Goal::MinimizePower => None,
         }
     }
 
-    /// The unit of its value: `lx`, `` (a ratio) or `lm` (a bound problem's
-    /// `minimizePower` may count watts instead: [`crate::Binding::goal_unit`]).
+    /// The unit of its value: `lx`, `` (a ratio), `lm` (a bound problem's
+    /// `minimizePower` may count watts instead: [`crate::Binding::goal_unit`]) or
+    /// `DF %`.
     pub fn unit(&self) -> &'static str {
         match self {
             Goal::MaximizeUniformity { .. } => "",
             Goal::MinimizePower => "lm",
+            Goal::MaximizeDaylightFactor { .. } => DF_UNIT,
             _ => "lx",
         }
     }
@@ -127,9 +139,14 @@ impl Goal {
             Goal::Target { .. } => "target",
             Goal::MaximizeUniformity { .. } => "maximizeUniformity",
             Goal::MinimizePower => "minimizePower",
+            Goal::MaximizeDaylightFactor { .. } => "maximize",
         }
     }
 }
+
+/// The unit of a daylight factor in columns and labels: per cent of the unobstructed
+/// horizontal illuminance.
+pub const DF_UNIT: &str = "DF %";
 
 /// What a constraint bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -142,6 +159,9 @@ pub enum Bound {
     MinUniformity(f64, Grid),
     /// `minPointLux`: Emin over the grid at least this, lx.
     MinPointLux(f64, Grid),
+    /// `minDaylightFactor`: the daylight factor of the mean illuminance at least this, %
+    /// ([`Goal::MaximizeDaylightFactor`]).
+    MinDaylightFactor(f64),
 }
 
 impl Bound {
@@ -152,6 +172,7 @@ impl Bound {
             Bound::MaxLux(_) => "maxLux",
             Bound::MinUniformity(..) => "minUniformity",
             Bound::MinPointLux(..) => "minPointLux",
+            Bound::MinDaylightFactor(_) => "minDaylightFactor",
         }
     }
 
@@ -159,7 +180,7 @@ impl Bound {
     pub fn limit(&self) -> f64 {
         match *self {
             Bound::MinLux(x) | Bound::MaxLux(x) | Bound::MinUniformity(x, _) => x,
-            Bound::MinPointLux(x, _) => x,
+            Bound::MinPointLux(x, _) | Bound::MinDaylightFactor(x) => x,
         }
     }
 
@@ -177,7 +198,8 @@ impl Bound {
     }
 }
 
-/// `<constraint surface side? minLux|maxLux|minUniformity|minPointLux grid?>`.
+/// `<constraint surface side? minLux|maxLux|minUniformity|minPointLux|minDaylightFactor
+/// grid?>`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Constraint {
     /// The surface.
@@ -203,10 +225,11 @@ impl Constraint {
         }
     }
 
-    /// The unit of the bounded quantity: `lx`, or `` for a uniformity.
+    /// The unit of the bounded quantity: `lx`, `` for a uniformity, `DF %`.
     pub fn unit(&self) -> &'static str {
         match self.bound {
             Bound::MinUniformity(..) => "",
+            Bound::MinDaylightFactor(_) => DF_UNIT,
             _ => "lx",
         }
     }

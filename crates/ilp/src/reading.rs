@@ -8,6 +8,7 @@ use crate::intention::{Bound, Goal, Grid, Side, SurfaceRef};
 use crate::problem::Problem;
 use crate::vns::Evaluation;
 use invlight_photon::{GridError, GridRequest, Measurement, SurfaceGrid};
+use invlight_scene::daylight::SkyKind;
 use invlight_scene::{Diagnostic, Scene, SurfaceId, known_names};
 use invlight_stats::Estimate;
 
@@ -44,6 +45,17 @@ pub enum Quantity {
     },
     /// The electric lights' luminous flux as dimmed, lm (exact).
     Power,
+    /// The daylight factor of a surface side's mean illuminance, %: the mean times
+    /// `per_lux` = 100 / E_h, E_h the overcast sky's unobstructed horizontal
+    /// illuminance, which is exact, so the standard error scales the same way.
+    DaylightFactor {
+        /// Index in [`Reading::surfaces`].
+        target: usize,
+        /// The side.
+        side: Side,
+        /// 100 / E_h, % per lx.
+        per_lux: f64,
+    },
 }
 
 /// What a problem measures and reads.
@@ -86,6 +98,9 @@ impl Reading {
                 Quantity::Uniformity { grid }
             }
             Goal::MinimizePower => Quantity::Power,
+            Goal::MaximizeDaylightFactor { surface } => {
+                reading.daylight_factor(problem, scene, surface, line)?
+            }
         };
         for c in &problem.constraints {
             let q = match c.bound {
@@ -98,6 +113,9 @@ impl Reading {
                 Bound::MinPointLux(_, grid) => Quantity::MinPoint {
                     grid: reading.grid(problem, scene, &c.surface, grid, c.line)?,
                 },
+                Bound::MinDaylightFactor(_) => {
+                    reading.daylight_factor(problem, scene, &c.surface, c.line)?
+                }
             };
             reading.constraints.push(q);
         }
@@ -156,6 +174,33 @@ impl Reading {
         })
     }
 
+    /// The daylight factor of `r`'s mean, under `scene`'s overcast sky (which
+    /// [`crate::Binding::new`] made the scene's only light).
+    fn daylight_factor(
+        &mut self,
+        problem: &Problem,
+        scene: &Scene,
+        r: &SurfaceRef,
+        line: u32,
+    ) -> Result<Quantity, Diagnostic> {
+        let lux = match &scene.sky {
+            Some(sky) if sky.kind() == SkyKind::CieOvercast => sky.horizontal_illuminance(),
+            _ => {
+                return Err(Diagnostic::at_line(
+                    &problem.path,
+                    line,
+                    "a daylight factor is measured under the CIE overcast sky, and the scene has none",
+                )
+                .with_hint("give <sky type=\"cie-overcast\" horizontalLux=\"10000\"/>, or leave the sky out for that one"));
+            }
+        };
+        Ok(Quantity::DaylightFactor {
+            target: self.target(problem, scene, r, line)?,
+            side: r.side,
+            per_lux: 100.0 / lux,
+        })
+    }
+
     /// The index of the grid of `r` spaced by `grid`, added (and checked on `scene`)
     /// when new.
     fn grid(
@@ -200,7 +245,9 @@ impl Reading {
     /// The surface a quantity is read on, if any, with the side it counts.
     pub fn surface_of(&self, q: &Quantity) -> Option<(SurfaceId, Side)> {
         match *q {
-            Quantity::Mean { target, side } => Some((self.surfaces[target], side)),
+            Quantity::Mean { target, side } | Quantity::DaylightFactor { target, side, .. } => {
+                Some((self.surfaces[target], side))
+            }
             Quantity::Uniformity { grid } | Quantity::MinPoint { grid } => {
                 let g = &self.grids[grid];
                 Some((self.surfaces[g.target], g.side))
@@ -244,9 +291,30 @@ impl Reading {
                 std_error: 0.0,
                 samples: m.photons,
             },
+            Quantity::DaylightFactor {
+                target,
+                side,
+                per_lux,
+            } => {
+                let e = m.estimate_of(target, side, w);
+                Estimate {
+                    mean: e.mean * per_lux,
+                    std_error: e.std_error * per_lux,
+                    samples: e.samples,
+                }
+            }
         };
         let groups = match self.goal {
             Quantity::Mean { target, side } => m.group_means(target, side, w),
+            Quantity::DaylightFactor {
+                target,
+                side,
+                per_lux,
+            } => m
+                .group_means(target, side, w)
+                .into_iter()
+                .map(|g| g * per_lux)
+                .collect(),
             _ => Vec::new(),
         };
         Evaluation {

@@ -358,6 +358,13 @@ impl Space {
         self
     }
 
+    /// This space with variable `v`'s first dimension cut into `cells` cells instead of
+    /// the mesh's: a `sunTime`'s steps, one cell centred on each.
+    pub fn with_cells(mut self, v: usize, cells: u32) -> Space {
+        self.cells[self.offsets[v]] = cells.max(1);
+        self
+    }
+
     /// Whether some variables are cheap and some are not: then the search spends some
     /// of its tries on the cheap ones alone.
     pub fn has_cheap_part(&self) -> bool {

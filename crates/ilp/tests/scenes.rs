@@ -850,3 +850,225 @@ fn a_refined_candidate_traces_only_the_photons_it_lacks() {
         "the partial chunks are traced again"
     );
 }
+
+/// The daylight factor at a point of a horizontal surface `h` m below a horizontal
+/// opening centred at (cx, cz) of side `side`, under the CIE overcast sky
+/// L = L_z(1 + 2 cos Z)/3 with E_h = 7π/9 L_z: 100 / E_h · ∫ L cos Z dω over the opening,
+/// dω = cos Z dA / r² (midpoint rule on 24 × 24 cells).
+fn overcast_df_through(x: f64, z: f64, h: f64, cx: f64, cz: f64, side: f64) -> f64 {
+    let n = 24;
+    let cell = side / n as f64;
+    let mut sum = 0.0;
+    for i in 0..n {
+        for k in 0..n {
+            let dx = cx - side / 2.0 + (i as f64 + 0.5) * cell - x;
+            let dz = cz - side / 2.0 + (k as f64 + 0.5) * cell - z;
+            let r2 = dx * dx + dz * dz + h * h;
+            let c = h / r2.sqrt();
+            sum += (1.0 + 2.0 * c) / 3.0 * c * c / r2 * cell * cell;
+        }
+    }
+    100.0 * 9.0 / (7.0 * std::f64::consts::PI) * sum
+}
+
+/// `<maximizeDaylightFactor>` with a `minDaylightFactor` constraint: the skylight of
+/// the room above goes over the board, under the overcast sky the problem gets by
+/// default (10 000 lx) with the scene's sun switched off. The truth is the CIE
+/// luminance integrated over the opening for each point of the board (8 × 8 points);
+/// the room is black, so there is no reflected light.
+#[test]
+fn skylight_goes_over_the_board_for_the_most_daylight_factor() {
+    let mut s = Scene::default();
+    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
+    room(&mut s, 4.0, 2.5, 4.0, black, black, black);
+    let p = Vec3::new;
+    let board = [
+        p(2.5, 0.01, 1.3),
+        p(3.1, 0.01, 1.3),
+        p(3.1, 0.01, 1.9),
+        p(2.5, 0.01, 1.9),
+    ];
+    quad(&mut s, "Board", board, black);
+    let hole_box = s.add_mesh(Mesh::cuboid(p(0., 2.4, 0.), p(0.6, 2.6, 0.6), black));
+    s.add_instance("Skylight", hole_box, Mat4::IDENTITY);
+    rectangle(
+        &mut s,
+        "Roof__Geometry",
+        p(0., 2.4, 0.),
+        p(3.4, 2.4, 0.),
+        p(0., 2.4, 3.4),
+    );
+    // A sun that would light the board through a skylight elsewhere: it must be off.
+    s.lights.push(Light {
+        name: "Sun".into(),
+        kind: LightKind::Directional {
+            direction: DVec3::new(0.6, -1.0, 0.0).normalize().as_vec3(),
+            illuminance: Vec3::splat(100_000.0),
+        },
+    });
+    let pb = problem(
+        "meshSize=\"17\"><holeInSurface id=\"Skylight\" surface=\"Roof__Geometry\"/>",
+        "maxIterations=\"150\" photons=\"40000\" seed=\"3\"",
+        "<maximizeDaylightFactor surface=\"Board\"/><constraint surface=\"Board\" minDaylightFactor=\"0.5\"/>",
+    );
+    let solved = solve("daylight factor", &pb, s);
+    assert_eq!(solved.binding.goal_unit(), "DF %");
+    assert_eq!(solved.binding.constraints[0].unit(), "DF %");
+    let optimum = Configuration {
+        coords: vec![2.5 / 3.4, 1.3 / 3.4],
+    };
+    let truth = |v: &[VariableValue]| {
+        let c = position(&v[0]) + DVec3::new(0.3, 0.0, 0.3);
+        let n = 8;
+        let mut sum = 0.0;
+        for i in 0..n {
+            for k in 0..n {
+                let x = 2.5 + 0.6 * (i as f64 + 0.5) / n as f64;
+                let z = 1.3 + 0.6 * (k as f64 + 0.5) / n as f64;
+                sum += overcast_df_through(x, z, 2.49, c.x, c.z, 0.6);
+            }
+        }
+        sum / (n * n) as f64
+    };
+    check(&solved, &optimum, truth);
+    // The best member's DF against the integral, within 4 σ; its constraint reads the
+    // same quantity and holds.
+    let best = &solved.isoc.members()[0];
+    let want = truth(&solved.binding.values(&best.config));
+    let got = best.evaluation.goal;
+    assert!(
+        (got.mean - want).abs() <= 4.0 * got.std_error,
+        "{} ± {} vs {want}",
+        got.mean,
+        got.std_error
+    );
+    assert!(want > 2.0 && want < 10.0, "{want}");
+    assert_eq!(best.evaluation.constraints[0].mean, got.mean);
+}
+
+/// `<sunTime>`: the time of day that puts the sun through a window onto a board on the
+/// floor, known from geometry. On the equator at the March equinox the sun climbs
+/// straight up from the east (+X of a Y-up scene), 15° an hour; through a 0.6 m window
+/// in the east wall (x = 6, y ∈ [2, 2.6], z ∈ [1.7, 2.3]) it reaches a 0.6 m board on the
+/// floor (x ∈ [3, 3.6]) when it stands about 40° high, some 08:50 on the clock of
+/// Greenwich. The truth at a time is the sun's position there (SPA, tested on its own
+/// in invlight-scene) and the lit share of the board: 20 × 20 points of it, each lit
+/// when the ray toward the sun passes the window. The sun gives 1000 lx (`<sun
+/// illuminance>`), so the board reads 1000 · cos Z · lit share.
+#[test]
+fn sun_time_finds_the_hour_the_sun_enters_the_window() {
+    use invlight_scene::daylight::{Date, Site, SunOptions, SunPosition, TimeOfDay};
+    let mut s = Scene::default();
+    let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let hole = s.add_material(Material::hole("Opening"));
+    room(&mut s, 6.0, 3.0, 4.0, black, black, black);
+    let p = Vec3::new;
+    let window = s.add_mesh(Mesh::cuboid(p(5.9, 2.0, 1.7), p(6.1, 2.6, 2.3), hole));
+    s.add_instance("Window", window, Mat4::IDENTITY);
+    quad(
+        &mut s,
+        "Board",
+        [
+            p(3.0, 0.01, 1.7),
+            p(3.6, 0.01, 1.7),
+            p(3.6, 0.01, 2.3),
+            p(3.0, 0.01, 2.3),
+        ],
+        black,
+    );
+    let text = r#"<input><scene path="built-in-code.gltf"/>
+<site latitude="0" longitude="0" timezone="0"/>
+<sun date="2026-03-20" time="12:00" illuminance="1000"/>
+<conditions><sunTime id="Sun" date="2026-03-20" from="06:30" to="11:30" step="5"/></conditions>
+<objectives maxIterations="150" photons="40000" seed="4"><maximizeRadiance surface="Board"/></objectives></input>"#;
+    let pb = Problem::parse(Path::new("/tests/problem.xml"), text).unwrap();
+    assert!(pb.warnings.is_empty(), "{:?}", pb.warnings);
+    pb.daylight.apply(&mut s).unwrap();
+    let site = Site::new(0.0, 0.0, 0.0).unwrap();
+    let compass = site.compass(Vec3::Y).unwrap();
+    let date: Date = "2026-03-20".parse().unwrap();
+    let lit = |minutes: f64| {
+        let time = TimeOfDay::from_minutes(minutes);
+        let sun = SunPosition::new(&site, &date, &time, &SunOptions::default()).unwrap();
+        let u = sun.to_sky(&compass).as_dvec3();
+        if u.x <= 0.0 || u.y <= 0.0 {
+            return 0.0;
+        }
+        let n = 20;
+        let mut hits = 0;
+        for i in 0..n {
+            for k in 0..n {
+                let x = DVec3::new(
+                    3.0 + 0.6 * (i as f64 + 0.5) / n as f64,
+                    0.01,
+                    1.7 + 0.6 * (k as f64 + 0.5) / n as f64,
+                );
+                let h = x + u * ((6.0 - x.x) / u.x);
+                hits += ((2.0..=2.6).contains(&h.y) && (1.7..=2.3).contains(&h.z)) as u32;
+            }
+        }
+        1000.0 * u.y * hits as f64 / (n * n) as f64
+    };
+    let solved = solve("sun time", &pb, s);
+    let minutes = |v: &[VariableValue]| match v[0] {
+        VariableValue::Time { minutes, .. } => minutes,
+        ref other => panic!("{other:?} is not a time"),
+    };
+    let truth = |v: &[VariableValue]| lit(minutes(v));
+    // The steps are cell centres: 06:30, 06:35, … 11:30 (61 cells).
+    let space = &solved.binding.space;
+    assert_eq!(space.cells_per_dimension(), &[61]);
+    let times: Vec<f64> = (0..61).map(|k| 390.0 + 5.0 * k as f64).collect();
+    let best_k = (0..61)
+        .max_by(|&a, &b| lit(times[a]).total_cmp(&lit(times[b])))
+        .unwrap();
+    let optimum = Configuration {
+        coords: vec![(best_k as f64 + 0.5) / 61.0],
+    };
+    assert_eq!(
+        minutes(&solved.binding.values(&optimum)),
+        times[best_k],
+        "a cell's centre is its step"
+    );
+    check(&solved, &optimum, truth);
+    // No sun in a daylight factor: the two are refused together, at the sunTime's line.
+    let df = text.replace(
+        "<maximizeRadiance surface=\"Board\"/>",
+        "<maximizeDaylightFactor surface=\"Board\"/>",
+    );
+    let df = Problem::parse(Path::new("/tests/problem.xml"), &df).unwrap();
+    let e = Binding::new(&df, &mut Scene::default()).unwrap_err();
+    assert_eq!(e.line, Some(4), "{e}");
+    assert!(e.to_string().contains("daylight-factor"), "{e}");
+    // A member's world values (a time and the sun's direction) map back to its cell.
+    let member = &solved.isoc.members()[0].config;
+    let values = solved.binding.values(member);
+    assert_eq!(solved.binding.configuration(&values).unwrap(), *member);
+    // The times the whole board is in the window's sunlight, from the geometry: the
+    // best member's time is one of them, between about 08:30 and 09:10.
+    let full: Vec<f64> = times
+        .iter()
+        .copied()
+        .filter(|&t| {
+            lit(t)
+                >= 0.999 * 1000.0 * {
+                    let sun = SunPosition::new(
+                        &site,
+                        &date,
+                        &TimeOfDay::from_minutes(t),
+                        &SunOptions::default(),
+                    )
+                    .unwrap();
+                    sun.to_sky(&compass).y as f64
+                }
+        })
+        .collect();
+    let (first, last) = (full[0], full[full.len() - 1]);
+    assert!(first > 8.0 * 60.0 && last < 9.5 * 60.0, "{first}..{last}");
+    let best = minutes(&solved.binding.values(&solved.isoc.members()[0].config));
+    eprintln!("sun time: best {best} min, the board fully lit from {first} to {last} min");
+    assert!(
+        (first - 5.0..=last + 5.0).contains(&best),
+        "best at {best} min, the board fully lit from {first} to {last} min"
+    );
+}

@@ -29,6 +29,15 @@ pub enum Side {
     Both,
 }
 
+impl std::str::FromStr for Side {
+    type Err = String;
+
+    /// The spelling of `--side` and of a problem file's `side`: `front`, `back` or `both`.
+    fn from_str(s: &str) -> Result<Side, String> {
+        Side::parse(s).ok_or_else(|| format!("'{s}': expected front, back or both"))
+    }
+}
+
 impl Side {
     /// The problem-file spelling: `front`, `back` or `both`.
     pub fn name(self) -> &'static str {

@@ -32,6 +32,18 @@ pub fn photons_traced(photons: u64) -> Option<u64> {
         .map(|n| n.max(MIN_PHOTONS))
 }
 
+/// `photons` as a count to ask for: positive, and small enough to round up to whole
+/// groups ([`photons_traced`]); otherwise what is expected, after the count.
+pub fn photon_count(photons: u64) -> Result<u64, String> {
+    if photons == 0 || photons_traced(photons).is_none() {
+        return Err(format!(
+            "{photons}: expected a positive count below {}",
+            u64::MAX - 63
+        ));
+    }
+    Ok(photons)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -40,6 +52,10 @@ mod tests {
     fn measurements_trace_whole_groups() {
         assert_eq!(photons_traced(1), Some(MIN_PHOTONS));
         assert_eq!(photons_traced(100_001), Some(100_032));
+        assert_eq!(photon_count(1), Ok(1));
+        assert!(photon_count(0).unwrap_err().contains("positive"));
+        assert!(photon_count(u64::MAX - 62).is_err());
+        assert_eq!(photon_count(u64::MAX - 63), Ok(u64::MAX - 63));
         assert_eq!(photons_traced(2_000_000), Some(2_000_000));
         assert_eq!(photons_traced(u64::MAX), None);
     }

@@ -65,11 +65,11 @@ pub use channels::{Components, Side};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use connect::{Connection, Departure, Lobe, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
-pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photons_traced};
+pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
 pub use measure::{
-    Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport, behind_warning,
-    measure, measure_more, measure_with, much_from_behind,
+    DaylightFactor, Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport,
+    behind_warning, measure, measure_more, measure_with, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use sampler::{GroupKeys, Sampler};

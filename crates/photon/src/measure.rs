@@ -551,6 +551,27 @@ pub struct SurfaceReport {
     pub front: f64,
     /// Mean illuminance of the back alone, lx.
     pub back: f64,
+    /// The mean illuminance as a daylight factor, when measured as one
+    /// ([`MeasureReport::with_daylight_factor`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub daylight_factor: Option<DaylightFactor>,
+}
+
+/// A daylight factor with its interval, % (CIE S 017:2020, International Lighting
+/// Vocabulary, "daylight factor"): the illuminance a surface receives from a sky, direct
+/// and reflected, over what the sky gives an unobstructed horizontal plane. That
+/// denominator is the sky's `horizontalLux`, known exactly, so the factor's interval is
+/// the illuminance's scaled by the same 100 / E_h.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DaylightFactor {
+    /// DF of the mean illuminance, %.
+    pub mean: f64,
+    /// Lower end of the interval, %.
+    pub low: f64,
+    /// Upper end, %.
+    pub high: f64,
+    /// Standard error, %.
+    pub std_error: f64,
 }
 
 impl SurfaceReport {
@@ -614,9 +635,32 @@ pub struct MeasureReport {
     pub seconds: f64,
     /// Seconds building the acceleration structure.
     pub build_seconds: f64,
+    /// The unobstructed horizontal illuminance of the overcast sky a daylight factor is
+    /// measured under, lx; absent when the surfaces' factors are not asked for.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unobstructed_lux: Option<f64>,
 }
 
 impl MeasureReport {
+    /// The report with each surface's daylight factor under a sky that gives an
+    /// unobstructed horizontal plane `unobstructed_lux` ([`DaylightFactor`]), when given.
+    pub fn with_daylight_factor(mut self, unobstructed_lux: Option<f64>) -> MeasureReport {
+        let Some(unobstructed_lux) = unobstructed_lux else {
+            return self;
+        };
+        let k = 100.0 / unobstructed_lux;
+        for s in &mut self.surfaces {
+            s.daylight_factor = Some(DaylightFactor {
+                mean: k * s.mean,
+                low: k * s.low,
+                high: k * s.high,
+                std_error: k * s.std_error,
+            });
+        }
+        self.unobstructed_lux = Some(unobstructed_lux);
+        self
+    }
+
     /// The report as a table for people: a row per surface, then the costs.
     pub fn table(&self) -> String {
         use invlight_stats::significant;
@@ -627,22 +671,42 @@ impl MeasureReport {
             .max()
             .unwrap_or(7)
             .max(7);
+        let percent = self.confidence * 100.0;
         let mut out = format!(
-            "{:<width$}  {:>10}  {:>12}  {:>27}  {:>10}\n",
+            "{:<width$}  {:>10}  {:>12}  {:>27}  {:>10}",
             "surface",
             "area m²",
             "mean lx",
-            format!("{:.0} % interval lx", self.confidence * 100.0),
+            format!("{percent:.0} % interval lx"),
             "hits"
         );
+        if self.unobstructed_lux.is_some() {
+            out += &format!(
+                "  {:>8}  {:>22}",
+                "DF %",
+                format!("{percent:.0} % interval DF %")
+            );
+        }
+        out += "\n";
         for s in &self.surfaces {
             out += &format!(
-                "{:<width$}  {:>10.4}  {:>12}  {:>27}  {:>10}\n",
+                "{:<width$}  {:>10.4}  {:>12}  {:>27}  {:>10}",
                 s.name,
                 s.area,
                 significant(s.mean),
                 format!("[{}, {}]", significant(s.low), significant(s.high)),
                 s.hits
+            );
+            if let Some(df) = &s.daylight_factor {
+                let interval = format!("[{}, {}]", significant(df.low), significant(df.high));
+                out += &format!("  {:>8}  {interval:>22}", significant(df.mean));
+            }
+            out += "\n";
+        }
+        if let Some(lux) = self.unobstructed_lux {
+            out += &format!(
+                "daylight factor: E / {} lx, the CIE overcast sky's on an unobstructed horizontal plane\n",
+                significant(lux)
             );
         }
         out += &format!(
@@ -690,6 +754,7 @@ impl Measurement {
                         side: side.name().into(),
                         front: self.estimate_of(i, Side::Front, &all).mean,
                         back: self.estimate_of(i, Side::Back, &all).mean,
+                        daylight_factor: None,
                     }
                 })
                 .collect(),
@@ -703,6 +768,7 @@ impl Measurement {
             max_bounces: settings.max_bounces,
             seconds,
             build_seconds,
+            unobstructed_lux: None,
         }
     }
 }

@@ -5,7 +5,7 @@
 use glam::{DVec3, Vec3};
 use invlight_ilp::{Binding, Domain, VariableKind, VariableSpec, VariableValue};
 use invlight_scene::Scene;
-use invlight_scene::daylight::Compass;
+use invlight_scene::daylight::{Compass, TimeOfDay};
 use invlight_stats::significant;
 
 /// A point as `(x, y, z)` with four significant digits.
@@ -48,6 +48,9 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::LightAim { .. } => format!("the aim of {}", spec.id),
         VariableKind::HoleSize { .. } => format!("the size of hole {}", spec.id),
         VariableKind::ObjectRotation { .. } => format!("the turn of {}", spec.id),
+        VariableKind::SunTime { date, .. } => {
+            format!("the time of day of the sun {} on {date}", spec.id)
+        }
     }
 }
 
@@ -66,6 +69,16 @@ pub fn value(value: &VariableValue, compass: Option<&Compass>) -> String {
         VariableValue::Power(level) => format!("at {} %", significant(100.0 * level)),
         VariableValue::Scale(k) => format!("× {} of its authored size", significant(k)),
         VariableValue::Angle(a) => format!("turned {}°", significant(a)),
+        VariableValue::Time { minutes, direction } => {
+            let at = TimeOfDay::from_minutes(minutes);
+            match compass {
+                Some(c) if direction != DVec3::ZERO => {
+                    let (el, az) = sun_angles(c, direction);
+                    format!("at {at} (sun elevation {el:.1}°, azimuth {az:.1}°)")
+                }
+                _ => format!("at {at}"),
+            }
+        }
     }
 }
 
@@ -91,6 +104,10 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
         }
         (VariableValue::Angle(a), VariableValue::Angle(b)) => {
             format!("turned {}°", significant(b - a))
+        }
+        (VariableValue::Time { minutes: a, .. }, VariableValue::Time { minutes: b, .. }) => {
+            let later = if b >= a { "later" } else { "earlier" };
+            format!("{} min {later}", significant((b - a).abs()))
         }
         _ => String::new(),
     }
@@ -157,6 +174,18 @@ pub fn range(binding: &Binding, i: usize) -> String {
                     "scales from {} to {} of the authored size, in {} cells",
                     significant(*min),
                     significant(*max),
+                    cells[first]
+                ),
+                VariableKind::SunTime {
+                    date,
+                    from,
+                    to,
+                    step,
+                } => format!(
+                    "the times of day from {} to {} on {date}, every {} min ({} cells)",
+                    TimeOfDay::from_minutes(from),
+                    TimeOfDay::from_minutes(to),
+                    significant(step),
                     cells[first]
                 ),
                 _ => format!(

@@ -10,7 +10,7 @@
 //!   in words, the answer first, the ISOC gallery, the plots, the objective's plan with
 //!   isolux lines and its compliance with a requirement at a stated confidence, every
 //!   member in a table, and the time taken; [`MapPage`] the same for one grid.
-//! - [`file_safe`]: a name as a file name.
+//! - [`file_safe`]: a name as a file name; [`Progress`], a bar on stderr for long work.
 #![deny(missing_docs)]
 
 mod describe;
@@ -18,10 +18,12 @@ mod html;
 mod map_page;
 mod pictures;
 mod plots;
+mod progress;
 mod solve_page;
 
 pub use html::{Page, external_references};
 pub use map_page::MapPage;
 pub use pictures::{PictureError, Pictures, file_safe};
 pub use plots::{convergence, search_plot};
+pub use progress::Progress;
 pub use solve_page::{GridOptions, ReportError, SolveFolder, SolveReport, Written};

@@ -25,6 +25,19 @@ impl UpAxis {
     }
 }
 
+impl std::str::FromStr for UpAxis {
+    type Err = String;
+
+    /// `y` or `z`, as `--up` gives it.
+    fn from_str(s: &str) -> Result<UpAxis, String> {
+        match s {
+            "y" | "Y" => Ok(UpAxis::Y),
+            "z" | "Z" => Ok(UpAxis::Z),
+            _ => Err(format!("'{s}': expected y or z")),
+        }
+    }
+}
+
 /// How to read a file authored in other units or axes, and how far to trust it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LoadOptions {

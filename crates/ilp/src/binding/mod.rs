@@ -17,6 +17,9 @@ use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
+use invlight_scene::daylight::{
+    Compass, Date, Site, SunOptions, SunPosition, TimeOfDay, daylight_factor_scene,
+};
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
@@ -50,6 +53,14 @@ pub enum VariableValue {
     Scale(f64),
     /// A turn about the placement's normal, degrees.
     Angle(f64),
+    /// A `sunTime`: minutes after local midnight, and the unit vector the sunlight
+    /// travels along then (zero when it is not known, as in a row read back).
+    Time {
+        /// Minutes after local midnight.
+        minutes: f64,
+        /// The sunlight's travel direction.
+        direction: DVec3,
+    },
 }
 
 /// What a placement moves, and how P turns into a translation.
@@ -92,6 +103,15 @@ enum Target {
     Scale {
         instances: Vec<(InstanceId, Mat4)>,
         centre: Vec3,
+    },
+    /// A directional light set where the sun stands at a time of `date` at `site`
+    /// (SPA), with `lux` or else the clear-sky beam of IES RP-21 then.
+    SunTime {
+        light: LightId,
+        site: Site,
+        date: Date,
+        compass: Compass,
+        lux: Option<f64>,
     },
     /// An object's instances, or a light as authored, turned about `axis` (unit)
     /// through `centre` (the box's centre, the light's position).
@@ -172,13 +192,24 @@ impl PowerUnit {
 
 impl Binding {
     /// Binds `problem` to `scene`. The scene is changed once here: the objects of
-    /// `holeInSurface` variables get a hole material on a copy of their meshes.
+    /// `holeInSurface` variables get a hole material on a copy of their meshes, and a
+    /// problem that asks for a daylight factor ([`Problem::daylight_factor_line`]) has
+    /// its lights and emission turned off under its overcast sky, or one of 10 000 lx
+    /// ([`daylight_factor_scene`]): the factor is that sky's light alone.
     pub fn new(problem: &Problem, scene: &mut Scene) -> Result<Binding, Diagnostic> {
         let path = problem.path.as_path();
+        if let Some(line) = problem.daylight_factor_line() {
+            daylight_factor_scene(scene).map_err(|e| {
+                Diagnostic::at_line(path, line, e.to_string())
+                    .with_hint("a daylight factor is measured under the CIE overcast sky alone, every light off")
+            })?;
+        }
         let mut variables = Vec::new();
         let mut targets = Vec::new();
         let mut initial = Vec::new();
         let mut warnings = Vec::new();
+        // Each sunTime's variable index and its cells: one per step, centred on it.
+        let mut steps = Vec::new();
         for spec in &problem.variables {
             let err = |msg: String| Diagnostic::at_line(path, spec.line, msg);
             let (domain, target) = match &spec.kind {
@@ -243,6 +274,20 @@ impl Binding {
                         })?;
                     let hemi = Hemisphere::new(scene.up.as_dvec3());
                     (Domain::Hemisphere(hemi), Target::Sun { light })
+                }
+                VariableKind::SunTime { from, to, step, .. } => {
+                    if problem.daylight_factor_line().is_some() {
+                        return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
+                            .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
+                    }
+                    let target = sun_time_target(problem, spec, scene).map_err(err)?;
+                    let half = step / 2.0;
+                    let domain = Domain::Segment {
+                        min: from - half,
+                        max: to + half,
+                    };
+                    steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
+                    (domain, target)
                 }
                 VariableKind::HoleSize { min, max } => {
                     let s = find_surface(scene, &spec.id, spec, &err)?;
@@ -415,9 +460,12 @@ impl Binding {
             .map(|(i, _)| i)
             .collect();
         let exchangeable = exchangeable(scene, &problem.variables, &targets);
-        let space = Space::new(variables, &problem.cells_per_dimension)
+        let mut space = Space::new(variables, &problem.cells_per_dimension)
             .with_exchangeable(exchangeable)
             .with_cheap(&cheap);
+        for (v, cells) in steps {
+            space = space.with_cells(v, cells);
+        }
         let mut binding = Binding {
             initial: Configuration { coords: initial },
             space,
@@ -612,6 +660,11 @@ impl Binding {
                         Domain::Segment { min, max } | Domain::Turn { min, max },
                         Target::Rotate { .. },
                     ) => VariableValue::Angle(min + x[0] * (max - min)),
+                    (Domain::Segment { min, max }, target @ Target::SunTime { .. }) => {
+                        let minutes = min + x[0] * (max - min);
+                        let direction = sun_at(target, minutes).map_or(DVec3::ZERO, |(d, _)| d);
+                        VariableValue::Time { minutes, direction }
+                    }
                     (Domain::Segment { min, max } | Domain::Turn { min, max }, target) => {
                         let value = min + x[0] * (max - min);
                         let rgb = match target {
@@ -672,7 +725,8 @@ impl Binding {
                     VariableValue::Colour { value, .. }
                     | VariableValue::Power(value)
                     | VariableValue::Scale(value)
-                    | VariableValue::Angle(value),
+                    | VariableValue::Angle(value)
+                    | VariableValue::Time { minutes: value, .. },
                 ) => {
                     let x = if max > min {
                         (value - min) / (max - min)
@@ -865,6 +919,19 @@ impl Binding {
                         if let Some(position) = scene.lights[light].kind.position_mut() {
                             *position = original + delta;
                         }
+                    }
+                }
+                (VariableValue::Time { minutes, .. }, target @ Target::SunTime { light, .. }) => {
+                    if let (
+                        Ok((d, lux)),
+                        LightKind::Directional {
+                            direction,
+                            illuminance,
+                        },
+                    ) = (sun_at(target, minutes), &mut scene.lights[*light].kind)
+                    {
+                        *direction = d.as_vec3();
+                        *illuminance = Vec3::splat(lux as f32);
                     }
                 }
                 (VariableValue::Direction(d), Target::Sun { light }) => {
@@ -1063,6 +1130,107 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         }
     }
     out
+}
+
+/// Puts the sun of `sunTime` `spec` where it stands at the middle of its range (the
+/// directional light `spec.id`, added to a scene without any): what the problem's scene
+/// shows before a configuration sets the time.
+pub(crate) fn place_sun_time(
+    problem: &Problem,
+    spec: &VariableSpec,
+    scene: &mut Scene,
+) -> Result<(), String> {
+    sun_time_target(problem, spec, scene).map(|_| ())
+}
+
+/// [`place_sun_time`], returning the variable's target.
+fn sun_time_target(
+    problem: &Problem,
+    spec: &VariableSpec,
+    scene: &mut Scene,
+) -> Result<Target, String> {
+    let VariableKind::SunTime { date, from, to, .. } = &spec.kind else {
+        return Err(format!("'{}' is not a sunTime", spec.id));
+    };
+    let site = problem
+        .daylight
+        .site
+        .ok_or("<sunTime> needs the problem's <site>")?;
+    let compass = site.compass(scene.up).map_err(|e| e.to_string())?;
+    let light = sun_time_light(scene, &spec.id)?;
+    let target = Target::SunTime {
+        light,
+        site,
+        date: *date,
+        compass,
+        lux: problem.daylight.sun.and_then(|s| s.illuminance),
+    };
+    let (d, lux) = sun_at(&target, (from + to) / 2.0)?;
+    scene.lights[light].kind = LightKind::Directional {
+        direction: d.as_vec3(),
+        illuminance: Vec3::splat(lux as f32),
+    };
+    Ok(target)
+}
+
+/// The directional light a `sunTime` of id `id` sets: the one of that name, else one of
+/// that name added to a scene without any.
+fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, String> {
+    let directional = |k: &LightKind| matches!(k, LightKind::Directional { .. });
+    if let Some(l) = scene.light(id) {
+        return match directional(&scene.lights[l].kind) {
+            true => Ok(l),
+            false => Err(format!(
+                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
+            )),
+        };
+    }
+    let suns: Vec<&str> = scene
+        .lights
+        .iter()
+        .filter(|l| directional(&l.kind))
+        .map(|l| l.name.as_str())
+        .collect();
+    if !suns.is_empty() {
+        return Err(format!(
+            "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
+            suns.join(", ")
+        ));
+    }
+    scene.lights.push(invlight_scene::Light {
+        name: id.into(),
+        kind: LightKind::Directional {
+            direction: -scene.up,
+            illuminance: Vec3::ZERO,
+        },
+    });
+    Ok(LightId::from_index(scene.lights.len() - 1))
+}
+
+/// Where a `sunTime` target's sun stands `minutes` after local midnight (to the second,
+/// held within the day): the direction its light travels and its direct normal
+/// illuminance, lx (the problem's `<sun illuminance>`, else IES RP-21's clear-sky beam;
+/// 0 below the horizon).
+fn sun_at(target: &Target, minutes: f64) -> Result<(DVec3, f64), String> {
+    let Target::SunTime {
+        site,
+        date,
+        compass,
+        lux,
+        ..
+    } = target
+    else {
+        return Err("not a sunTime".into());
+    };
+    let time = TimeOfDay::from_minutes(minutes);
+    let sun =
+        SunPosition::new(site, date, &time, &SunOptions::default()).map_err(|e| e.to_string())?;
+    let beam = match (sun.is_up(), lux) {
+        (false, _) => 0.0,
+        (true, Some(l)) => *l,
+        (true, None) => sun.clear_sky_direct_normal(),
+    };
+    Ok((sun.travel(compass).as_dvec3(), beam))
 }
 
 /// The normalised coordinates of the scene as authored.

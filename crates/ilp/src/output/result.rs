@@ -9,6 +9,7 @@ use crate::problem::{VariableKind, VariableSpec};
 use crate::vns::Standing;
 use glam::DVec3;
 use invlight_scene::Diagnostic;
+use invlight_scene::daylight::TimeOfDay;
 use invlight_stats::significant;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -23,7 +24,8 @@ pub const RESULT_SCHEMA: u32 = 2;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObjectiveInfo {
     /// The goal's problem-file element: `maximizeRadiance`, `minimizeRadiance`,
-    /// `targetRadiance`, `maximizeUniformity` or `minimizePower`.
+    /// `targetRadiance`, `maximizeUniformity`, `minimizePower` or
+    /// `maximizeDaylightFactor`.
     #[serde(default = "maximize_radiance")]
     pub element: String,
     /// The surface it is about (none for `minimizePower`).
@@ -102,6 +104,7 @@ impl ObjectiveInfo {
                 significant(self.target.unwrap_or_default())
             )),
             "maximizeUniformity" => on("the most uniform light (U0)"),
+            "maximizeDaylightFactor" => on("the largest daylight factor (DF %, CIE overcast sky)"),
             "minimizePower" if self.unit == "W" => "the least electrical power (W)".into(),
             "minimizePower" => {
                 "the least lamp power as luminous flux (lm: not every lamp's file gives watts)"
@@ -121,11 +124,12 @@ pub struct ConstraintInfo {
     pub surface: String,
     /// The side counted.
     pub side: String,
-    /// The bound's attribute: `minLux`, `maxLux`, `minUniformity` or `minPointLux`.
+    /// The bound's attribute: `minLux`, `maxLux`, `minUniformity`, `minPointLux` or
+    /// `minDaylightFactor`.
     pub bound: String,
     /// The limit, in `unit`.
     pub limit: f64,
-    /// `lx`, or `` for a uniformity.
+    /// `lx`, `` for a uniformity, or `DF %` for a daylight factor.
     pub unit: String,
 }
 
@@ -237,6 +241,16 @@ pub enum ResultValue {
         /// The angle, degrees, counter-clockwise about the normal.
         degrees: f64,
     },
+    /// `sunTime`: the local clock time, and the sunlight's direction then.
+    #[serde(rename = "sunTime")]
+    SunTime {
+        /// `HH:MM:SS`, local.
+        time: TimeOfDay,
+        /// Minutes after local midnight.
+        minutes: f64,
+        /// The unit vector the sunlight travels along.
+        direction: [f64; 3],
+    },
 }
 
 impl ResultValue {
@@ -265,6 +279,11 @@ impl ResultValue {
             (VariableValue::Power(value), _) => ResultValue::LightPower { value },
             (VariableValue::Scale(scale), _) => ResultValue::HoleSize { scale },
             (VariableValue::Angle(degrees), _) => ResultValue::ObjectRotation { degrees },
+            (VariableValue::Time { minutes, direction }, _) => ResultValue::SunTime {
+                time: TimeOfDay::from_minutes(minutes),
+                minutes,
+                direction: direction.to_array(),
+            },
         }
     }
 
@@ -284,6 +303,12 @@ impl ResultValue {
             ResultValue::LightPower { value } => VariableValue::Power(value),
             ResultValue::HoleSize { scale } => VariableValue::Scale(scale),
             ResultValue::ObjectRotation { degrees } => VariableValue::Angle(degrees),
+            ResultValue::SunTime {
+                minutes, direction, ..
+            } => VariableValue::Time {
+                minutes,
+                direction: DVec3::from_array(direction),
+            },
         }
     }
 }
@@ -452,17 +477,13 @@ impl ResultFile {
     pub fn table(&self, binding: &Binding) -> String {
         let level = self.confidence * 100.0;
         let goal = self.objective.words();
-        let lights_best = match (&self.objective.surface, self.objective.element.as_str()) {
-            (Some(s), "maximizeRadiance") => format!("light '{s}' best"),
-            _ => format!("give {goal}"),
-        };
+        // The verb agrees with the count; the goal's words are left alone (they may hold
+        // "light" too: "the most light of 'Desk'", "the largest daylight factor").
         let subject = |one: bool| {
-            if one {
-                lights_best
-                    .replacen("light ", "lights ", 1)
-                    .replacen("give ", "gives ", 1)
-            } else {
-                lights_best.clone()
+            let s = if one { "s" } else { "" };
+            match (&self.objective.surface, self.objective.element.as_str()) {
+                (Some(name), "maximizeRadiance") => format!("light{s} '{name}' best"),
+                _ => format!("give{s} {goal}"),
             }
         };
         let mut out = match (self.isoc.len(), self.closest.is_empty()) {
@@ -528,6 +549,9 @@ impl ResultFile {
                     ResultValue::LightAim { direction } => {
                         format!("{id} aimed along {}", v3(direction))
                     }
+                    ResultValue::SunTime {
+                        time, direction, ..
+                    } => format!("{id} at {time}, along {}", v3(direction)),
                     ResultValue::Color { value, .. } => format!("{id} V = {}", significant(value)),
                     ResultValue::LightPower { value } => {
                         format!("{id} at {} %", significant(100.0 * value))

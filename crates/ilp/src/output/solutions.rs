@@ -115,7 +115,8 @@ impl SolutionRow {
                 VariableValue::Colour { value, .. }
                 | VariableValue::Power(value)
                 | VariableValue::Scale(value)
-                | VariableValue::Angle(value) => f.push(value.to_string()),
+                | VariableValue::Angle(value)
+                | VariableValue::Time { minutes: value, .. } => f.push(value.to_string()),
             }
         }
         let goal = &self.evaluation.goal;
@@ -261,6 +262,10 @@ impl Solutions {
                             VariableKind::LightPower { .. } => VariableValue::Power(real(c)?),
                             VariableKind::HoleSize { .. } => VariableValue::Scale(real(c)?),
                             VariableKind::ObjectRotation { .. } => VariableValue::Angle(real(c)?),
+                            VariableKind::SunTime { .. } => VariableValue::Time {
+                                minutes: real(c)?,
+                                direction: DVec3::ZERO,
+                            },
                             _ => VariableValue::Colour {
                                 value: real(c)?,
                                 rgb: [0.0; 3],

@@ -14,7 +14,7 @@ mod daylight;
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
-use invlight_scene::daylight::Daylight;
+use invlight_scene::daylight::{Date, Daylight, SkyKind, SunSchedule, TimeOfDay};
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
@@ -96,6 +96,20 @@ pub enum VariableKind {
         /// Highest level.
         max: f64,
     },
+    /// `sunTime` (invlight): the time of day on `date` at the problem's `<site>`, from
+    /// `from` to `to` in whole steps of `step` minutes; the directional light `id`
+    /// stands where NREL's SPA puts the sun then (docs/daylight.md).
+    SunTime {
+        /// The local date.
+        date: Date,
+        /// The first time, minutes after local midnight.
+        from: f64,
+        /// The last time, minutes after local midnight, a whole number of steps after
+        /// `from`.
+        to: f64,
+        /// The step, minutes.
+        step: f64,
+    },
     /// `color`: the HSV value V of a material with fixed hue and saturation.
     Color {
         /// Hue, degrees.
@@ -122,6 +136,7 @@ impl VariableKind {
             VariableKind::ObjectRotation { .. } => "objectRotation",
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
+            VariableKind::SunTime { .. } => "sunTime",
         }
     }
 
@@ -224,6 +239,10 @@ pub struct Problem {
     /// `<site>`, `<sun>` and `<sky>`: the daylight [`Problem::load_scene`] puts on the
     /// scene.
     pub daylight: Daylight,
+    /// `<sunTime id days|date from to step dayStep objective="mean">`: the sun `id`
+    /// replaced by one sun per instant with 1/K of its beam, so that every light read is
+    /// the mean over the instants ([`SunSchedule::apply`]), with its line.
+    pub sun_schedule: Option<(String, SunSchedule, u32)>,
     /// Warnings: unknown elements and attributes, repaired syntax.
     pub warnings: Vec<Diagnostic>,
 }
@@ -243,6 +262,7 @@ const GOALS: &[&str] = &[
     "targetRadiance",
     "maximizeUniformity",
     "minimizePower",
+    "maximizeDaylightFactor",
 ];
 const VARIABLES: &[&str] = &[
     "objectInSurface",
@@ -254,6 +274,7 @@ const VARIABLES: &[&str] = &[
     "lightAim",
     "color",
     "lightPower",
+    "sunTime",
 ];
 const VERTEX_ATTRS: [&str; 4] = [
     "vertexAIndex",
@@ -274,10 +295,10 @@ impl Problem {
     /// unless `scale` and `up` (the command line's) say otherwise, its lights given
     /// their `<luminaire>` files (relative to the problem file) and then `luminaires`
     /// (the command line's, which thus win), and puts the file's daylight on it
-    /// ([`Problem::daylight`]; its warnings were given when the file was read). A
-    /// missing file is
-    /// named with the problem file's line: its path is relative to the problem file,
-    /// not to the current directory.
+    /// ([`Problem::daylight`]; its warnings were given when the file was read), its sun
+    /// placed at the middle of a `<sunTime>`'s range, or spread over the instants of a
+    /// `<sunTime objective="mean">` ([`Problem::sun_schedule`]). A missing file is named with the problem file's
+    /// line: its path is relative to the problem file, not to the current directory.
     pub fn load_scene(
         &self,
         base: &LoadOptions,
@@ -311,6 +332,18 @@ impl Problem {
         self.daylight
             .apply(&mut scene)
             .map_err(|e| Diagnostic::new(&self.path, format!("daylight: {e}")))?;
+        for spec in &self.variables {
+            if matches!(spec.kind, VariableKind::SunTime { .. }) {
+                crate::binding::place_sun_time(self, spec, &mut scene)
+                    .map_err(|e| Diagnostic::at_line(&self.path, spec.line, e))?;
+            }
+        }
+        if let (Some((id, schedule, line)), Some(site)) = (&self.sun_schedule, self.daylight.site) {
+            let lux = self.daylight.sun.and_then(|s| s.illuminance);
+            schedule
+                .apply(id, &site, lux, &mut scene)
+                .map_err(|e| Diagnostic::at_line(&self.path, *line, format!("<sunTime>: {e}")))?;
+        }
         Ok(scene)
     }
 
@@ -318,6 +351,19 @@ impl Problem {
     pub fn bounces(&self) -> u32 {
         self.max_bounces
             .unwrap_or(invlight_photon::DEFAULT_MAX_BOUNCES)
+    }
+
+    /// The line of the first intention that asks for a daylight factor
+    /// (`<maximizeDaylightFactor>`, `minDaylightFactor`), if one does: such a problem
+    /// is measured under the overcast sky alone ([`crate::Binding::new`]).
+    pub fn daylight_factor_line(&self) -> Option<u32> {
+        let goal = matches!(self.goal, Goal::MaximizeDaylightFactor { .. });
+        goal.then_some(self.goal_line).or_else(|| {
+            self.constraints
+                .iter()
+                .find(|c| matches!(c.bound, Bound::MinDaylightFactor(_)))
+                .map(|c| c.line)
+        })
     }
 
     /// The search settings the file asks for.
@@ -333,7 +379,9 @@ impl Problem {
                 _ => None,
             },
             sense: match self.goal {
-                Goal::Maximize { .. } | Goal::MaximizeUniformity { .. } => Sense::Maximize,
+                Goal::Maximize { .. }
+                | Goal::MaximizeUniformity { .. }
+                | Goal::MaximizeDaylightFactor { .. } => Sense::Maximize,
                 Goal::Minimize { .. } | Goal::MinimizePower => Sense::Minimize,
                 Goal::Target { lux, .. } => Sense::Target(lux),
             },
@@ -599,7 +647,18 @@ impl<'a, 'i> Reader<'a, 'i> {
             })?,
         };
         let mut variables = Vec::new();
+        let mut sun_schedule = None;
         for v in self.elements(conditions) {
+            if v.tag_name().name() == "sunTime" && v.attribute("objective").is_some() {
+                if sun_schedule.is_some() {
+                    return Err(
+                        self.error(v, "a second <sunTime objective=\"mean\">, expected one")
+                    );
+                }
+                let id = self.required(v, "id")?.to_string();
+                sun_schedule = Some((id, self.sun_schedule(v)?, self.line(v)));
+                continue;
+            }
             if let Some(spec) = self.variable(v)? {
                 // A light may be placed, dimmed and aimed: one lightInSurface, one
                 // lightPower and one lightAim of the same id; a hole placed and sized:
@@ -652,6 +711,23 @@ impl<'a, 'i> Reader<'a, 'i> {
                     "no variables in <conditions>, expected at least one",
                 )
                 .with_hint(format!("variables are: {}", VARIABLES.join(", "))));
+        }
+        // A sun by the time of day needs the place it shines on; a clear sky is drawn
+        // about one sun, and would not follow it.
+        let timed = variables
+            .iter()
+            .filter(|s| matches!(s.kind, VariableKind::SunTime { .. }))
+            .map(|s| s.line);
+        for line in timed.chain(sun_schedule.as_ref().map(|s| s.2)) {
+            let at = |msg: &str| Diagnostic::at_line(self.path, line, msg);
+            if daylight.site.is_none() {
+                return Err(at("<sunTime> moves the sun over a day at a place, and the problem has no <site>")
+                    .with_hint("add <site latitude=\"-34.9\" longitude=\"-56.2\" timezone=\"-3\"/> under <input>"));
+            }
+            if daylight.sky.is_some_and(|s| s.kind == SkyKind::CieClear) {
+                return Err(at("<sunTime> with a cie-clear <sky> is not supported: the clear sky is drawn about one sun and would not follow it")
+                    .with_hint("use the cie-overcast sky, or no sky"));
+            }
         }
 
         let objectives = only("objectives")?.ok_or_else(|| {
@@ -768,6 +844,18 @@ impl<'a, 'i> Reader<'a, 'i> {
             )
         })?;
 
+        let df = matches!(goal, Goal::MaximizeDaylightFactor { .. })
+            || constraints
+                .iter()
+                .any(|c: &Constraint| matches!(c.bound, Bound::MinDaylightFactor(_)));
+        if let (true, Some((_, _, line))) = (df, &sun_schedule) {
+            return Err(Diagnostic::at_line(
+                self.path,
+                *line,
+                "<sunTime objective=\"mean\"> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun",
+            ));
+        }
+
         Ok(Problem {
             path: self.path.to_path_buf(),
             scene,
@@ -785,6 +873,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             confidence,
             max_bounces,
             daylight,
+            sun_schedule,
             warnings: Vec::new(),
         })
     }
@@ -881,6 +970,12 @@ impl<'a, 'i> Reader<'a, 'i> {
                 self.check_attributes(o, &[]);
                 Goal::MinimizePower
             }
+            "maximizeDaylightFactor" => {
+                self.check_attributes(o, &["surface", "side"]);
+                Goal::MaximizeDaylightFactor {
+                    surface: self.surface_ref(o)?,
+                }
+            }
             _ => return Ok(None),
         };
         Ok(Some(goal))
@@ -888,19 +983,14 @@ impl<'a, 'i> Reader<'a, 'i> {
 
     /// A `<constraint>`: a surface and exactly one bound.
     fn constraint(&self, c: Node) -> Result<Constraint, Diagnostic> {
-        const BOUNDS: [&str; 4] = ["minLux", "maxLux", "minUniformity", "minPointLux"];
-        self.check_attributes(
-            c,
-            &[
-                "surface",
-                "side",
-                "grid",
-                "minLux",
-                "maxLux",
-                "minUniformity",
-                "minPointLux",
-            ],
-        );
+        const BOUNDS: [&str; 5] = [
+            "minLux",
+            "maxLux",
+            "minUniformity",
+            "minPointLux",
+            "minDaylightFactor",
+        ];
+        self.check_attributes(c, &[&["surface", "side", "grid"][..], &BOUNDS].concat());
         let given: Vec<&str> = BOUNDS
             .into_iter()
             .filter(|b| c.attribute(*b).is_some())
@@ -928,6 +1018,10 @@ impl<'a, 'i> Reader<'a, 'i> {
                 self.lux(c, "minPointLux")?.unwrap_or_default(),
                 self.grid(c)?,
             ),
+            "minDaylightFactor" => Bound::MinDaylightFactor(
+                self.unit(c, "minDaylightFactor", 0.0, 100.0)?
+                    .unwrap_or_default(),
+            ),
             _ => Bound::MinUniformity(
                 self.unit(c, "minUniformity", 0.0, 1.0)?.unwrap_or_default(),
                 self.grid(c)?,
@@ -947,6 +1041,149 @@ impl<'a, 'i> Reader<'a, 'i> {
             bound,
             line: self.line(c),
         })
+    }
+
+    /// `<sunTime id days|date from to [step] [dayStep] objective="mean">`: the instants
+    /// of [`SunSchedule`], `days="2026-01-01..2026-12-31"` (or one `date`) every
+    /// `dayStep` days (default 1), each at the times of [`Reader::sun_time`].
+    fn sun_schedule(&self, v: Node) -> Result<SunSchedule, Diagnostic> {
+        const EXAMPLE: &str = "<sunTime id=\"Sun\" days=\"2026-01-01..2026-12-31\" dayStep=\"7\" from=\"08:00\" to=\"18:00\" step=\"60\" objective=\"mean\"/>";
+        self.check_attributes(
+            v,
+            &[
+                "id",
+                "days",
+                "date",
+                "from",
+                "to",
+                "step",
+                "dayStep",
+                "objective",
+            ],
+        );
+        let objective = self.required(v, "objective")?;
+        if objective != "mean" {
+            return Err(self
+                .error(
+                    v,
+                    format!("'objective' of <sunTime> is '{objective}', expected mean"),
+                )
+                .with_hint(format!("for example {EXAMPLE}")));
+        }
+        let bad = |e| self.sun_time_error(v, e, EXAMPLE);
+        let (first, last): (Date, Date) = match (v.attribute("days"), v.attribute("date")) {
+            (Some(days), None) => {
+                let (a, b) = days.split_once("..").ok_or_else(|| {
+                    self.error(
+                        v,
+                        format!("'days' of <sunTime> is '{days}', expected FIRST..LAST"),
+                    )
+                    .with_hint(format!("for example {EXAMPLE}"))
+                })?;
+                (
+                    a.trim().parse().map_err(bad)?,
+                    b.trim().parse().map_err(bad)?,
+                )
+            }
+            (None, Some(date)) => {
+                let d: Date = date.parse().map_err(bad)?;
+                (d, d)
+            }
+            _ => {
+                return Err(self
+                    .error(
+                        v,
+                        "<sunTime objective=\"mean\"> needs 'days' or 'date', not both",
+                    )
+                    .with_hint(format!("for example {EXAMPLE}")));
+            }
+        };
+        if last < first {
+            return Err(self.error(v, format!("'days' of <sunTime> runs from {first} back to {last}, expected the first day first")));
+        }
+        let day_step = match self.number(v, "dayStep", "a whole number of days")? {
+            None => 1,
+            Some(0) => {
+                return Err(self.error(v, "'dayStep' of <sunTime> is 0, expected at least 1 day"));
+            }
+            Some(n) => n as u32,
+        };
+        let (from, to, step) = self.sun_times(v, EXAMPLE)?;
+        let schedule = SunSchedule {
+            first,
+            last,
+            day_step,
+            from,
+            to,
+            step,
+        };
+        let n = schedule.instants().len();
+        if n > 20_000 {
+            return Err(self.error(v, format!("<sunTime> has {n} instants, expected at most 20 000 (one sun each): take a longer step or dayStep")));
+        }
+        Ok(schedule)
+    }
+
+    /// `<sunTime id date from to [step]>`: the time of day as a variable, on `date`.
+    fn sun_time(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        const EXAMPLE: &str =
+            "<sunTime id=\"Sun\" date=\"2026-12-21\" from=\"08:00\" to=\"18:00\" step=\"10\"/>";
+        self.check_attributes(v, &["id", "date", "from", "to", "step"]);
+        let date: Date = self
+            .required(v, "date")?
+            .parse()
+            .map_err(|e| self.sun_time_error(v, e, EXAMPLE))?;
+        let (from, to, step) = self.sun_times(v, EXAMPLE)?;
+        Ok(VariableKind::SunTime {
+            date,
+            from,
+            to,
+            step,
+        })
+    }
+
+    /// A daylight error of `<sunTime>` `v`, with what the element looks like.
+    fn sun_time_error(
+        &self,
+        v: Node,
+        e: invlight_scene::daylight::DaylightError,
+        example: &str,
+    ) -> Diagnostic {
+        self.error(v, format!("<sunTime>: {e}"))
+            .with_hint(format!("for example {example}"))
+    }
+
+    /// A `<sunTime>`'s `from`, `to` (minutes after local midnight) and `step` (minutes,
+    /// 10 by default): whole steps from `from` to `to` within one day.
+    fn sun_times(&self, v: Node, example: &str) -> Result<(f64, f64, f64), Diagnostic> {
+        let minutes = |attr: &str| -> Result<f64, Diagnostic> {
+            let t: TimeOfDay = self
+                .required(v, attr)?
+                .parse()
+                .map_err(|e| self.sun_time_error(v, e, example))?;
+            Ok(t.seconds_of_day() / 60.0)
+        };
+        let (from, to) = (minutes("from")?, minutes("to")?);
+        let step = match self.real(v, "step", "minutes")? {
+            None => 10.0,
+            Some(s) if s > 0.0 && s <= 1440.0 => s,
+            Some(s) => {
+                return Err(self.error(
+                    v,
+                    format!("'step' of <sunTime> is {s}, expected minutes in (0, 1440]"),
+                ));
+            }
+        };
+        let steps = (to - from) / step;
+        if !(from < to && (steps - steps.round()).abs() < 1e-6) {
+            return Err(self
+                .error(
+                    v,
+                    format!("<sunTime> runs from {from} to {to} minutes after midnight in steps of {step}, expected from before to and a whole number of steps between them"),
+                )
+                .with_hint(format!("for example {example}")));
+        }
+        Ok((from, to, step))
     }
 
     fn vertices(&self, v: Node) -> Result<[usize; 4], Diagnostic> {
@@ -1010,6 +1247,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 VariableKind::HoleSize { min, max }
             }
+            "sunTime" => self.sun_time(v)?,
             "objectRotation" => {
                 self.check_attributes(v, &["id", "min", "max"]);
                 let what = "an angle in degrees";
@@ -1170,6 +1408,150 @@ mod tests {
             assert_eq!(e.line, Some(2), "{extra}: {e}");
             assert!(e.to_string().contains(what), "{extra}: {e}");
         }
+    }
+
+    /// `<sunTime>`: whole steps between two clock times of one date, at the problem's
+    /// site; mistakes name their line.
+    #[test]
+    fn sun_time_variable() {
+        let with = |site: &str, sky: &str, var: &str| {
+            parse(&format!(
+                "<input><scene path=\"s.gltf\"/>{site}{sky}\n<conditions>{var}</conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>"
+            ))
+        };
+        let site = r#"<site latitude="0" longitude="0" timezone="0"/>"#;
+        let var = r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="18:00" step="30"/>"#;
+        let p = with(site, "", var).unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        let VariableKind::SunTime {
+            date,
+            from,
+            to,
+            step,
+        } = &p.variables[0].kind
+        else {
+            panic!("{:?}", p.variables);
+        };
+        assert_eq!((date.day(), *from, *to, *step), (21, 480.0, 1080.0, 30.0));
+        let default_step = r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="09:00"/>"#;
+        let p = with(site, "", default_step).unwrap();
+        assert!(matches!(
+            p.variables[0].kind,
+            VariableKind::SunTime { step: 10.0, .. }
+        ));
+        let clear =
+            r#"<sun date="2026-12-21" time="12:00"/><sky type="cie-clear" horizontalLux="9000"/>"#;
+        let mean = r#"<color id="W" hue="0" saturation="0"/><sunTime id="Sun" days="2026-01-01..2026-12-31" dayStep="7" from="08:00" to="18:00" step="60" objective="mean"/>"#;
+        let p = with(site, "", mean).unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        assert_eq!(p.variables.len(), 1);
+        let (id, schedule, line) = p.sun_schedule.as_ref().unwrap();
+        assert_eq!((id.as_str(), *line), ("Sun", 2));
+        assert_eq!(schedule.instants().len(), 53 * 11);
+        let df = parse(&format!(
+            "<input><scene path=\"s.gltf\"/>{site}\n<conditions>{mean}</conditions><objectives><maximizeDaylightFactor surface=\"F\"/></objectives></input>"
+        ))
+        .unwrap_err();
+        assert!(df.to_string().contains("daylight-factor"), "{df}");
+        for (site, sky, var, what) in [
+            ("", "", mean, "no <site>"),
+            (site, "", &mean.replace("..", "/"), "FIRST..LAST"),
+            (
+                site,
+                "",
+                &mean.replace("\"mean\"", "\"max\""),
+                "expected mean",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("days=", "date=\"2026-01-01\" days="),
+                "not both",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("dayStep=\"7\"", "dayStep=\"0\""),
+                "dayStep",
+            ),
+            (
+                site,
+                "",
+                &mean.replace("2026-12-31", "2025-12-31"),
+                "first day first",
+            ),
+            ("", "", var, "no <site>"),
+            (site, clear, var, "cie-clear"),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="18:05" step="30"/>"#,
+                "whole number of steps",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="18:00" to="08:00"/>"#,
+                "from before to",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-02-30" from="08:00" to="09:00"/>"#,
+                "28 days",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="24:00"/>"#,
+                "24:00",
+            ),
+            (
+                site,
+                "",
+                r#"<sunTime id="Sun" date="2026-12-21" from="08:00" to="09:00" step="0"/>"#,
+                "step",
+            ),
+        ] {
+            let e = with(site, sky, var).unwrap_err();
+            assert_eq!(e.line, Some(2), "{var}: {e}");
+            assert!(e.to_string().contains(what), "{var}: {e}");
+        }
+    }
+
+    /// `<maximizeDaylightFactor>` and `minDaylightFactor` read as the goal and bound of
+    /// that name, in per cent, with the line a daylight-factor problem reports.
+    #[test]
+    fn daylight_factor_intentions() {
+        let p = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeDaylightFactor surface="Desk" side="front"/>
+<constraint surface="Floor" minDaylightFactor="2"/></objectives></input>"#,
+        )
+        .unwrap();
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        assert_eq!(p.goal.element(), "maximizeDaylightFactor");
+        assert_eq!(p.goal.unit(), "DF %");
+        assert_eq!(p.goal.surface().unwrap().side, Side::Front);
+        assert_eq!(p.settings().sense, Sense::Maximize);
+        assert_eq!(p.constraints[0].bound, Bound::MinDaylightFactor(2.0));
+        assert_eq!(p.constraints[0].label(), "Floor.minDaylightFactor");
+        assert_eq!(p.daylight_factor_line(), Some(2));
+        let lux = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeRadiance surface="Desk"/>
+<constraint surface="Floor" minDaylightFactor="2"/></objectives></input>"#,
+        )
+        .unwrap();
+        assert_eq!(lux.daylight_factor_line(), Some(3));
+        let e = parse(
+            r#"<input><scene path="s.gltf"/><conditions><holeSize id="H"/></conditions>
+<objectives><maximizeRadiance surface="Desk"/>
+<constraint surface="Floor" minDaylightFactor="120"/></objectives></input>"#,
+        )
+        .unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        assert!(e.to_string().contains("[0, 100]"), "{e}");
     }
 
     #[test]

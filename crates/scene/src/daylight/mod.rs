@@ -42,7 +42,8 @@ mod sun;
 mod time;
 
 pub use setting::{
-    DAYLIGHT_FACTOR_LUX, Daylight, SUN_NAME, SkySpec, SunAt, daylight_factor_scene, set_sun,
+    DAYLIGHT_FACTOR_LUX, Daylight, DaylightFlags, SUN_NAME, SkySpec, SunAt, SunSchedule,
+    daylight_factor_scene, set_sun,
 };
 pub use site::{Compass, Site};
 pub use sky::{Sky, SkyKind, SkySample};
@@ -100,6 +101,8 @@ pub enum DaylightError {
     },
     /// A sun by date and time was given without the site it shines on.
     NeedsSite,
+    /// A north was given without a site to turn.
+    NorthNeedsSite,
     /// A clear sky was asked for a scene without a sun to place it by.
     NeedsSun,
     /// The scene has several directional lights and none is named [`SUN_NAME`].
@@ -131,6 +134,9 @@ impl fmt::Display for DaylightError {
             DaylightError::Format { text, expected } => write!(f, "'{text}': expected {expected}"),
             DaylightError::NeedsSite => f.write_str(
                 "a sun by date and time needs the site it shines on: give a <site> or --site LAT,LON,TZ",
+            ),
+            DaylightError::NorthNeedsSite => f.write_str(
+                "--north turns a site's north, and there is none: give --site LAT,LON,TZ or a problem's <site>",
             ),
             DaylightError::NeedsSun => f.write_str(
                 "the CIE clear sky is drawn about the sun, and the scene has none: give a sun by date and time (<sun>, --sun) or a directional light",

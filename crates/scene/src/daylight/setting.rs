@@ -101,6 +101,41 @@ impl FromStr for SkySpec {
     }
 }
 
+/// The command line's daylight ([`Daylight::flags`]): a [`Daylight`] and the `--north`
+/// that turns its site, or the problem's.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DaylightFlags {
+    /// `--site`, `--sun` and `--sky`.
+    pub daylight: Daylight,
+    /// `--north`: degrees clockwise seen from above from the scene's default north to
+    /// true north ([`Site::with_north`]).
+    pub north: Option<f64>,
+}
+
+impl DaylightFlags {
+    /// Puts these flags on a scene that already has `base` on it (a problem file's
+    /// daylight, or none for a scene file): each part given replaces `base`'s and the
+    /// parts not given are `base`'s, so that `--sun` alone moves a problem's sun at its
+    /// own `<site>`, and `--north` turns whichever site there is. Nothing is done when
+    /// no flag is given (the scene keeps what it has). Returns [`Daylight::apply`]'s
+    /// warnings.
+    pub fn over(
+        &self,
+        base: Option<&Daylight>,
+        scene: &mut Scene,
+    ) -> Result<Vec<String>, DaylightError> {
+        if self.daylight.is_empty() && self.north.is_none() {
+            return Ok(Vec::new());
+        }
+        let mut daylight = self.daylight.or(&base.copied().unwrap_or_default());
+        if let Some(north) = self.north {
+            let site = daylight.site.ok_or(DaylightError::NorthNeedsSite)?;
+            daylight.site = Some(site.with_north(north)?);
+        }
+        daylight.apply(scene)
+    }
+}
+
 /// Daylight to put on a scene; each part is optional.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Daylight {
@@ -126,7 +161,29 @@ impl Site {
     }
 }
 
+impl FromStr for Site {
+    type Err = DaylightError;
+
+    /// Reads `LAT,LON,TZ` ([`Site::parse_triple`]), as the command line's `--site` gives it.
+    fn from_str(text: &str) -> Result<Site, DaylightError> {
+        Site::parse_triple(text)
+    }
+}
+
 impl Daylight {
+    /// The command line's daylight: `--site`, `--north`, `--sun` and `--sky`.
+    pub fn flags(
+        site: Option<Site>,
+        north: Option<f64>,
+        sun: Option<SunAt>,
+        sky: Option<SkySpec>,
+    ) -> DaylightFlags {
+        DaylightFlags {
+            daylight: Daylight { site, sun, sky },
+            north,
+        }
+    }
+
     /// Whether it says nothing.
     pub fn is_empty(&self) -> bool {
         self.site.is_none() && self.sun.is_none() && self.sky.is_none()
@@ -231,6 +288,92 @@ fn sun_light(scene: &Scene) -> Result<Option<usize>, DaylightError> {
     }
 }
 
+/// The sun at every step of a set of days and hours, for the mean of their light: a
+/// problem's `<sunTime days objective="mean">`. Illuminance is linear in the light, so
+/// the mean over K instants is what K suns give together, each with 1/K of its beam
+/// then; one trace measures it, with its interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunSchedule {
+    /// The first day.
+    pub first: Date,
+    /// The last day (included when a whole number of `day_step`s after `first`).
+    pub last: Date,
+    /// Days from one day to the next (1: every day; 7: one day a week).
+    pub day_step: u32,
+    /// The first time of each day, minutes after local midnight.
+    pub from: f64,
+    /// The last time, minutes after local midnight.
+    pub to: f64,
+    /// Minutes from one time to the next.
+    pub step: f64,
+}
+
+impl SunSchedule {
+    /// Every instant: each day from `first` to `last` by `day_step`, each time from
+    /// `from` to `to` by `step`.
+    pub fn instants(&self) -> Vec<(Date, TimeOfDay)> {
+        let times = ((self.to - self.from) / self.step).round() as usize + 1;
+        let (a, b) = (self.first.days_since_1970(), self.last.days_since_1970());
+        (a..=b)
+            .step_by(self.day_step.max(1) as usize)
+            .flat_map(|d| {
+                (0..times).map(move |k| {
+                    let minutes = self.from + k as f64 * self.step;
+                    (
+                        Date::from_days_since_1970(d),
+                        TimeOfDay::from_minutes(minutes),
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// Replaces the scene's sun (the directional light `id`, else its only one or the
+    /// one named [`SUN_NAME`]) by one directional light per instant the sun is up at
+    /// `site`, each with 1/K of its beam (`lux`, or IES RP-21's
+    /// clear-sky beam then), K every instant, night ones included: the scene's light is
+    /// then the mean over the instants. Returns K and how many had the sun up.
+    pub fn apply(
+        &self,
+        id: &str,
+        site: &Site,
+        lux: Option<f64>,
+        scene: &mut Scene,
+    ) -> Result<(usize, usize), DaylightError> {
+        let named = (0..scene.lights.len()).find(|&l| {
+            scene.lights[l].name == id
+                && matches!(scene.lights[l].kind, LightKind::Directional { .. })
+        });
+        let sun = match named {
+            Some(l) => Some(l),
+            None => sun_light(scene)?,
+        };
+        if let Some(l) = sun {
+            scene.lights.remove(l);
+        }
+        let compass = site.compass(scene.up)?;
+        let instants = self.instants();
+        let k = instants.len();
+        let mut up = 0;
+        for (date, time) in &instants {
+            let sun = SunPosition::new(site, date, time, &SunOptions::default())?;
+            if !sun.is_up() {
+                continue;
+            }
+            up += 1;
+            let beam = lux.unwrap_or_else(|| sun.clear_sky_direct_normal());
+            scene.lights.push(Light {
+                name: format!("{SUN_NAME} {date} {time}"),
+                kind: LightKind::Directional {
+                    direction: sun.travel(&compass),
+                    illuminance: Vec3::splat((beam / k as f64) as f32),
+                },
+            });
+        }
+        Ok((k, up))
+    }
+}
+
 /// Sets the scene's sun (its only directional light, or the one named [`SUN_NAME`]
 /// among several; added when there is none) to travel along the unit `direction` with
 /// `lux` of white light.
@@ -305,6 +448,61 @@ mod tests {
         assert_eq!(site.longitude(), -56.2);
         assert!(Site::parse_triple("-34.9,-56.2").is_err());
         assert!(Site::parse_triple("-94,0,0").is_err());
+        assert_eq!(
+            "-34.9,-56.2,-3".parse::<Site>(),
+            Site::parse_triple("-34.9,-56.2,-3")
+        );
+    }
+
+    /// The command line's parts replace a problem's and take the rest from it: `--sun`
+    /// alone shines at the problem's site; no flag leaves the scene alone.
+    #[test]
+    fn flags_go_over_a_problems_daylight() {
+        let base = Daylight {
+            site: Some(Site::new(-34.9, -56.2, -3.0).unwrap()),
+            sun: Some("2025-12-21,10:00".parse().unwrap()),
+            sky: None,
+        };
+        let mut scene = Scene::default();
+        base.apply(&mut scene).unwrap();
+        let before = scene.clone();
+        let none = Daylight::flags(None, None, None, None);
+        assert!(none.over(Some(&base), &mut scene).unwrap().is_empty());
+        assert_eq!(scene, before);
+        let travel = |scene: &Scene| match scene.lights[..] {
+            [
+                Light {
+                    kind: LightKind::Directional { direction, .. },
+                    ..
+                },
+            ] => direction,
+            _ => panic!("{:?}", scene.lights),
+        };
+        let afternoon =
+            Daylight::flags(None, None, Some("2025-12-21,16:00".parse().unwrap()), None);
+        afternoon.over(Some(&base), &mut scene).unwrap();
+        // The afternoon sun stands in the west (−X of a Y-up scene): its light travels east.
+        let east = travel(&scene);
+        assert!(east.x > 0.5, "{east}");
+        // North turned 90° clockwise onto +X puts east on +Z and west on −Z: the light
+        // travels +Z, each vector turned with the compass.
+        let turned = DaylightFlags {
+            north: Some(90.0),
+            ..afternoon
+        };
+        turned.over(Some(&base), &mut scene).unwrap();
+        let d = travel(&scene);
+        assert!(
+            (d - Vec3::new(-east.z, east.y, east.x)).length() < 1e-5,
+            "{d} {east}"
+        );
+        let e = afternoon.over(None, &mut Scene::default());
+        assert_eq!(e, Err(DaylightError::NeedsSite));
+        let north_alone = Daylight::flags(None, Some(10.0), None, None);
+        let e = north_alone.over(None, &mut Scene::default()).unwrap_err();
+        assert!(e.to_string().contains("--site"), "{e}");
+        let bad = Daylight::flags(base.site, Some(f64::NAN), None, None);
+        assert!(bad.over(None, &mut Scene::default()).is_err());
     }
 
     /// A sun is added to a scene without one, set on its only directional light, and
@@ -359,6 +557,39 @@ mod tests {
         let warnings = night.apply(&mut scene).unwrap();
         assert!(warnings[0].contains("below the horizon"), "{warnings:?}");
         assert_eq!(scene.lights[0].kind.flux(), Vec3::ZERO);
+    }
+
+    /// One day a week over four weeks, three hours a day; the suns carry 1/K of the beam
+    /// and the night's instants none.
+    #[test]
+    fn a_schedule_is_the_mean_of_its_suns() {
+        let s = SunSchedule {
+            first: "2026-03-02".parse().unwrap(),
+            last: "2026-03-23".parse().unwrap(),
+            day_step: 7,
+            from: 5.0 * 60.0,
+            to: 7.0 * 60.0,
+            step: 60.0,
+        };
+        let instants = s.instants();
+        assert_eq!(instants.len(), 12);
+        assert_eq!(instants[3].0.to_string(), "2026-03-09");
+        assert_eq!(instants[3].1.to_string(), "05:00:00");
+        assert_eq!(instants[11].1.to_string(), "07:00:00");
+        let mut scene = Scene::default();
+        set_sun(&mut scene, -Vec3::Y, 1.0).unwrap();
+        // On the equator at 05:00 the sun is down, at 06:00 (about) rising, at 07:00 up.
+        let site = Site::new(0.0, 0.0, 0.0).unwrap();
+        let (k, up) = s.apply(SUN_NAME, &site, Some(1200.0), &mut scene).unwrap();
+        assert_eq!(k, 12);
+        assert_eq!(scene.lights.len(), up);
+        assert!((4..=8).contains(&up), "{up}");
+        for l in &scene.lights {
+            let LightKind::Directional { illuminance, .. } = l.kind else {
+                panic!("{l:?}");
+            };
+            assert_eq!(illuminance, Vec3::splat(100.0), "{l:?}");
+        }
     }
 
     #[test]

@@ -277,3 +277,39 @@ impl SunReport {
         })
     }
 }
+
+impl std::fmt::Display for SunReport {
+    /// `invlight sun`'s text: the astronomer's angles first, then what a scene takes.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (s, p) = (&self.site, &self.position);
+        let [x, y, z] = self.direction;
+        writeln!(
+            f,
+            "site       {}°, {}° (UTC{:+}), {} m; north turned {}°",
+            s.latitude(),
+            s.longitude(),
+            s.timezone(),
+            s.elevation(),
+            s.north()
+        )?;
+        writeln!(f, "when       {} {} local time", self.date, self.time)?;
+        let refraction = p.zenith_unrefracted - p.zenith;
+        writeln!(
+            f,
+            "zenith     {:.5}° (refraction {refraction:.5}°)",
+            p.zenith
+        )?;
+        writeln!(f, "azimuth    {:.5}° clockwise from north", p.azimuth)?;
+        writeln!(f, "altitude   {:.5}°", self.altitude)?;
+        let [ux, uy, uz] = self.up;
+        writeln!(
+            f,
+            "direction  ({x:.5}, {y:.5}, {z:.5}): the light's travel in a scene with up ({ux}, {uy}, {uz})"
+        )?;
+        writeln!(
+            f,
+            "beam       {:.0} lx direct normal (IES RP-21-84 clear sky)",
+            self.direct_normal_illuminance
+        )
+    }
+}

@@ -7,7 +7,7 @@
 //! calendar before 1582-10-15; no building problem reaches back that far.
 
 use super::DaylightError;
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
 
@@ -118,6 +118,22 @@ impl Date {
         let day_of_year = (153 * ((m + 9) % 12) + 2) / 5 + d - 1;
         let day_of_era = year_of_era * 365 + year_of_era / 4 - year_of_era / 100 + day_of_year;
         era * 146_097 + day_of_era - 719_468
+    }
+
+    /// The date `days` after 1970-01-01 (before it when negative): the inverse of
+    /// [`Date::days_since_1970`], H. Hinnant's `civil_from_days` (same paper).
+    pub fn from_days_since_1970(days: i64) -> Date {
+        let z = days + 719_468;
+        let era = z.div_euclid(146_097);
+        let day_of_era = z - era * 146_097;
+        let year_of_era =
+            (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+        let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+        let mp = (5 * day_of_year + 2) / 153;
+        let day = (day_of_year - (153 * mp + 2) / 5 + 1) as u32;
+        let month = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+        let year = (year_of_era + era * 400 + (month <= 2) as i64) as i32;
+        Date { year, month, day }
     }
 }
 
@@ -289,6 +305,27 @@ impl Serialize for TimeOfDay {
     }
 }
 
+impl<'de> Deserialize<'de> for TimeOfDay {
+    /// As [`TimeOfDay`]'s `FromStr` reads it, so that what is written reads back.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<TimeOfDay, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+impl TimeOfDay {
+    /// The clock time `minutes` after midnight, to the nearest second (held within the
+    /// day: 00:00:00 to 23:59:59).
+    pub fn from_minutes(minutes: f64) -> TimeOfDay {
+        let s = (minutes * 60.0).round().clamp(0.0, 86_399.0) as u32;
+        TimeOfDay {
+            hour: s / 3600,
+            minute: s / 60 % 60,
+            second: (s % 60) as f64,
+        }
+    }
+}
+
 /// The Julian day (UT) of local clock time `time` on `date` at `timezone` hours east of
 /// Greenwich: days since noon UT of 1 January 4713 BC (Julian calendar), the time scale
 /// of SPA's step 3.1.1 (Reda & Andreas 2004, eq. 4). 1970-01-01 00:00 UT is
@@ -303,6 +340,42 @@ pub fn julian_day(date: &Date, time: &TimeOfDay, timezone: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A clock time from minutes (a `sunTime`'s steps) rounds to the second and stays in
+    /// the day; what is serialised reads back.
+    #[test]
+    fn dates_from_day_counts() {
+        for text in [
+            "1970-01-01",
+            "2000-02-29",
+            "2026-12-31",
+            "1900-03-01",
+            "1969-12-31",
+        ] {
+            let d: Date = text.parse().unwrap();
+            assert_eq!(Date::from_days_since_1970(d.days_since_1970()), d, "{text}");
+        }
+        let mut d: Date = "2023-12-30".parse().unwrap();
+        for _ in 0..800 {
+            let next = Date::from_days_since_1970(d.days_since_1970() + 1);
+            assert!(next > d && Date::new(next.year(), next.month(), next.day()).is_ok());
+            d = next;
+        }
+        assert_eq!(d.to_string(), "2026-03-09");
+    }
+
+    #[test]
+    fn times_from_minutes_and_back_from_json() {
+        let t = TimeOfDay::from_minutes(530.25);
+        assert_eq!(t.to_string(), "08:50:15");
+        assert_eq!(TimeOfDay::from_minutes(-3.0).to_string(), "00:00:00");
+        assert_eq!(TimeOfDay::from_minutes(1440.0).to_string(), "23:59:59");
+        let json = serde_json::to_string(&t).unwrap();
+        assert_eq!(json, "\"08:50:15\"");
+        assert_eq!(serde_json::from_str::<TimeOfDay>(&json).unwrap(), t);
+        let e = serde_json::from_str::<TimeOfDay>("\"24:00\"").unwrap_err();
+        assert!(e.to_string().contains("24:00"), "{e}");
+    }
 
     fn date_problem(text: &str) -> String {
         match text.parse::<Date>() {

@@ -1,6 +1,7 @@
-//! Progress on stderr: a bar drawn only when stderr is a terminal, so that logs and
-//! pipes stay clean, and — terminal or not — one warning when the work under way will
-//! take more than an hour ([`invlight_stats::Pace`]).
+//! Progress on stderr for the command line: a bar drawn only when stderr is a terminal,
+//! so that logs and pipes stay clean, and — terminal or not — one warning when the work
+//! under way will take more than an hour ([`invlight_stats::Pace`]). It lives here,
+//! beside the other things made for people to look at, so that the CLI only wires.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use invlight_stats::Pace;
@@ -51,6 +52,19 @@ impl Progress {
     /// A message after the counts.
     pub fn message(&self, msg: String) {
         self.bar.set_message(msg);
+    }
+
+    /// Shows what a solve's [`invlight_ilp::Recorder`] tells: the best member after the
+    /// counts, the candidate reached, and the first candidate refused as a warning.
+    pub fn show(&self, told: invlight_ilp::Progress<'_>) {
+        use invlight_ilp::Progress as Told;
+        match told {
+            Told::Best(line) => self.message(line),
+            Told::Iteration(i) => self.set(i),
+            Told::FirstRefusal(i, why) => eprintln!(
+                "warning: candidate {i} is not traced: {why} (and so is any other that leaves it; their count comes at the end)"
+            ),
+        }
     }
 
     /// Removes the bar.
