@@ -21,6 +21,12 @@
 //! relief plaque, the Cornell box's short block), as a placed object is small beside
 //! the room.
 //!
+//! `--only TEXT` measures only the `Accel` variants whose label holds TEXT: for instruction
+//! counts of one variant under callgrind, e.g.
+//! `RAYON_NUM_THREADS=1 valgrind --tool=callgrind --toggle-collect='*intersect_avx2*'
+//! target/release/examples/raybench /tmp/scenes/sponza.obj 200000 --only movable`
+//! (6 calls per ray: 3 passes on one thread, 3 on the pool).
+//!
 //! `--dump DIR` writes the world-space triangles (`tris.f32`, 9 floats each), the rays
 //! (`rays.f32`: origin and direction, 6 floats each) and `Accel`'s closest-hit distance
 //! per ray (`t.f32`, +∞ for a miss), little-endian, for `benches/embree_raybench.py`,
@@ -259,6 +265,7 @@ fn main() -> Result<(), String> {
     };
     let dump_dir = option("--dump")?;
     let movable_name = option("--movable")?;
+    let only = option("--only")?;
     let arg = args.first().cloned().unwrap_or_else(|| "cornell".into());
     let path = if arg == "cornell" { CORNELL } else { &arg };
     let n: usize = args
@@ -337,6 +344,9 @@ fn main() -> Result<(), String> {
         ("instances baked (with_movable)", &per_group, Some(&[][..])),
         (&one_movable_label[..], &per_group, Some(&one_movable[..])),
     ] {
+        if only.as_deref().is_some_and(|o| !label.contains(o)) {
+            continue;
+        }
         let start = Instant::now();
         let accel = match bake {
             Some(movable) => Accel::with_movable(scene, movable),

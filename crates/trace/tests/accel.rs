@@ -234,6 +234,30 @@ fn merged_static_instances_match_brute_force_and_move() {
     }
 }
 
+/// One movable instance (the search's usual case: the merged tree of the static rest,
+/// then that instance alone, without a top-level node) and none (the merged tree
+/// alone), moved and not, on every preset.
+#[test]
+fn one_or_no_movable_instance_matches_brute_force() {
+    for preset in BuildPreset::ALL {
+        for movable in [&[3][..], &[]] {
+            let mut rng = Rng::new(11);
+            let mut scene = random_scene(&mut rng);
+            let movable: Vec<InstanceId> =
+                movable.iter().map(|&i| InstanceId::from_index(i)).collect();
+            let mut accel = Accel::with_preset(&scene, Some(&movable), preset);
+            assert_eq!(accel.stats().instances, 1 + movable.len());
+            check_against_brute_force(&accel, preset, &scene, &mut rng, 1500);
+            scene.instances[3].transform = Mat4::from_rotation_translation(
+                Quat::from_rotation_y(0.4),
+                Vec3::new(-0.2, 0.3, 0.1),
+            ) * scene.instances[3].transform;
+            accel.update_instances(&scene);
+            check_against_brute_force(&accel, preset, &scene, &mut rng, 1500);
+        }
+    }
+}
+
 fn quad_scene(corners: [Vec3; 4], transform: Mat4) -> Scene {
     let mut scene = Scene::default();
     let mat = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));

@@ -114,8 +114,12 @@ pub struct Accel {
     movable: Option<Vec<InstanceId>>,
     baked: Vec<Option<Mat4>>,
     placed: Vec<Placed>,
+    /// The top level over the separate instances, and its entries in leaf order.
     tlas: Vec<CwBvhNode>,
     items: Vec<TlasItem>,
+    /// With [`Accel::with_movable`]: the entry of the merged BVH of the static instances,
+    /// which rays walk before the top level rather than through it.
+    merged: Option<TlasItem>,
     holes: Vec<HoleVolume>,
     stats: AccelStats,
     /// How both levels are built, now and at every rebuild.
