@@ -19,6 +19,24 @@ impl Accel {
         self.closest::<wide::Portable>(ray)
     }
 
+    /// [`Accel::intersect`] for a visibility test that needs the closest hit only when
+    /// nothing lies before `block`: the first hit found nearer than `block` ends the
+    /// traversal and is returned, though a nearer one may exist; otherwise the closest
+    /// hit, as `intersect` finds it.
+    ///
+    /// A connection (`photon::Targets::connect`) counts when its ray's closest hit is
+    /// the target, within a slack of the drawn point: a hit before the slack decides
+    /// that it is hidden, as any hit decides a shadow ray, and the rays that do reach
+    /// their target cost what `intersect` costs.
+    pub fn intersect_unless_blocked(&self, ray: &Ray, block: f32) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `intersect`.
+            return unsafe { self.intersect_unless_blocked_avx2(ray, block) };
+        }
+        self.closest_unless::<wide::Portable>(ray, block)
+    }
+
     /// Whether anything outside the holes blocks the ray before `ray.t_max`.
     pub fn occluded(&self, ray: &Ray) -> bool {
         #[cfg(target_arch = "x86_64")]
@@ -44,6 +62,13 @@ impl Accel {
         self.closest::<wide::Avx2>(ray)
     }
 
+    /// `intersect_unless_blocked` compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn intersect_unless_blocked_avx2(&self, ray: &Ray, block: f32) -> Option<Hit> {
+        self.closest_unless::<wide::Avx2>(ray, block)
+    }
+
     /// `occluded` compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
@@ -53,13 +78,18 @@ impl Accel {
 
     #[inline(always)]
     fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
+        self.closest_unless::<T>(ray, f32::NEG_INFINITY)
+    }
+
+    #[inline(always)]
+    fn closest_unless<T: NodeTest>(&self, ray: &Ray, block: f32) -> Option<Hit> {
         let mut best = None;
         self.trace::<T, _>(
             ray,
             #[inline(always)]
             |hit| {
                 best = Some(hit);
-                false
+                hit.t < block
             },
         );
         best
