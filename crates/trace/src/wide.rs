@@ -233,30 +233,8 @@ fn hits_avx2(node: &CwBvhNode, ray: &NodeRay, t_max: f32) -> u32 {
         ),
         _mm256_set1_ps(t_max),
     );
-    let hit = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far));
-    child_mask_avx2(node, ray, hit)
-}
-
-/// [`child_mask`] for all eight children at once: each child's bits shifted by its own
-/// index in one variable shift, kept where the box test passed, OR-ed together. The
-/// loop over hit children costs a branch per child, which random rays mispredict; this
-/// costs none.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline]
-fn child_mask_avx2(node: &CwBvhNode, ray: &NodeRay, hit: std::arch::x86_64::__m256i) -> u32 {
-    use std::arch::x86_64::*;
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(ray.oct_inv4);
-    let bits = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(child_bits8 as i64));
-    let index = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(bit_index8 as i64));
-    let lanes = _mm256_and_si256(_mm256_sllv_epi32(bits, index), hit);
-    let x = _mm_or_si128(
-        _mm256_castsi256_si128(lanes),
-        _mm256_extracti128_si256::<1>(lanes),
-    );
-    let x = _mm_or_si128(x, _mm_shuffle_epi32::<0b01_00_11_10>(x));
-    let x = _mm_or_si128(x, _mm_shuffle_epi32::<0b10_11_00_01>(x));
-    _mm_cvtsi128_si32(x) as u32
+    let hit = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far)) as u32;
+    child_mask(node, ray, hit)
 }
 
 /// Asks the cache for the line holding `p` (a hint: any address is allowed).
