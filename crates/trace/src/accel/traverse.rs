@@ -1,6 +1,7 @@
-//! Closest hit and any hit: one traversal core walks the top level and, for each
-//! instance a ray enters, that instance's bottom level; the two queries differ only in
-//! what they do with a hit.
+//! Closest hit, closest hit unless blocked, and any hit: one traversal core walks the
+//! merged tree of the static instances, the top level and, for each instance a ray
+//! enters, that instance's bottom level; the queries differ only in what they do with a
+//! hit.
 
 use super::{Accel, TlasItem};
 use crate::ray::{Hit, Ray};
@@ -114,11 +115,11 @@ impl Accel {
     /// nearer than every earlier accepted one (the ray is shortened to it) and returns
     /// `true` to stop.
     ///
-    /// The static scene first, as its own tree: a search with one movable object then
-    /// pays the top level's cost only for the rays that reach that object's box before
-    /// the static hit, where as one more top-level entry the merged tree cost every ray
-    /// the top level's node and the movable instance's walk with an unshortened ray
-    /// (BENCHMARKS.md, "Ray casting").
+    /// The static scene first, as its own tree rather than one more top-level entry
+    /// (which would cost every ray a top-level node and could walk a movable instance
+    /// before the static hit shortened the ray): a search with one movable object then
+    /// pays for it only with the rays that reach its box before the static hit
+    /// (BENCHMARKS.md, "Engine speed").
     ///
     /// Every closure on this path is `#[inline(always)]`: a closure does not inherit the
     /// target features of the function it is inlined into, so one left out of line
@@ -259,8 +260,9 @@ mod tests {
     use invlight_scene::{Mat4, Material, Mesh, Quat, Scene};
 
     /// The AVX2 and portable node tests must agree hit for hit, on the tree of every
-    /// build preset, instanced and with one instance movable (the public functions take the AVX2 path wherever the CPU allows, so
-    /// the portable one is checked here).
+    /// build preset, instanced and with one instance movable, for every query (the
+    /// public functions take the AVX2 path wherever the CPU allows, so the portable one
+    /// is checked here).
     #[test]
     fn portable_and_avx2_traversals_agree() {
         let mut scene = Scene::default();
@@ -298,6 +300,12 @@ mod tests {
                 let ray = Ray::new(origin, dir);
                 let portable = accel.closest::<wide::Portable>(&ray);
                 assert_eq!(accel.intersect(&ray), portable, "{preset:?} {movable:?}");
+                let block = 2.0 * next().abs();
+                assert_eq!(
+                    accel.intersect_unless_blocked(&ray, block),
+                    accel.closest_unless::<wide::Portable>(&ray, block),
+                    "{preset:?} {movable:?}"
+                );
                 let any = accel.any::<wide::Portable>(&ray);
                 assert_eq!(accel.occluded(&ray), any, "{preset:?} {movable:?}");
                 hits += portable.is_some() as usize;
