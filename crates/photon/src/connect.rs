@@ -332,9 +332,14 @@ impl Targets {
             dir: d / dist,
             t_max: dist + slack,
         };
-        let reached = accel.intersect(&ray).is_some_and(|hit| {
-            (hit.t - dist).abs() <= slack && shape.instances.binary_search(&hit.instance).is_ok()
-        });
+        // A hit before dist − slack hides y whether or not it is the closest, so the
+        // traversal may stop at the first one it meets.
+        let reached = accel
+            .intersect_unless_blocked(&ray, dist - slack)
+            .is_some_and(|hit| {
+                (hit.t - dist).abs() <= slack
+                    && shape.instances.binary_search(&hit.instance).is_ok()
+            });
         let lumens = if reached {
             (from.lumens * weight / from.survival * q / (1.0 + q)) as f64
         } else {

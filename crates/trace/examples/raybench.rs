@@ -7,18 +7,37 @@
 //! cargo run --release -p invlight-trace --example raybench -- /tmp/scenes/sponza.obj
 //! cargo run --release -p invlight-trace --example raybench -- cornell
 //! cargo run --release -p invlight-trace --example raybench -- /work/shared/scenes/ilpsolver/cornell.dae
+//! cargo run --release -p invlight-trace --example raybench -- /tmp/scenes/sponza.obj 1000000 --dump /tmp/rb
+//! python3 benches/embree_raybench.py /tmp/rb
 //! ```
 //!
 //! Rays start uniformly in the scene's bounding box with uniform directions (fixed seed).
 //! Every figure of one run is measured on the same rays, so ratios between variants are
 //! meaningful on a noisy shared machine even when absolute rates drift.
+//!
+//! "one instance movable" is what a search with one movable object builds
+//! (`Accel::with_movable` with that instance): the instance `--movable NAME` names, or
+//! else the one with the smallest box among those of at least 12 triangles, or of the
+//! most any has (Sponza's relief plaque, the Cornell box's short block), as a placed
+//! object is small beside the room.
+//!
+//! `--only TEXT` measures only the `Accel` variants whose label holds TEXT: for instruction
+//! counts of one variant under callgrind, e.g.
+//! `RAYON_NUM_THREADS=1 valgrind --tool=callgrind --toggle-collect='*intersect_avx2*'
+//! target/release/examples/raybench /tmp/scenes/sponza.obj 200000 --only movable`
+//! (6 calls per ray: 3 passes on one thread, 3 on the pool).
+//!
+//! `--dump DIR` writes the world-space triangles (`tris.f32`, 9 floats each), the rays
+//! (`rays.f32`: origin and direction, 6 floats each) and `Accel`'s closest-hit distance
+//! per ray (`t.f32`, +∞ for a miss), little-endian, for `benches/embree_raybench.py`,
+//! which traces the same rays with Embree.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
 use common::Rng;
 use glam::{Mat4, Vec3, Vec3A};
-use invlight_scene::{Material, MaterialId, Mesh, Scene};
+use invlight_scene::{InstanceId, Material, MaterialId, Mesh, Scene};
 use invlight_trace::{Accel, Ray};
 use obvhs::{
     BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris, ray::RayHit, triangle::Triangle,
@@ -197,11 +216,66 @@ fn report(label: &str, (single, parallel, hits): (f64, f64, usize), base: f64, n
     );
 }
 
+/// `values` as little-endian `f32`s into `dir/name`.
+fn dump(dir: &str, name: &str, values: impl Iterator<Item = f32>) -> Result<(), String> {
+    let bytes: Vec<u8> = values.flat_map(f32::to_le_bytes).collect();
+    let path = std::path::Path::new(dir).join(name);
+    std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The instance `name` names, or the one with the smallest world box among those of at
+/// least 12 triangles (or as many as the largest has, when none has 12).
+fn movable_of(scene: &Scene, name: Option<&str>) -> Result<usize, String> {
+    if let Some(name) = name {
+        return scene
+            .instances
+            .iter()
+            .position(|i| i.name == name)
+            .ok_or_else(|| format!("--movable: no instance named '{name}'"));
+    }
+    let diagonal = |i: &invlight_scene::Instance| {
+        let mesh = &scene.meshes[i.mesh];
+        let (lo, hi) = mesh.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), &p| {
+                let p = i.transform.transform_point3(p);
+                (lo.min(p), hi.max(p))
+            },
+        );
+        (hi - lo).length()
+    };
+    let triangles = |i: usize| scene.meshes[scene.instances[i].mesh].triangles.len();
+    let least = (0..scene.instances.len())
+        .map(triangles)
+        .max()
+        .unwrap_or(0)
+        .min(12);
+    (0..scene.instances.len())
+        .filter(|&i| triangles(i) >= least.max(1))
+        .min_by(|&a, &b| diagonal(&scene.instances[a]).total_cmp(&diagonal(&scene.instances[b])))
+        .ok_or_else(|| "no instance of 12 triangles or more to move".into())
+}
+
 fn main() -> Result<(), String> {
-    let arg = std::env::args().nth(1).unwrap_or_else(|| "cornell".into());
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut option = |flag: &str| -> Result<Option<String>, String> {
+        let Some(at) = args.iter().position(|a| a == flag) else {
+            return Ok(None);
+        };
+        if at + 1 >= args.len() {
+            return Err(format!("{flag} needs a value"));
+        }
+        let value = args.remove(at + 1);
+        args.remove(at);
+        Ok(Some(value))
+    };
+    let dump_dir = option("--dump")?;
+    let movable_name = option("--movable")?;
+    let only = option("--only")?;
+    let arg = args.first().cloned().unwrap_or_else(|| "cornell".into());
     let path = if arg == "cornell" { CORNELL } else { &arg };
-    let n: usize = std::env::args()
-        .nth(2)
+    let n: usize = args
+        .get(1)
         .map_or(Ok(1_000_000), |s| s.parse())
         .map_err(|_| "bad ray count")?;
     // OBJ files through the minimal reader above (positions only, a group per
@@ -261,16 +335,28 @@ fn main() -> Result<(), String> {
     });
     report("obvhs flat: ray_traverse_miss (any hit)", occl, base.0, n);
 
+    let movable = movable_of(&per_group, movable_name.as_deref())?;
+    let moved = &per_group.instances[movable];
+    println!(
+        "movable instance: '{}', {} triangles",
+        moved.name,
+        per_group.meshes[moved.mesh].triangles.len()
+    );
+    let one_movable = [InstanceId::from_index(movable)];
+    let one_movable_label = format!("instance '{}' movable", moved.name);
     for (label, scene, bake) in [
-        ("one mesh", &merged, false),
-        ("instances as in the file", &per_group, false),
-        ("instances baked (with_movable)", &per_group, true),
+        ("one mesh", &merged, None),
+        ("instances as in the file", &per_group, None),
+        ("instances baked (with_movable)", &per_group, Some(&[][..])),
+        (&one_movable_label[..], &per_group, Some(&one_movable[..])),
     ] {
+        if only.as_deref().is_some_and(|o| !label.contains(o)) {
+            continue;
+        }
         let start = Instant::now();
-        let accel = if bake {
-            Accel::with_movable(scene, &[])
-        } else {
-            Accel::new(scene)
+        let accel = match bake {
+            Some(movable) => Accel::with_movable(scene, movable),
+            None => Accel::new(scene),
         };
         let build = start.elapsed().as_secs_f64();
         let s = accel.stats();
@@ -303,6 +389,31 @@ fn main() -> Result<(), String> {
             base.0,
             n,
         );
+        if let Some(dir) = dump_dir.as_deref()
+            && label == "one mesh"
+        {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
+            dump(
+                dir,
+                "tris.f32",
+                tris.iter()
+                    .flat_map(|t| [t.v0, t.v1, t.v2])
+                    .flat_map(|p| p.to_array()),
+            )?;
+            dump(
+                dir,
+                "rays.f32",
+                rays.iter()
+                    .flat_map(|r| [r.origin, r.dir])
+                    .flat_map(|p| p.to_array()),
+            )?;
+            dump(
+                dir,
+                "t.f32",
+                rays.iter()
+                    .map(|r| accel.intersect(r).map_or(f32::INFINITY, |h| h.t)),
+            )?;
+        }
     }
     Ok(())
 }

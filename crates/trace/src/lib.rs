@@ -10,6 +10,9 @@
 //! - [`Accel::with_movable`] bakes every instance the caller will not move into one
 //!   world-space BVH and keeps only the movable ones as instances: many overlapping
 //!   static instances otherwise cost a third of the ray rate (BENCHMARKS.md, "Ray casting").
+//!   Rays walk the baked tree first and the movable instances' small top level after it,
+//!   so they pay for a movable object only where they reach its box before the static
+//!   hit (BENCHMARKS.md, "Engine speed").
 //! - [`Accel::with_preset`] chooses the builder's effort among obvhs's presets
 //!   ([`BuildPreset`]); the others build obvhs's medium preset, and traversal gives the
 //!   same hits on every tree.

@@ -121,7 +121,8 @@ fn splits(preset: BuildPreset) -> bool {
 
 /// Compares `accel` (built with `preset`) with brute force on `n` random rays (half of
 /// them bounded): the closest hit's instance, triangle and distance, the point its
-/// barycentrics give, and the any-hit answer.
+/// barycentrics give, the any-hit answer, and `intersect_unless_blocked` blocked before
+/// and beyond the closest hit.
 fn check_against_brute_force(
     accel: &Accel,
     preset: BuildPreset,
@@ -154,10 +155,31 @@ fn check_against_brute_force(
             "{preset:?}, ray {i}: {ray:?}"
         );
         match (got, reference.first()) {
-            (None, None) => {}
+            (None, None) => assert_eq!(accel.intersect_unless_blocked(&ray, ray.t_max), None),
             (Some(h), Some(&(t, inst, tri, _))) => {
                 hits += 1;
                 assert_eq!((h.instance, h.triangle), (inst, tri), "{preset:?}, ray {i}");
+                // Blocked only beyond the closest hit: that hit, as `intersect` finds it.
+                assert_eq!(
+                    accel.intersect_unless_blocked(&ray, h.t * 0.5),
+                    Some(h),
+                    "{preset:?}, ray {i}"
+                );
+                // Blocked before the farthest hit: some hit before the block, one of
+                // those brute force finds.
+                let last = reference.last().expect("a hit").0;
+                let far = (last + 2.0 * T_TOL * last.max(1.0)) as f32;
+                let b = accel
+                    .intersect_unless_blocked(&ray, far)
+                    .expect("a blocking hit");
+                assert!(
+                    b.t < far
+                        && reference
+                            .iter()
+                            .any(|r| (r.1, r.2) == (b.instance, b.triangle)
+                                && (b.t as f64 - r.0).abs() <= T_TOL * r.0.max(1.0)),
+                    "{preset:?}, ray {i}: {b:?} not among {reference:?}"
+                );
                 assert!(
                     (h.t as f64 - t).abs() <= T_TOL * t.max(1.0),
                     "{preset:?}, ray {i}: {} vs {t}",
@@ -231,6 +253,30 @@ fn merged_static_instances_match_brute_force_and_move() {
         scene.instances[0].transform = Mat4::from_rotation_z(1.0) * scene.instances[0].transform;
         accel.update_instances(&scene);
         check_against_brute_force(&accel, preset, &scene, &mut rng, 1000);
+    }
+}
+
+/// One movable instance (the search's usual case: the merged tree of the static rest,
+/// then that instance alone, without a top-level node) and none (the merged tree
+/// alone), moved and not, on every preset.
+#[test]
+fn one_or_no_movable_instance_matches_brute_force() {
+    for preset in BuildPreset::ALL {
+        for movable in [&[3][..], &[]] {
+            let mut rng = Rng::new(11);
+            let mut scene = random_scene(&mut rng);
+            let movable: Vec<InstanceId> =
+                movable.iter().map(|&i| InstanceId::from_index(i)).collect();
+            let mut accel = Accel::with_preset(&scene, Some(&movable), preset);
+            assert_eq!(accel.stats().instances, 1 + movable.len());
+            check_against_brute_force(&accel, preset, &scene, &mut rng, 1500);
+            scene.instances[3].transform = Mat4::from_rotation_translation(
+                Quat::from_rotation_y(0.4),
+                Vec3::new(-0.2, 0.3, 0.1),
+            ) * scene.instances[3].transform;
+            accel.update_instances(&scene);
+            check_against_brute_force(&accel, preset, &scene, &mut rng, 1500);
+        }
     }
 }
 

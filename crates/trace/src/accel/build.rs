@@ -186,6 +186,7 @@ impl Accel {
             placed: Vec::new(),
             tlas: Vec::new(),
             items: Vec::new(),
+            merged: None,
             holes: Vec::new(),
             stats,
             preset,
@@ -266,12 +267,17 @@ impl Accel {
                 });
             }
         }
+        // The merged BVH of the static instances stays out of the top level: every ray
+        // walks it first, and the movable instances' small tree after it, with the
+        // distance the static scene left (see `Accel::trace`).
+        let mut merged_box = None;
+        self.merged = None;
         if self.movable.is_some()
             && let Some(merged) = self.blas.last()
             && let Some((lo, hi)) = merged.bounds
         {
-            boxes.push(Aabb::new(lo.into(), hi.into()));
-            candidates.push(TlasItem {
+            merged_box = Some(Aabb::new(lo.into(), hi.into()));
+            self.merged = Some(TlasItem {
                 object_from_world: Affine3A::IDENTITY,
                 identity: true,
                 blas: (self.blas.len() - 1) as u32,
@@ -294,6 +300,7 @@ impl Accel {
         // this runs at every move).
         let diagonal = boxes
             .iter()
+            .chain(&merged_box)
             .fold(Aabb::empty(), |all, b| all.union(b))
             .diagonal()
             .length();
@@ -311,13 +318,13 @@ impl Accel {
             })
             .collect();
 
-        self.stats.instances = self.items.len();
+        self.stats.instances = self.items.len() + self.merged.is_some() as usize;
         self.stats.holes = self.holes.len();
         self.stats.tlas_nodes = self.tlas.len();
         self.stats.tlas_seconds = start.elapsed().as_secs_f64();
         self.stats.bytes = (self.stats.blas_nodes + self.stats.tlas_nodes) * size_of::<CwBvhNode>()
             + self.stats.triangles * size_of::<Tri>()
-            + self.items.len() * size_of::<TlasItem>();
+            + self.stats.instances * size_of::<TlasItem>();
     }
 }
 

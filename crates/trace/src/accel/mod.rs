@@ -7,8 +7,9 @@
 //!   what a build costs in memory.
 //! - `tree`: one compressed 8-wide BVH over a list of boxes: obvhs's builder, and the
 //!   groups of coincident boxes built apart from it.
-//! - `traverse`: closest hit and any hit, through the top level's loop over instances
-//!   into each bottom level, with AVX2 where the CPU has it.
+//! - `traverse`: closest hit and any hit, through the merged BVH of the static
+//!   instances, then the top level's loop over instances into each bottom level, with
+//!   AVX2 where the CPU has it.
 //! - `interaction`: the surface at a hit, read from the scene's mesh.
 //!
 //! The hole volumes are `crate::holes`, the node test and the loop over a tree
@@ -34,8 +35,8 @@ pub struct AccelStats {
     /// Bottom-level BVHs: one per mesh a separate instance uses, plus the merged one of
     /// [`Accel::with_movable`].
     pub meshes: usize,
-    /// Entries of the top level: separate instances (holes and empty meshes are not)
-    /// and the merged BVH.
+    /// Trees a ray may enter below the top level: separate instances (holes and empty
+    /// meshes are not) and the merged BVH, which rays walk before the top level.
     pub instances: usize,
     /// Hole volumes.
     pub holes: usize,
@@ -45,7 +46,7 @@ pub struct AccelStats {
     pub triangles: usize,
     /// Bottom-level nodes (80 bytes each).
     pub blas_nodes: usize,
-    /// Top-level nodes.
+    /// Top-level nodes (over the separate instances only).
     pub tlas_nodes: usize,
     /// Deepest bottom-level tree, in nodes.
     pub max_depth: u32,
@@ -70,7 +71,8 @@ struct Blas {
     instances: Vec<InstanceId>,
 }
 
-/// An instance as the top level stores it.
+/// A tree a ray enters and how: an instance as the top level stores it, or the merged
+/// BVH of the static instances.
 #[derive(Debug, Clone, Copy)]
 struct TlasItem {
     object_from_world: Affine3A,
@@ -82,7 +84,7 @@ struct TlasItem {
     instance: InstanceId,
 }
 
-/// The top-level entry of the merged BVH of static instances stands for no one instance.
+/// The entry of the merged BVH of static instances stands for no one instance.
 const MERGED: InstanceId = InstanceId::from_index(u32::MAX as usize);
 
 /// Each scene instance's transforms.
@@ -114,8 +116,12 @@ pub struct Accel {
     movable: Option<Vec<InstanceId>>,
     baked: Vec<Option<Mat4>>,
     placed: Vec<Placed>,
+    /// The top level over the separate instances, and its entries in leaf order.
     tlas: Vec<CwBvhNode>,
     items: Vec<TlasItem>,
+    /// With [`Accel::with_movable`]: the entry of the merged BVH of the static instances,
+    /// which rays walk before the top level rather than through it.
+    merged: Option<TlasItem>,
     holes: Vec<HoleVolume>,
     stats: AccelStats,
     /// How both levels are built, now and at every rebuild.

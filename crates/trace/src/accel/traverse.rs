@@ -1,8 +1,9 @@
-//! Closest hit and any hit: one traversal core walks the top level and, for each
-//! instance a ray enters, that instance's bottom level; the two queries differ only in
-//! what they do with a hit.
+//! Closest hit, closest hit unless blocked, and any hit: one traversal core walks the
+//! merged tree of the static instances, the top level and, for each instance a ray
+//! enters, that instance's bottom level; the queries differ only in what they do with a
+//! hit.
 
-use super::Accel;
+use super::{Accel, TlasItem};
 use crate::ray::{Hit, Ray};
 use crate::triangle::TriRay;
 use crate::wide::{self, NodeRay, NodeTest};
@@ -17,6 +18,24 @@ impl Accel {
             return unsafe { self.intersect_avx2(ray) };
         }
         self.closest::<wide::Portable>(ray)
+    }
+
+    /// [`Accel::intersect`] for a visibility test that needs the closest hit only when
+    /// nothing lies before `block`: the first hit found nearer than `block` ends the
+    /// traversal and is returned, though a nearer one may exist; otherwise the closest
+    /// hit, as `intersect` finds it.
+    ///
+    /// A connection (`photon::Targets::connect`) counts when its ray's closest hit is
+    /// the target, within a slack of the drawn point: a hit before the slack decides
+    /// that it is hidden, as any hit decides a shadow ray, and the rays that do reach
+    /// their target cost what `intersect` costs.
+    pub fn intersect_unless_blocked(&self, ray: &Ray, block: f32) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `intersect`.
+            return unsafe { self.intersect_unless_blocked_avx2(ray, block) };
+        }
+        self.closest_unless::<wide::Portable>(ray, block)
     }
 
     /// Whether anything outside the holes blocks the ray before `ray.t_max`.
@@ -44,6 +63,13 @@ impl Accel {
         self.closest::<wide::Avx2>(ray)
     }
 
+    /// `intersect_unless_blocked` compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn intersect_unless_blocked_avx2(&self, ray: &Ray, block: f32) -> Option<Hit> {
+        self.closest_unless::<wide::Avx2>(ray, block)
+    }
+
     /// `occluded` compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
@@ -53,13 +79,18 @@ impl Accel {
 
     #[inline(always)]
     fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
+        self.closest_unless::<T>(ray, f32::NEG_INFINITY)
+    }
+
+    #[inline(always)]
+    fn closest_unless<T: NodeTest>(&self, ray: &Ray, block: f32) -> Option<Hit> {
         let mut best = None;
         self.trace::<T, _>(
             ray,
             #[inline(always)]
             |hit| {
                 best = Some(hit);
-                false
+                hit.t < block
             },
         );
         best
@@ -79,8 +110,16 @@ impl Accel {
         blocked
     }
 
-    /// Walks both levels; `accept` receives each hit nearer than every earlier accepted
-    /// one (the ray is shortened to it) and returns `true` to stop.
+    /// Walks the merged BVH of the static instances, if any, then the top level and,
+    /// for each instance a ray enters, its bottom level; `accept` receives each hit
+    /// nearer than every earlier accepted one (the ray is shortened to it) and returns
+    /// `true` to stop.
+    ///
+    /// The static scene first, as its own tree rather than one more top-level entry
+    /// (which would cost every ray a top-level node and could walk a movable instance
+    /// before the static hit shortened the ray): a search with one movable object then
+    /// pays for it only with the rays that reach its box before the static hit
+    /// (BENCHMARKS.md, "Engine speed").
     ///
     /// Every closure on this path is `#[inline(always)]`: a closure does not inherit the
     /// target features of the function it is inlined into, so one left out of line
@@ -90,33 +129,41 @@ impl Accel {
     fn trace<T: NodeTest, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
         let world = WorldRay::new(ray);
         let mut t_max = ray.t_max;
-        if self.items.len() == 1 {
-            // A single entry (one instance, or everything baked): its own root test
-            // suffices.
-            self.trace_instance::<T, F>(0, &world, &mut t_max, &mut accept);
-        } else {
-            wide::traverse::<T, _, _>(
+        if let Some(merged) = &self.merged
+            && self.trace_instance::<T, F>(merged, &world, &mut t_max, &mut accept)
+        {
+            return;
+        }
+        match self.items.len() {
+            0 => {}
+            // A single entry: its own root test suffices.
+            1 => {
+                self.trace_instance::<T, F>(&self.items[0], &world, &mut t_max, &mut accept);
+            }
+            _ => wide::traverse::<T, _, _>(
                 &self.tlas,
                 &self.items,
                 &world.node,
                 &mut t_max,
                 #[inline(always)]
-                |slot, t_max| self.trace_instance::<T, F>(slot, &world, t_max, &mut accept),
-            );
+                |slot, t_max| {
+                    let item = &self.items[slot as usize];
+                    self.trace_instance::<T, F>(item, &world, t_max, &mut accept)
+                },
+            ),
         }
     }
 
-    /// Walks the bottom level of the top level's entry `slot`; returns `true` when
+    /// Walks the bottom level of the top-level entry `item`; returns `true` when
     /// `accept` asked to stop.
     #[inline(always)]
     fn trace_instance<T: NodeTest, F: FnMut(Hit) -> bool>(
         &self,
-        slot: u32,
+        item: &TlasItem,
         world: &WorldRay,
         t_max: &mut f32,
         accept: &mut F,
     ) -> bool {
-        let item = &self.items[slot as usize];
         let blas = &self.blas[item.blas as usize];
         let holes = &self.holes[..];
         let (origin, dir) = (world.origin, world.dir);
@@ -213,8 +260,9 @@ mod tests {
     use invlight_scene::{Mat4, Material, Mesh, Quat, Scene};
 
     /// The AVX2 and portable node tests must agree hit for hit, on the tree of every
-    /// build preset (the public functions take the AVX2 path wherever the CPU allows, so
-    /// the portable one is checked here).
+    /// build preset, instanced and with one instance movable, for every query (the
+    /// public functions take the AVX2 path wherever the CPU allows, so the portable one
+    /// is checked here).
     #[test]
     fn portable_and_avx2_traversals_agree() {
         let mut scene = Scene::default();
@@ -238,18 +286,28 @@ mod tests {
         let id = scene.add_mesh(mesh);
         scene.add_instance("a", id, Mat4::IDENTITY);
         let rot = Mat4::from_rotation_translation(Quat::from_rotation_z(0.7), Vec3::X);
-        scene.add_instance("b", id, rot);
-        for preset in BuildPreset::ALL {
-            let accel = Accel::with_preset(&scene, None, preset);
+        let b = scene.add_instance("b", id, rot);
+        let movable = [b];
+        for (preset, movable) in BuildPreset::ALL
+            .into_iter()
+            .flat_map(|p| [(p, None), (p, Some(&movable[..]))])
+        {
+            let accel = Accel::with_preset(&scene, movable, preset);
             let mut hits = 0;
             for _ in 0..5000 {
                 let origin = Vec3::new(next(), next(), next()) * 5.0;
                 let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
                 let ray = Ray::new(origin, dir);
                 let portable = accel.closest::<wide::Portable>(&ray);
-                assert_eq!(accel.intersect(&ray), portable, "{preset:?}");
+                assert_eq!(accel.intersect(&ray), portable, "{preset:?} {movable:?}");
+                let block = 2.0 * next().abs();
+                assert_eq!(
+                    accel.intersect_unless_blocked(&ray, block),
+                    accel.closest_unless::<wide::Portable>(&ray, block),
+                    "{preset:?} {movable:?}"
+                );
                 let any = accel.any::<wide::Portable>(&ray);
-                assert_eq!(accel.occluded(&ray), any, "{preset:?}");
+                assert_eq!(accel.occluded(&ray), any, "{preset:?} {movable:?}");
                 hits += portable.is_some() as usize;
             }
             assert!(hits > 500, "{preset:?}: {hits} hits");
