@@ -9,7 +9,8 @@
 
 use crate::cells::{CellTallies, GridMeasurement};
 use crate::channels::{Components, Side, SurfaceTallies, channel, side_weights};
-use crate::chunks::{TraceSettings, trace_chunks};
+use crate::chunks::TraceSettings;
+use crate::cluster::{Cluster, Pack, cluster, trace_shared};
 use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
 use crate::estimator::{GROUP, photons_traced};
@@ -304,6 +305,28 @@ impl PathVisitor for ChunkTally<'_> {
     }
 }
 
+impl Pack for ChunkTally<'_> {
+    fn pack(&self, out: &mut Vec<u64>) {
+        self.surfaces.pack(out);
+        self.cells.iter().for_each(|c| c.sums.pack(out));
+        out.extend([self.escaped.to_bits(), self.connection_rays]);
+    }
+
+    fn unpack(&mut self, mut words: &mut dyn Iterator<Item = u64>) {
+        self.surfaces.unpack(&mut words);
+        self.cells
+            .iter_mut()
+            .for_each(|c| c.sums.unpack(&mut words));
+        let mut next = || {
+            words
+                .next()
+                .expect("a packed chunk's escaped flux and rays")
+        };
+        self.escaped = f64::from_bits(next());
+        self.connection_rays = next();
+    }
+}
+
 /// Traces `settings.photons` photons, rounded up to whole stratified groups
 /// ([`photons_traced`]; [`Measurement::photons`] says how many), from the lights of
 /// `scene` and tallies what they bring to the surfaces `targets`, every light together
@@ -333,7 +356,8 @@ pub fn measure(
 }
 
 /// [`measure`] with the lights kept apart by component, each target's front and back
-/// apart, and the grids of `request` read cell by cell.
+/// apart, and the grids of `request` read cell by cell; shared by the processes of this
+/// process's [`cluster`] (alone unless it joined one).
 ///
 /// # Panics
 /// As [`measure`]; and if a grid's target is not one of the request's surfaces.
@@ -343,6 +367,22 @@ pub fn measure_with(
     request: &Request,
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Measurement {
+    measure_across(scene, accel, request, settings, progress, cluster())
+}
+
+/// [`measure_with`] shared by the processes of `cluster` ([`trace_shared`]): the same
+/// measurement, bit for bit, on every process, whatever K.
+///
+/// # Panics
+/// As [`measure_with`].
+pub fn measure_across(
+    scene: &Scene,
+    accel: &Accel,
+    request: &Request,
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    cluster: &dyn Cluster,
 ) -> Measurement {
     let settings = &TraceSettings {
         photons: photons_traced(settings.photons).expect("a photon count that fits in u64"),
@@ -394,7 +434,7 @@ pub fn measure_with(
         escaped: 0.0,
         flux,
     };
-    result.rays = trace_chunks(
+    result.rays = trace_shared(
         scene,
         accel,
         &emitters,
@@ -421,6 +461,7 @@ pub fn measure_with(
             result.connection_rays += part.connection_rays;
         },
         progress,
+        cluster,
     );
     result
 }
