@@ -12,6 +12,7 @@ use invlight_photon::{DEFAULT_MAX_BOUNCES, Side, TraceSettings, photons_traced};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
 use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
+pub use invlight_scene::{finite, positive};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
 use std::path::{Path, PathBuf};
@@ -59,30 +60,6 @@ pub fn side() -> impl TypedValueParser<Value = Side> {
         "back" => Side::Back,
         _ => Side::Both,
     })
-}
-
-/// A positive finite number, as a flag's value parser.
-pub fn positive<T: std::str::FromStr + PartialOrd + Default + Copy + Into<f64>>(
-    s: &str,
-) -> Result<T, String> {
-    match s.parse::<T>() {
-        Ok(x) if x > T::default() && x.into().is_finite() => Ok(x),
-        _ => Err(format!("'{s}' is not a positive number")),
-    }
-}
-
-/// A finite number, as a flag's value parser.
-pub fn finite(s: &str) -> Result<f32, String> {
-    match s.parse::<f32>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("'{s}' is not a finite number")),
-    }
-}
-
-/// A confidence level, as a flag's value parser.
-fn confidence(s: &str) -> Result<Confidence, String> {
-    let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-    Confidence::new(c).map_err(|e| e.to_string())
 }
 
 impl LoadArgs {
@@ -157,7 +134,7 @@ pub struct TraceArgs {
     pub max_bounces: Option<u32>,
     /// Confidence level of the intervals and comparisons, in (0, 1) [default: 0.95,
     /// solve the problem's `confidence`].
-    #[arg(long, value_name = "C", value_parser = confidence)]
+    #[arg(long, value_name = "C")]
     pub confidence: Option<Confidence>,
     /// Worker threads [default: one per core].
     #[arg(long, short = 'j', value_name = "T")]

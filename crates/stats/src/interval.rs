@@ -56,6 +56,16 @@ impl Confidence {
     }
 }
 
+/// A level as a flag gives it, `0.95`: the value of `--confidence`.
+impl std::str::FromStr for Confidence {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Confidence, String> {
+        let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+        Confidence::new(c).map_err(|e| e.to_string())
+    }
+}
+
 impl Default for Confidence {
     fn default() -> Self {
         Confidence::DEFAULT
