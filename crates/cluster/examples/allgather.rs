@@ -7,7 +7,7 @@
 //! Prints, on rank 0, one line per size: words per rank, microseconds per exchange.
 
 use invlight_cluster::Job;
-use invlight_photon::{Cluster, cluster, leads};
+use invlight_photon::{cluster, leads};
 use std::time::Instant;
 
 fn main() {
