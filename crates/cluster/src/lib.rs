@@ -8,7 +8,7 @@
 //! - [`Local`]: K ranks as threads of one process, exchanging through memory, to check
 //!   the split against one process without MPI (tests) and to count what an exchange
 //!   moves.
-//! - [`Job`] (feature `mpi`): the MPI job this process was started in (`mpirun`,
+//! - `Job` (feature `mpi`): the MPI job this process was started in (`mpirun`,
 //!   `srun`), exchanging by `MPI_Allgatherv`; followers quiet, a failure on any rank
 //!   named and ending the job (`MPI_Abort`).
 //!
