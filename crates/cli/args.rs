@@ -12,6 +12,7 @@ use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
 use invlight_scene::daylight::{Daylight, Site, SkySpec, SunAt};
 use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
+pub use invlight_scene::{finite, positive};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
 use std::path::{Path, PathBuf};
@@ -59,24 +60,6 @@ pub struct LoadArgs {
     /// KIND:LUX: a CIE sky (cie-overcast, cie-clear) giving LUX on an open horizontal plane.
     #[arg(long, value_name = "KIND:LUX")]
     pub sky: Option<SkySpec>,
-}
-
-/// A positive finite number, as a flag's value parser.
-pub fn positive<T: std::str::FromStr + PartialOrd + Default + Copy + Into<f64>>(
-    s: &str,
-) -> Result<T, String> {
-    match s.parse::<T>() {
-        Ok(x) if x > T::default() && x.into().is_finite() => Ok(x),
-        _ => Err(format!("'{s}' is not a positive number")),
-    }
-}
-
-/// A finite number, as a flag's value parser.
-pub fn finite(s: &str) -> Result<f32, String> {
-    match s.parse::<f32>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("'{s}' is not a finite number")),
-    }
 }
 
 impl LoadArgs {

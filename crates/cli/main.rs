@@ -105,6 +105,17 @@ pub fn is_input(err: &anyhow::Error) -> bool {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Every rank of an MPI job runs this program; rank 0 alone prints and writes, and
+    // only measure, solve and map share their traces (docs/cluster.md).
+    #[cfg(feature = "mpi")]
+    let job = invlight_cluster::Job::join();
+    let shared = matches!(
+        cli.command,
+        Command::Measure(_) | Command::Solve(_) | Command::Map(_)
+    );
+    if !(shared || invlight_photon::leads()) {
+        return ExitCode::SUCCESS;
+    }
     let result = match cli.command {
         Command::Measure(args) => measure::run(args),
         Command::Scene(args) => scene::run(args),
@@ -124,8 +135,12 @@ fn main() -> ExitCode {
             if broken_pipe {
                 return ExitCode::SUCCESS;
             }
+            let code = if is_input(&err) { 2 } else { 1 };
+            #[cfg(feature = "mpi")]
+            job.fail(&format!("error: {err:#}"), code.into());
+            #[cfg(not(feature = "mpi"))]
             eprintln!("error: {err:#}");
-            ExitCode::from(if is_input(&err) { 2 } else { 1 })
+            ExitCode::from(code)
         }
     }
 }

@@ -82,6 +82,9 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))
         .map_err(bad)?;
     bar.finish();
+    if !invlight_photon::leads() {
+        return Ok(ExitCode::SUCCESS);
+    }
     crate::warn(map.warning(&args.surface));
     let seconds = start.elapsed().as_secs_f64();
     let report = map.report(&args.surface, &settings, confidence, seconds);

@@ -126,6 +126,9 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let outcome = pool
         .install(|| search.run(&mut eval, &mut reporter))
         .with_context(|| format!("writing to {}", dir.display()))?;
+    if !invlight_photon::leads() {
+        return Ok(ExitCode::SUCCESS);
+    }
     bar.finish();
     reporter.output.set_stopped(outcome);
     reporter

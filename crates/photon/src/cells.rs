@@ -68,6 +68,27 @@ impl CellSums {
         self.total.merge(&other.total);
     }
 
+    /// Appends the sums to `out` (a chunk's, for a shared trace, [`crate::Pack`]).
+    pub(crate) fn pack(&self, out: &mut Vec<u64>) {
+        let reals = self.sum.iter().chain(&self.cross).chain(&self.with_total);
+        out.extend(reals.map(|x| x.to_bits()));
+        out.extend(&self.hits);
+        self.total.pack(out);
+    }
+
+    /// Reads back what [`CellSums::pack`] wrote, into sums of the same grid.
+    pub(crate) fn unpack(&mut self, words: &mut impl Iterator<Item = u64>) {
+        let mut next = || words.next().expect("packed sums of as many cells");
+        let reals = self.sum.iter_mut().chain(&mut self.cross);
+        for x in reals.chain(&mut self.with_total) {
+            *x = f64::from_bits(next());
+        }
+        for h in &mut self.hits {
+            *h = next();
+        }
+        self.total.unpack(words);
+    }
+
     /// Σ_g w·x_g of cell `i`.
     fn total_of(&self, i: usize, w: &[f64]) -> f64 {
         let k = self.components;

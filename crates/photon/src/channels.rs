@@ -243,6 +243,26 @@ impl SurfaceTallies {
         }
     }
 
+    /// Appends what [`SurfaceTallies::add_to`] and the kept groups hand on to `out`
+    /// (a chunk's, for a shared trace, [`crate::Pack`]).
+    pub(crate) fn pack(&self, out: &mut Vec<u64>) {
+        self.sums.iter().for_each(|s| s.pack(out));
+        out.extend(&self.hits);
+        out.push(self.groups.len() as u64);
+        out.extend(self.groups.iter().map(|x| x.to_bits()));
+    }
+
+    /// Reads back what [`SurfaceTallies::pack`] wrote, into tallies of the same targets.
+    pub(crate) fn unpack(&mut self, words: &mut impl Iterator<Item = u64>) {
+        self.sums.iter_mut().for_each(|s| s.unpack(words));
+        let mut next = || words.next().expect("packed tallies of as many targets");
+        for h in &mut self.hits {
+            *h = next();
+        }
+        let kept = next() as usize;
+        self.groups = (0..kept).map(|_| f64::from_bits(next())).collect();
+    }
+
     /// Bytes held, for sizing the blocks of chunks traced at a time.
     pub(crate) fn bytes(&self) -> usize {
         let per = self.channels * (self.channels + 5) / 2;

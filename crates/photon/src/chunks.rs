@@ -115,31 +115,11 @@ pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
         let parts: Vec<(V, u64)> = (block_start..block_end)
             .into_par_iter()
             .map(|chunk| {
-                let first = chunk * CHUNK;
-                let last = (first + CHUNK).min(settings.photons);
                 let mut visitor = new_visitor();
-                let mut chunk_rays = 0;
-                // A chunk starts a group: CHUNK is a multiple of GROUP.
-                let mut keys = GroupKeys::new(settings.seed, first / GROUP);
-                for i in first..last {
-                    if i % GROUP == 0 && i != first {
-                        keys = GroupKeys::new(settings.seed, i / GROUP);
-                    }
-                    let mut sampler = Sampler::new(&keys, settings.seed, i);
-                    chunk_rays += trace_photon(
-                        scene,
-                        accel,
-                        emitters,
-                        &mut sampler,
-                        settings.max_bounces,
-                        &mut visitor,
-                    );
-                    if (i + 1).is_multiple_of(GROUP) || i + 1 == last {
-                        visitor.end_group();
-                    }
-                }
+                let (chunk_rays, photons) =
+                    trace_chunk(scene, accel, emitters, settings, chunk, &mut visitor);
                 if let Some(report) = progress {
-                    report(done.fetch_add(last - first, Ordering::Relaxed) + (last - first));
+                    report(done.fetch_add(photons, Ordering::Relaxed) + photons);
                 }
                 (visitor, chunk_rays)
             })
@@ -151,4 +131,40 @@ pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
         block_start = block_end;
     }
     rays
+}
+
+/// Traces chunk `chunk` of a trace with `settings` into `visitor`: its photons in index
+/// order, [`PathVisitor::end_group`] after each group. Returns the rays cast and the
+/// photons traced.
+pub(crate) fn trace_chunk<V: PathVisitor>(
+    scene: &Scene,
+    accel: &Accel,
+    emitters: &Emitters,
+    settings: &TraceSettings,
+    chunk: u64,
+    visitor: &mut V,
+) -> (u64, u64) {
+    let first = chunk * CHUNK;
+    let last = (first + CHUNK).min(settings.photons);
+    let mut rays = 0;
+    // A chunk starts a group: CHUNK is a multiple of GROUP.
+    let mut keys = GroupKeys::new(settings.seed, first / GROUP);
+    for i in first..last {
+        if i % GROUP == 0 && i != first {
+            keys = GroupKeys::new(settings.seed, i / GROUP);
+        }
+        let mut sampler = Sampler::new(&keys, settings.seed, i);
+        rays += trace_photon(
+            scene,
+            accel,
+            emitters,
+            &mut sampler,
+            settings.max_bounces,
+            visitor,
+        );
+        if (i + 1).is_multiple_of(GROUP) || i + 1 == last {
+            visitor.end_group();
+        }
+    }
+    (rays, last - first)
 }

@@ -17,6 +17,9 @@
 //! - [`trace_chunks`] is the parallel driver of every trace: chunks of photons, each with
 //!   its own visitor, folded in index order, so results are bit-identical for any thread
 //!   count ([`Sampler`] streams are keyed by seed and photon index).
+//! - [`trace_shared`] splits a trace's chunks among the processes of a [`Cluster`]
+//!   (issue 16) and folds them in the same order on each: [`measure_with`] gives the
+//!   same bits on one process or many.
 //!
 //! ```
 //! use invlight_photon::{Estimator, TraceSettings, measure};
@@ -51,6 +54,7 @@
 mod cells;
 mod channels;
 mod chunks;
+mod cluster;
 mod connect;
 mod emit;
 mod estimator;
@@ -63,13 +67,14 @@ mod sampling;
 pub use cells::{GridMeasurement, Uniformity};
 pub use channels::{Components, Side};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
+pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shared};
 pub use connect::{Connection, Departure, Lobe, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
 pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
 pub use measure::{
     DaylightFactor, Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport,
-    behind_warning, measure, measure_more, measure_with, much_from_behind,
+    behind_warning, measure, measure_across, measure_more, measure_with, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use sampler::{GroupKeys, Sampler};

@@ -9,7 +9,8 @@
 
 use crate::cells::{CellTallies, GridMeasurement};
 use crate::channels::{Components, Side, SurfaceTallies, channel, side_weights};
-use crate::chunks::{CHUNK, TraceSettings, trace_chunks_from};
+use crate::chunks::{CHUNK, TraceSettings};
+use crate::cluster::{Cluster, Pack, cluster, trace_shared_from};
 use crate::connect::{Departure, Targets};
 use crate::emit::Emitters;
 use crate::estimator::{GROUP, photons_traced};
@@ -324,6 +325,28 @@ impl PathVisitor for ChunkTally<'_> {
     }
 }
 
+impl Pack for ChunkTally<'_> {
+    fn pack(&self, out: &mut Vec<u64>) {
+        self.surfaces.pack(out);
+        self.cells.iter().for_each(|c| c.sums.pack(out));
+        out.extend([self.escaped.to_bits(), self.connection_rays]);
+    }
+
+    fn unpack(&mut self, mut words: &mut dyn Iterator<Item = u64>) {
+        self.surfaces.unpack(&mut words);
+        self.cells
+            .iter_mut()
+            .for_each(|c| c.sums.unpack(&mut words));
+        let mut next = || {
+            words
+                .next()
+                .expect("a packed chunk's escaped flux and rays")
+        };
+        self.escaped = f64::from_bits(next());
+        self.connection_rays = next();
+    }
+}
+
 /// Traces `settings.photons` photons, rounded up to whole stratified groups
 /// ([`photons_traced`]; [`Measurement::photons`] says how many), from the lights of
 /// `scene` and tallies what they bring to the surfaces `targets`, every light together
@@ -353,7 +376,8 @@ pub fn measure(
 }
 
 /// [`measure`] with the lights kept apart by component, each target's front and back
-/// apart, and the grids of `request` read cell by cell.
+/// apart, and the grids of `request` read cell by cell; shared by the processes of this
+/// process's [`cluster`] (alone unless it joined one).
 ///
 /// # Panics
 /// As [`measure`]; and if a grid's target is not one of the request's surfaces.
@@ -364,7 +388,23 @@ pub fn measure_with(
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Measurement {
-    trace_into(scene, accel, request, settings, progress, None)
+    measure_across(scene, accel, request, settings, progress, cluster())
+}
+
+/// [`measure_with`] shared by the processes of `cluster` ([`trace_shared`](crate::trace_shared)): the same
+/// measurement, bit for bit, on every process, whatever K.
+///
+/// # Panics
+/// As [`measure_with`].
+pub fn measure_across(
+    scene: &Scene,
+    accel: &Accel,
+    request: &Request,
+    settings: &TraceSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    cluster: &dyn Cluster,
+) -> Measurement {
+    trace_into(scene, accel, request, settings, progress, None, cluster)
 }
 
 /// [`measure_with`] of `settings.photons` photons continued from `previous`, a
@@ -402,7 +442,15 @@ pub fn measure_more(
             )]
                 .to_vec();
             state.rays = previous.rays;
-            trace_into(scene, accel, request, settings, progress, Some(state))
+            trace_into(
+                scene,
+                accel,
+                request,
+                settings,
+                progress,
+                Some(state),
+                cluster(),
+            )
         }
         _ => measure_with(scene, accel, request, settings, progress),
     }
@@ -417,6 +465,7 @@ fn trace_into(
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
     from: Option<Measurement>,
+    cluster: &dyn Cluster,
 ) -> Measurement {
     let settings = &TraceSettings {
         photons: photons_traced(settings.photons).expect("a photon count that fits in u64"),
@@ -481,7 +530,7 @@ fn trace_into(
         .then_some(settings.photons / CHUNK);
     let mut chunk = first_chunk;
     let mut boundary = None;
-    let rays = trace_chunks_from(
+    let rays = trace_shared_from(
         first_chunk,
         scene,
         accel,
@@ -521,6 +570,7 @@ fn trace_into(
             result.connection_rays += part.connection_rays;
         },
         progress,
+        cluster,
     );
     result.rays += rays;
     result.boundary = boundary;

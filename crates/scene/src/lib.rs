@@ -56,6 +56,7 @@ mod obj;
 mod photometry;
 mod summary;
 mod validate;
+mod values;
 mod world;
 
 pub use atomic::write_atomically;
@@ -78,4 +79,5 @@ pub use photometry::{
 };
 pub use summary::{CameraSummary, LightSummary, LuminaireSummary, SceneSummary, SurfaceSummary};
 pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};
+pub use values::{finite, positive};
 pub use world::WorldTriangle;

@@ -65,6 +65,23 @@ impl ChannelSums {
         }
     }
 
+    /// Appends the sums to `out` as the bits of their values (Σ X_g, then the products),
+    /// so that a process traces a chunk and another folds its sums with the same bits
+    /// (a trace shared by the processes of a cluster job, issue 16).
+    pub fn pack(&self, out: &mut Vec<u64>) {
+        out.extend(self.sum.iter().chain(&self.cross).map(|x| x.to_bits()));
+    }
+
+    /// Reads back what [`ChannelSums::pack`] wrote, into sums of the same channel count.
+    ///
+    /// # Panics
+    /// If `words` ends first: the packing process held sums of more channels.
+    pub fn unpack(&mut self, words: &mut impl Iterator<Item = u64>) {
+        for x in self.sum.iter_mut().chain(&mut self.cross) {
+            *x = f64::from_bits(words.next().expect("packed sums of as many channels"));
+        }
+    }
+
     /// Σ_g w·X_g.
     pub fn total(&self, w: &[f64]) -> f64 {
         self.sum.iter().zip(w).map(|(s, w)| s * w).sum()
@@ -114,6 +131,19 @@ mod tests {
 
     /// A weighted sum of channels has the mean and standard error of the same samples
     /// summed by hand.
+    #[test]
+    fn packed_sums_unpack_to_the_same_bits() {
+        let mut s = ChannelSums::new(3);
+        s.add_group(&[0.1, 0.0, -2.5]);
+        s.add_group(&[1.0 / 3.0, 7.0, 0.0]);
+        let mut words = Vec::new();
+        s.pack(&mut words);
+        assert_eq!(words.len(), 3 + 6);
+        let mut back = ChannelSums::new(3);
+        back.unpack(&mut words.iter().copied());
+        assert_eq!(back, s);
+    }
+
     #[test]
     fn weighted_sums_match_sums_by_hand() {
         let groups = [

@@ -56,10 +56,10 @@ impl Confidence {
     }
 }
 
+/// A level as a flag gives it, `0.95`: the value of `--confidence`.
 impl std::str::FromStr for Confidence {
     type Err = String;
 
-    /// A level as a flag gives it, `0.95`, checked by [`Confidence::new`].
     fn from_str(s: &str) -> Result<Confidence, String> {
         let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
         Confidence::new(c).map_err(|e| e.to_string())

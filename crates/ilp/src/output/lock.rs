@@ -60,15 +60,49 @@ impl Drop for FolderLock {
 }
 
 /// Whether process `pid` runs. On Linux, /proc tells; elsewhere a lock is assumed held
-/// (the user removes a stale one, as the message says).
+/// (the user removes a stale one, as the message says). A zombie (state `Z` after the
+/// command in /proc/PID/stat, proc(5)) runs no more: a run killed hard, e.g. by
+/// `mpirun` when another rank of its job died, stays one until its parent reaps it, and
+/// `--resume` must not wait for that.
 fn alive(pid: u32) -> bool {
     if pid == std::process::id() {
         return true;
     }
     let proc = Path::new("/proc");
     if proc.is_dir() {
-        proc.join(pid.to_string()).exists()
+        let stat = std::fs::read_to_string(proc.join(pid.to_string()).join("stat"));
+        stat.is_ok_and(|s| {
+            s.rsplit_once(')')
+                .is_some_and(|(_, rest)| !rest.trim_start().starts_with('Z'))
+        })
     } else {
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A child that has exited but is not reaped is a zombie: its lock is stale.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_zombie_holds_no_lock() {
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let pid = child.id();
+        let zombie = (0..200).any(|_| {
+            std::thread::sleep(std::time::Duration::from_millis(10));
+            !alive(pid)
+        });
+        assert!(
+            Path::new(&format!("/proc/{pid}")).exists(),
+            "not reaped yet"
+        );
+        child.wait().unwrap();
+        assert!(
+            zombie,
+            "process {pid} still counted as running after it exited"
+        );
+        assert!(alive(std::process::id()));
     }
 }

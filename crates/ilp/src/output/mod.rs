@@ -187,7 +187,9 @@ pub struct Output<'b> {
     photons: u64,
     confidence: f64,
     dir: PathBuf,
-    csv: File,
+    /// `None` on a follower of a cluster job ([`invlight_photon::leads`]), which writes
+    /// nothing: rank 0 writes for every rank.
+    csv: Option<File>,
     /// Bytes of `solutions.csv` that are complete rows.
     csv_len: u64,
     started: Instant,
@@ -199,13 +201,14 @@ pub struct Output<'b> {
     unlit: bool,
     z: f64,
     z_one_sided: f64,
-    _lock: FolderLock,
+    _lock: Option<FolderLock>,
 }
 
 impl<'b> Output<'b> {
     /// Takes `dir` for a run of `binding` with `settings` (the folder is created when
     /// missing and locked for the run) and opens its files as `start` says; a fresh run
-    /// writes `run.json`.
+    /// writes `run.json`. A follower of a cluster job leaves the folder alone: it has
+    /// read the rows it resumes, and its rank 0 writes the same rows.
     pub fn create(
         dir: &Path,
         binding: &'b Binding,
@@ -215,17 +218,27 @@ impl<'b> Output<'b> {
         start: &Start,
     ) -> Result<Output<'b>, OutputError> {
         let run = RunFile::new(settings, max_bounces, &binding.luminaires);
-        std::fs::create_dir_all(dir)?;
-        let lock = FolderLock::take(dir)?;
+        let lead = invlight_photon::leads();
+        if lead {
+            std::fs::create_dir_all(dir)?;
+        }
+        let lock = lead.then(|| FolderLock::take(dir)).transpose()?;
         let path = dir.join("solutions.csv");
         let (csv, csv_len, offset, evaluations) = match start {
+            Start::Resume(rows) if !lead => (
+                None,
+                rows.complete_len,
+                rows.elapsed,
+                rows.records.len() as u64,
+            ),
+            Start::Fresh { .. } if !lead => (None, 0, 0.0, 0),
             Start::Resume(rows) => {
                 // A row cut short by a hard stop is not part of the run; cut it off so
                 // the next row starts on its own line.
                 let f = OpenOptions::new().append(true).open(&path)?;
                 f.set_len(rows.complete_len)?;
                 (
-                    f,
+                    Some(f),
                     rows.complete_len,
                     rows.elapsed,
                     rows.records.len() as u64,
@@ -244,7 +257,7 @@ impl<'b> Output<'b> {
                     serde_json::to_writer_pretty(&mut *w, &run)?;
                     writeln!(w)
                 })?;
-                (f, header.len() as u64, 0.0, 0)
+                (Some(f), header.len() as u64, 0.0, 0)
             }
         };
         Ok(Output {
@@ -315,6 +328,9 @@ impl<'b> Output<'b> {
     /// ISOC change (every evaluation while the ISOC is a plateau of zeros) cost more
     /// than the tracing of small scenes.
     pub fn write_result(&self, standing: Standing<'_>) -> io::Result<()> {
+        if self.csv.is_none() {
+            return Ok(());
+        }
         let result = self.result(standing);
         write_atomically(&self.dir.join("result.json"), |w| {
             serde_json::to_writer_pretty(&mut *w, &result)?;
@@ -324,17 +340,17 @@ impl<'b> Output<'b> {
 
     /// Appends a row; on failure the file is cut back to its complete rows.
     fn append(&mut self, line: &str) -> io::Result<()> {
-        let written = self
-            .csv
-            .write_all(line.as_bytes())
-            .and_then(|()| self.csv.flush());
+        let Some(csv) = &mut self.csv else {
+            return Ok(());
+        };
+        let written = csv.write_all(line.as_bytes()).and_then(|()| csv.flush());
         match written {
             Ok(()) => {
                 self.csv_len += line.len() as u64;
                 Ok(())
             }
             Err(e) => {
-                let _ = self.csv.set_len(self.csv_len);
+                let _ = csv.set_len(self.csv_len);
                 Err(e)
             }
         }
