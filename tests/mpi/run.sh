@@ -89,6 +89,17 @@ for example in cone office; do
     done
   done
 done
+# The paired search screens cells side by side on threads (each rank traces the batch
+# alone, since exchanges come from one thread at a time): still the same files.
+args=(--iterations 40 --photons 20000 --strategy PAIRED_ISOC)
+solve "$PLAIN" solve "$cone/problem.xml" -o "$work/paired-plain" "${args[@]}"
+for k in 2 3; do
+  solve timeout 300 "${mpirun[@]}" -np $k "$MPI" solve "$cone/problem.xml" -o "$work/paired-$k" "${args[@]}" ||
+    fail "paired solve, K = $k: did not finish (a hung exchange?)"
+  for f in solutions.csv result.json; do
+    same "$work/paired-plain/$f" "$work/paired-$k/$f" "paired solve, K = $k"
+  done
+done
 echo "solve: solutions.csv and result.json the same for K = 1, 2, 3 as the default binary"
 
 # 3. A rank that cannot load the scene ends the job, named.

@@ -5,7 +5,7 @@ use invlight_cluster::Local;
 use invlight_photon::{
     BLOCK_MEMORY, CHUNK, Cluster, Components, Departure, Emitters, Estimator, GridRequest,
     Measurement, Pack, PathVisitor, Request, Side, SurfaceGrid, TraceSettings, measure_across,
-    measure_with, trace_chunks, trace_shared,
+    measure_more, measure_with, trace_chunks, trace_shared,
 };
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Rgb, Scene, Vec3};
 use invlight_trace::{Accel, Interaction};
@@ -93,6 +93,55 @@ fn a_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
             assert!(m == &alone, "rank {rank} of {k} differs from one process");
         }
         assert_eq!(words == 0, k == 1, "K = {k}: {words} words");
+    }
+}
+
+/// The search refines a candidate from n to N photons by tracing the N − n more
+/// (`measure_more`); shared by K ranks, the continuation has one process's bits too,
+/// from a chunk boundary and from inside a chunk.
+#[test]
+fn a_continued_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
+    let scene = room();
+    let accel = Accel::new(&scene);
+    let targets = [scene.surface("Floor").unwrap()];
+    let components = Components::new(&scene, 1);
+    let request = Request {
+        surfaces: &targets,
+        grids: Vec::new(),
+        components: &components,
+        estimator: Estimator::Connected,
+        keep_groups: true,
+    };
+    let settings = |photons| TraceSettings {
+        photons,
+        seed: 3,
+        ..TraceSettings::default()
+    };
+    let whole = measure_with(&scene, &accel, &request, &settings(6 * CHUNK), None);
+    for first in [2 * CHUNK, CHUNK + 640] {
+        let previous = measure_with(&scene, &accel, &request, &settings(first), None);
+        for k in [1, 2, 3] {
+            let (continued, words): (Vec<Measurement>, _) = on_ranks(k, |r| {
+                measure_more(
+                    &scene,
+                    &accel,
+                    &request,
+                    &settings(6 * CHUNK),
+                    None,
+                    &previous,
+                    r,
+                )
+            });
+            for (rank, mut m) in continued.into_iter().enumerate() {
+                // What this call cast is counted beside what the previous one did.
+                m.rays = whole.rays;
+                assert!(
+                    m == whole,
+                    "rank {rank} of {k}, from {first} photons, differs"
+                );
+            }
+            assert_eq!(words == 0, k == 1, "K = {k}: {words} words");
+        }
     }
 }
 

@@ -21,8 +21,8 @@ use crate::space::Configuration;
 use crate::vns::{Evaluate, Evaluation};
 use invlight_photon::CHUNK;
 use invlight_photon::{
-    Components, Estimator, GridError, Measurement, Request, TraceSettings, measure_more,
-    measure_with, photons_traced,
+    Alone, Cluster, Components, Estimator, GridError, Measurement, Request, TraceSettings, cluster,
+    measure_across, measure_more, photons_traced,
 };
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
@@ -159,7 +159,7 @@ impl<'b> PhotonEvaluator<'b> {
                 seed: self.seed,
                 max_bounces: self.max_bounces,
             };
-            let m = job.trace(&mut self.stage, config, photons, previous)?;
+            let m = job.trace(&mut self.stage, config, photons, previous, cluster())?;
             self.keep(key.clone(), m, previous.map(|p| p.photons));
         }
         Ok(&self.kept[&key])
@@ -185,7 +185,10 @@ impl<'b> PhotonEvaluator<'b> {
 impl PhotonEvaluator<'_> {
     /// Traces the arrangements of `configs` not kept yet, on up to `threads` stages at
     /// once, and keeps them in the order of `configs` (a failed trace is left for
-    /// [`Evaluate::evaluate`] to report).
+    /// [`Evaluate::evaluate`] to report). Each trace is this process's alone, in a
+    /// cluster job too: the ranks' exchanges must come in the same order on every rank
+    /// from one thread at a time (docs/cluster.md), which traces side by side on threads
+    /// cannot give, so every rank traces the whole batch; the numbers are the same.
     fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
         for c in configs {
@@ -235,7 +238,7 @@ impl PhotonEvaluator<'_> {
             .zip(work.par_chunks(per))
             .map(|(stage, part)| {
                 part.iter()
-                    .map(|(c, p)| job.trace(stage, c, photons, *p))
+                    .map(|(c, p)| job.trace(stage, c, photons, *p, &Alone))
                     .collect()
             })
             .collect();
@@ -286,6 +289,7 @@ impl Job<'_> {
         config: &Configuration,
         photons: u64,
         previous: Option<&Measurement>,
+        cluster: &dyn Cluster,
     ) -> Result<Measurement, EvaluationError> {
         if self.binding.apply_arrangement(&mut stage.scene, config) {
             stage.accel.update_instances(&stage.scene);
@@ -309,8 +313,8 @@ impl Job<'_> {
         };
         let (scene, accel) = (&stage.scene, &stage.accel);
         Ok(match previous {
-            Some(p) => measure_more(scene, accel, &request, &settings, None, p),
-            None => measure_with(scene, accel, &request, &settings, None),
+            Some(p) => measure_more(scene, accel, &request, &settings, None, p, cluster),
+            None => measure_across(scene, accel, &request, &settings, None, cluster),
         })
     }
 }

@@ -417,7 +417,8 @@ pub fn measure_across(
 /// ends on a chunk boundary ([`CHUNK`](crate::CHUNK)), else from the boundary before, which a measurement
 /// keeping its groups remembers (the part of a chunk after it is traced again); any
 /// other `previous`, or one of at least as many photons, is traced from the start or
-/// returned as it is.
+/// returned as it is. The processes of `cluster` share the trace as
+/// [`measure_across`]'s do.
 ///
 /// # Panics
 /// As [`measure_with`].
@@ -428,6 +429,7 @@ pub fn measure_more(
     settings: &TraceSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
     previous: &Measurement,
+    cluster: &dyn Cluster,
 ) -> Measurement {
     let photons = photons_traced(settings.photons).expect("a photon count that fits in u64");
     if photons == previous.photons {
@@ -449,10 +451,10 @@ pub fn measure_more(
                 settings,
                 progress,
                 Some(state),
-                cluster(),
+                cluster,
             )
         }
-        _ => measure_with(scene, accel, request, settings, progress),
+        _ => measure_across(scene, accel, request, settings, progress, cluster),
     }
 }
 

@@ -8,8 +8,8 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle};
 use invlight_photon::{
-    Components, Estimator, GridRequest, Measurement, Request, Side, SurfaceGrid, TraceSettings,
-    measure_more, measure_with,
+    Alone, Components, Estimator, GridRequest, Measurement, Request, Side, SurfaceGrid,
+    TraceSettings, measure_more, measure_with,
 };
 use invlight_scene::{Mat4, Material, Scene, Vec3};
 use invlight_trace::Accel;
@@ -306,7 +306,15 @@ fn a_continued_measurement_is_the_measurement_at_once() {
     };
     let at_once = |photons| measure_with(&scene, &accel, &request, &settings(photons), None);
     let more = |photons, previous: &Measurement| {
-        measure_more(&scene, &accel, &request, &settings(photons), None, previous)
+        measure_more(
+            &scene,
+            &accel,
+            &request,
+            &settings(photons),
+            None,
+            previous,
+            &Alone,
+        )
     };
     let same = |mut continued: Measurement, whole: &Measurement| {
         continued.rays = whole.rays;
