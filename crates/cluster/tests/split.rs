@@ -145,6 +145,50 @@ fn a_continued_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
     }
 }
 
+/// Ranks that trace whole candidates exchange their measurements as words: read back,
+/// a measurement is the same bit for bit, its grid, its kept groups and the boundary a
+/// continuation starts from (a trace ending inside a chunk) included.
+#[test]
+fn a_packed_measurement_reads_back_the_same() {
+    let scene = room();
+    let accel = Accel::new(&scene);
+    let targets = [
+        scene.surface("Floor").unwrap(),
+        scene.surface("Ceiling").unwrap(),
+    ];
+    let mut components = Components::new(&scene, 2);
+    components.set_light(scene.light("Right").unwrap(), 1);
+    let grid = SurfaceGrid::new(&scene, targets[0], 0.5).unwrap();
+    for keep_groups in [true, false] {
+        let request = Request {
+            surfaces: &targets,
+            grids: vec![GridRequest {
+                target: 0,
+                side: Side::Back,
+                grid: grid.clone(),
+            }],
+            components: &components,
+            estimator: Estimator::Connected,
+            keep_groups,
+        };
+        for photons in [2 * CHUNK, 2 * CHUNK + 640] {
+            let settings = TraceSettings {
+                photons,
+                seed: 4,
+                ..TraceSettings::default()
+            };
+            let m = measure_with(&scene, &accel, &request, &settings, None);
+            let mut words = Vec::new();
+            m.pack(&mut words);
+            let mut words = words.into_iter();
+            let back = Measurement::unpack(&request, &mut words);
+            assert!(back == m, "{photons} photons, groups kept: {keep_groups}");
+            assert_eq!(words.next(), None, "every word read");
+            assert_eq!(back.resumable_photons(), m.resumable_photons());
+        }
+    }
+}
+
 /// A visitor that says it is large, so that a block holds one chunk per rank and a
 /// trace takes many exchanges, and that records the order the fold sees its chunks in.
 #[derive(Default)]

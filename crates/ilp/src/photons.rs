@@ -183,12 +183,17 @@ impl<'b> PhotonEvaluator<'b> {
 }
 
 impl PhotonEvaluator<'_> {
-    /// Traces the arrangements of `configs` not kept yet, on up to `threads` stages at
-    /// once, and keeps them in the order of `configs` (a failed trace is left for
-    /// [`Evaluate::evaluate`] to report). Each trace is this process's alone, in a
-    /// cluster job too: the ranks' exchanges must come in the same order on every rank
-    /// from one thread at a time (docs/cluster.md), which traces side by side on threads
-    /// cannot give, so every rank traces the whole batch; the numbers are the same.
+    /// Traces the arrangements of `configs` not kept yet side by side and keeps them in
+    /// the order of `configs`, as [`Evaluate::evaluate`] one after another would have
+    /// (a failed trace is left for it to report). The candidates are dealt to the
+    /// processes of a cluster job in turn (rank r takes the r-th, the (r + K)-th, …;
+    /// issue 16: a batch of one-chunk looks keeps every rank busy, where a shared trace
+    /// of one chunk would keep one), each rank traces its share on up to `threads`
+    /// stages at once, each trace its own, and the ranks exchange the measurements: the
+    /// exchange comes from this thread alone, in the same order on every rank, as MPI's
+    /// serialised calls need. A batch that would overflow the kept traces is left to
+    /// the one-by-one path, so the traces kept, and what later ones continue, are the
+    /// same as that path's whatever the thread and process counts.
     fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
         for c in configs {
@@ -197,14 +202,12 @@ impl PhotonEvaluator<'_> {
                 todo.push((key, c));
             }
         }
-        let stages = threads.min(todo.len());
-        if stages < 2 {
+        if todo.len() < 2 || self.kept.len() + todo.len() > KEPT_TRACES {
             return;
         }
-        // Room for the whole batch, so that none of it is dropped before it is read.
-        if self.kept.len() + todo.len() > KEPT_TRACES {
-            self.kept.clear();
-        }
+        let (rank, ranks) = (cluster().rank(), cluster().ranks());
+        let mine: Vec<usize> = (rank..todo.len()).step_by(ranks).collect();
+        let stages = threads.min(mine.len()).max(1);
         while self.helpers.len() + 1 < stages {
             let copy = Stage {
                 scene: self.stage.scene.clone(),
@@ -223,27 +226,33 @@ impl PhotonEvaluator<'_> {
             .map(|(key, _)| previous(&self.kept, key))
             .collect();
         let from: Vec<Option<u64>> = previous.iter().map(|p| p.map(|m| m.photons)).collect();
-        let work: Vec<_> = todo
-            .iter()
-            .zip(&previous)
-            .map(|((_, c), p)| (*c, *p))
-            .collect();
-        let per = work.len().div_ceil(stages);
+        let work: Vec<_> = mine.iter().map(|&i| (todo[i].1, previous[i])).collect();
         let mut lanes: Vec<&mut Stage> = std::iter::once(&mut self.stage)
             .chain(self.helpers.iter_mut())
             .take(stages)
             .collect();
-        let traced: Vec<Vec<Result<Measurement, EvaluationError>>> = lanes
-            .par_iter_mut()
-            .zip(work.par_chunks(per))
-            .map(|(stage, part)| {
-                part.iter()
-                    .map(|(c, p)| job.trace(stage, c, photons, *p, &Alone))
-                    .collect()
-            })
-            .collect();
-        for (((key, _), m), from) in todo.into_iter().zip(traced.into_iter().flatten()).zip(from) {
-            if let Ok(m) = m {
+        let traced: Vec<Option<Measurement>> = if work.is_empty() {
+            Vec::new()
+        } else {
+            let per = work.len().div_ceil(stages);
+            let parts: Vec<Vec<_>> = lanes
+                .par_iter_mut()
+                .zip(work.par_chunks(per))
+                .map(|(stage, part)| {
+                    part.iter()
+                        .map(|(c, p)| job.trace(stage, c, photons, *p, &Alone).ok())
+                        .collect()
+                })
+                .collect();
+            parts.into_iter().flatten().collect()
+        };
+        let traced = if ranks == 1 {
+            traced
+        } else {
+            job.exchange(&mut self.stage, &todo, &traced, ranks)
+        };
+        for (((key, _), m), from) in todo.into_iter().zip(traced).zip(from) {
+            if let Some(m) = m {
                 self.keep(key, m, from);
             }
         }
@@ -279,6 +288,69 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
+    /// Arranges `stage` as `config`, rebuilding the top level if an instance moved, and
+    /// gives the request a trace of it makes (its grids follow the surfaces).
+    fn arrange(
+        &self,
+        stage: &mut Stage,
+        config: &Configuration,
+    ) -> Result<Request<'_>, EvaluationError> {
+        if self.binding.apply_arrangement(&mut stage.scene, config) {
+            stage.accel.update_instances(&stage.scene);
+        }
+        let reading = &self.binding.reading;
+        let grids = reading
+            .grid_requests(&stage.scene)
+            .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
+        Ok(Request {
+            surfaces: &reading.surfaces,
+            grids,
+            components: self.components,
+            estimator: Estimator::Connected,
+            // The paired search compares configurations by their groups.
+            keep_groups: true,
+        })
+    }
+
+    /// Every rank's measurements of a batch `todo` dealt in turn to `ranks` processes,
+    /// from this rank's share `mine` ([`PhotonEvaluator::trace_side_by_side`]): packed,
+    /// gathered from all ranks and read back in `todo`'s order, each read with the
+    /// request of its configuration, which `stage` is arranged as to know it. A failed
+    /// trace travels as a failure (one word), to be traced again, and reported, one by
+    /// one.
+    fn exchange(
+        &self,
+        stage: &mut Stage,
+        todo: &[((Vec<u64>, u64), &Configuration)],
+        mine: &[Option<Measurement>],
+        ranks: usize,
+    ) -> Vec<Option<Measurement>> {
+        let mut words = Vec::new();
+        for m in mine {
+            match m {
+                Some(m) => {
+                    words.push(1);
+                    m.pack(&mut words);
+                }
+                None => words.push(0),
+            }
+        }
+        let all = cluster().all_gather(&words);
+        let mut all = all.into_iter();
+        let mut out: Vec<Option<Measurement>> = todo.iter().map(|_| None).collect();
+        for r in 0..ranks {
+            for i in (r..todo.len()).step_by(ranks) {
+                if all.next() == Some(1) {
+                    let request = self
+                        .arrange(stage, todo[i].1)
+                        .expect("a configuration another rank could trace");
+                    out[i] = Some(Measurement::unpack(&request, &mut all));
+                }
+            }
+        }
+        out
+    }
+
     /// Arranges `stage` as `config` (rebuilding the top level if an instance moved) and
     /// traces `photons`, continuing `previous` if given. The numbers depend on the
     /// configuration and the seed alone, not on what the stage held before, so any
@@ -291,21 +363,7 @@ impl Job<'_> {
         previous: Option<&Measurement>,
         cluster: &dyn Cluster,
     ) -> Result<Measurement, EvaluationError> {
-        if self.binding.apply_arrangement(&mut stage.scene, config) {
-            stage.accel.update_instances(&stage.scene);
-        }
-        let reading = &self.binding.reading;
-        let grids = reading
-            .grid_requests(&stage.scene)
-            .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
-        let request = Request {
-            surfaces: &reading.surfaces,
-            grids,
-            components: self.components,
-            estimator: Estimator::Connected,
-            // The paired search compares configurations by their groups.
-            keep_groups: true,
-        };
+        let request = self.arrange(stage, config)?;
         let settings = TraceSettings {
             photons,
             seed: self.seed,
@@ -350,11 +408,12 @@ impl Evaluate for PhotonEvaluator<'_> {
     }
 
     /// Traces side by side when a trace of `photons` alone would leave cores idle
-    /// (fewer chunks of [`CHUNK`] photons than threads: the screening's 2 048-photon
-    /// looks are one chunk), each thread on its own copy of the scene and acceleration
-    /// structure (made once, when first needed). Every trace's numbers depend on its
-    /// configuration and the seed alone, so the evaluations are those of
-    /// [`Evaluate::evaluate`] one after another, bit for bit, on any number of threads.
+    /// (fewer chunks of [`CHUNK`] photons than threads of all the job's processes: the
+    /// screening's 2 048-photon looks are one chunk), each thread on its own copy of the
+    /// scene and acceleration structure (made once, when first needed). Every trace's
+    /// numbers depend on its configuration and the seed alone, so the evaluations are
+    /// those of [`Evaluate::evaluate`] one after another, bit for bit, on any number of
+    /// threads and processes.
     fn evaluate_all(
         &mut self,
         configs: &[Configuration],
@@ -362,10 +421,11 @@ impl Evaluate for PhotonEvaluator<'_> {
     ) -> Vec<Result<Evaluation, EvaluationError>> {
         let photons = self.samples(photons);
         let threads = rayon::current_num_threads();
+        let lanes = threads * cluster().ranks();
         if configs.len() > 1
-            && threads > 1
+            && lanes > 1
             && self.first_sides.is_some()
-            && photons < threads as u64 * CHUNK
+            && photons < lanes as u64 * CHUNK
         {
             self.trace_side_by_side(configs, photons, threads);
         }

@@ -137,6 +137,110 @@ impl Measurement {
         self.boundary().map_or(0, |b| b.photons)
     }
 
+    /// Appends this measurement to `out` as words, for another process of a cluster
+    /// job to read back with [`Measurement::unpack`] (issue 16: ranks that trace whole
+    /// candidates of a batch and exchange their measurements). Every number goes as its
+    /// bits, so the reader holds the same measurement, bit for bit.
+    pub fn pack(&self, out: &mut Vec<u64>) {
+        let reals = |out: &mut Vec<u64>, xs: &[f64]| {
+            out.push(xs.len() as u64);
+            out.extend(xs.iter().map(|x| x.to_bits()));
+        };
+        out.extend([self.photons, self.rays, self.connection_rays]);
+        reals(out, &self.areas);
+        out.extend(&self.hits);
+        self.channels.iter().for_each(|c| c.pack(out));
+        reals(out, &self.groups);
+        for g in &self.grids {
+            g.sums.pack(out);
+            out.extend([g.photons, g.flux.to_bits()]);
+        }
+        reals(out, &self.component_flux);
+        out.extend([self.escaped.to_bits(), self.flux.to_bits()]);
+        match &self.boundary {
+            Some(b) => {
+                out.push(1);
+                b.pack(out);
+            }
+            None => out.push(0),
+        }
+    }
+
+    /// Reads back a measurement that [`Measurement::pack`] wrote of `request` (the same
+    /// surfaces, grids and components), as the process that traced it held it.
+    ///
+    /// # Panics
+    /// If `words` ends first or do not come from a measurement of such a request.
+    pub fn unpack(request: &Request, words: &mut impl Iterator<Item = u64>) -> Measurement {
+        let mut next = || {
+            words
+                .next()
+                .expect("a packed measurement of the same request")
+        };
+        let (photons, rays, connection_rays) = (next(), next(), next());
+        let reals = |words: &mut dyn Iterator<Item = u64>| -> Vec<f64> {
+            let mut next = || {
+                words
+                    .next()
+                    .expect("a packed measurement of the same request")
+            };
+            let n = next() as usize;
+            (0..n).map(|_| f64::from_bits(next())).collect()
+        };
+        let areas = reals(words);
+        let targets = request.surfaces.len();
+        let hits: Vec<u64> = words.take(targets).collect();
+        assert_eq!(
+            hits.len(),
+            targets,
+            "a packed measurement of the same request"
+        );
+        let k = request.components.count();
+        let channels = (0..targets)
+            .map(|_| {
+                let mut c = ChannelSums::new(2 * k);
+                c.unpack(words);
+                c
+            })
+            .collect();
+        let groups = reals(words);
+        let grids = request
+            .grids
+            .iter()
+            .map(|g| {
+                let mut sums = CellTallies::new(g.grid.cells(), k).sums;
+                sums.unpack(words);
+                let mut m = GridMeasurement::new(g.grid.clone(), g.side, sums);
+                let mut next = || words.next().expect("a packed grid of the same request");
+                m.photons = next();
+                m.flux = f64::from_bits(next());
+                m
+            })
+            .collect();
+        let component_flux = reals(words);
+        let mut next = || {
+            words
+                .next()
+                .expect("a packed measurement of the same request")
+        };
+        let (escaped, flux) = (f64::from_bits(next()), f64::from_bits(next()));
+        let boundary = (next() == 1).then(|| Box::new(Measurement::unpack(request, words)));
+        Measurement {
+            photons,
+            rays,
+            connection_rays,
+            areas,
+            hits,
+            channels,
+            groups,
+            grids,
+            component_flux,
+            escaped,
+            flux,
+            boundary,
+        }
+    }
+
     /// The number of components.
     pub fn components(&self) -> usize {
         self.component_flux.len()
