@@ -76,7 +76,7 @@ impl SideSplit {
 pub struct PhotonEvaluator<'b> {
     binding: &'b Binding,
     stage: Stage,
-    /// Copies of the stage for candidates traced side by side ([`Evaluate::evaluate_all`]),
+    /// Copies of the stage for candidates traced side by side ([`Evaluate::prepare`]),
     /// made when first needed.
     helpers: Vec<Stage>,
     components: Components,
@@ -88,6 +88,10 @@ pub struct PhotonEvaluator<'b> {
     photons: u64,
     traces: u64,
     kept: Kept,
+    /// Traces made side by side ahead of their evaluation ([`Evaluate::prepare`]), each
+    /// with the photons of the kept trace it continued; counted only when an
+    /// evaluation reads one, so a trace the search never asks for counts nothing.
+    ready: HashMap<(Vec<u64>, u64), (Measurement, Option<u64>)>,
     first_sides: Option<Vec<SideSplit>>,
 }
 
@@ -125,6 +129,7 @@ impl<'b> PhotonEvaluator<'b> {
             photons: 0,
             traces: 0,
             kept: HashMap::new(),
+            ready: HashMap::new(),
             first_sides: None,
         }
     }
@@ -153,6 +158,13 @@ impl<'b> PhotonEvaluator<'b> {
         let key = (self.binding.arrangement(config), photons);
         if !self.kept.contains_key(&key) {
             let previous = previous(&self.kept, &key);
+            let from = previous.map(|p| p.photons);
+            // A trace readied ahead is the one this would make if it continued the same
+            // kept trace (the keeping may have dropped that one since).
+            if let Some((m, _)) = self.ready.remove(&key).filter(|(_, f)| *f == from) {
+                self.keep(key.clone(), m, from);
+                return Ok(&self.kept[&key]);
+            }
             let job = Job {
                 binding: self.binding,
                 components: &self.components,
@@ -184,9 +196,10 @@ impl<'b> PhotonEvaluator<'b> {
 
 impl PhotonEvaluator<'_> {
     /// Traces the arrangements of `configs` not kept yet, on up to `threads` stages at
-    /// once, and keeps them in the order of `configs` (a failed trace is left for
-    /// [`Evaluate::evaluate`] to report).
+    /// once, into [`PhotonEvaluator::ready`] in place of what it held (a failed trace
+    /// is left for [`Evaluate::evaluate`] to make again and report).
     fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
+        self.ready.clear();
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
         for c in configs {
             let key = (self.binding.arrangement(c), photons);
@@ -197,10 +210,6 @@ impl PhotonEvaluator<'_> {
         let stages = threads.min(todo.len());
         if stages < 2 {
             return;
-        }
-        // Room for the whole batch, so that none of it is dropped before it is read.
-        if self.kept.len() + todo.len() > KEPT_TRACES {
-            self.kept.clear();
         }
         while self.helpers.len() + 1 < stages {
             let copy = Stage {
@@ -241,7 +250,7 @@ impl PhotonEvaluator<'_> {
             .collect();
         for (((key, _), m), from) in todo.into_iter().zip(traced.into_iter().flatten()).zip(from) {
             if let Ok(m) = m {
-                self.keep(key, m, from);
+                self.ready.insert(key, (m, from));
             }
         }
     }
@@ -346,26 +355,29 @@ impl Evaluate for PhotonEvaluator<'_> {
     }
 
     /// Traces side by side when a trace of `photons` alone would leave cores idle
-    /// (fewer chunks of [`CHUNK`] photons than threads: the screening's 2 048-photon
-    /// looks are one chunk), each thread on its own copy of the scene and acceleration
-    /// structure (made once, when first needed). Every trace's numbers depend on its
-    /// configuration and the seed alone, so the evaluations are those of
-    /// [`Evaluate::evaluate`] one after another, bit for bit, on any number of threads.
-    fn evaluate_all(
-        &mut self,
-        configs: &[Configuration],
-        photons: u64,
-    ) -> Vec<Result<Evaluation, EvaluationError>> {
+    /// ([`Evaluate::side_by_side`]), each thread on its own copy of the scene and
+    /// acceleration structure (made once, when first needed). Every trace's numbers
+    /// depend on its configuration and the seed alone, so the evaluations that read
+    /// them are those of [`Evaluate::evaluate`] alone, bit for bit, on any number of
+    /// threads; their work is counted when read, where a trace alone would have been
+    /// made, so the kept traces and the counts are those of the run without readying.
+    fn prepare(&mut self, configs: &[Configuration], photons: u64) {
         let photons = self.samples(photons);
         let threads = rayon::current_num_threads();
-        if configs.len() > 1
-            && threads > 1
-            && self.first_sides.is_some()
-            && photons < threads as u64 * CHUNK
-        {
+        if configs.len() > 1 && self.side_by_side(photons) > 1 {
             self.trace_side_by_side(configs, photons, threads);
         }
-        configs.iter().map(|c| self.evaluate(c, photons)).collect()
+    }
+
+    /// As many as there are threads for each trace's chunks of [`CHUNK`] photons to
+    /// keep one busy (the screening's and the fast looks' 2 048 photons are one chunk),
+    /// once the first evaluation is made; 1 when one trace alone keeps every core busy.
+    fn side_by_side(&self, photons: u64) -> usize {
+        if self.first_sides.is_none() {
+            return 1;
+        }
+        let chunks = self.samples(photons).div_ceil(CHUNK).max(1);
+        (rayon::current_num_threads() as u64 / chunks).max(1) as usize
     }
 
     /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is
