@@ -610,7 +610,7 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Readied<F> {
 }
 
 /// The walk that readies candidates ahead is the walk one candidate at a time: the same
-/// records (but their seconds), ISOC, outcome and counts, for 2 to 8 candidates ahead,
+/// records (but their seconds), ISOC, outcome and counts, readying 2, 3 or 8 at once,
 /// on every strategy and several seeds; with a constraint that keeps the search
 /// infeasible for a while (its centre the closest), refusals, a dimming-like cheap
 /// variable (every other candidate) and a grid small enough to run out of cells. The
