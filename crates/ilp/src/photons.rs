@@ -371,9 +371,11 @@ impl Evaluate for PhotonEvaluator<'_> {
 
     /// As many as there are threads for each trace's chunks of [`CHUNK`] photons to
     /// keep one busy (the screening's and the fast looks' 2 048 photons are one chunk),
-    /// once the first evaluation is made; 1 when one trace alone keeps every core busy.
+    /// once the first evaluation is made; 1 when one trace alone keeps every core busy,
+    /// and in a cluster job (issue 16), whose processes fold one trace at a time, in
+    /// the same order on every process.
     fn side_by_side(&self, photons: u64) -> usize {
-        if self.first_sides.is_none() {
+        if self.first_sides.is_none() || invlight_photon::cluster().ranks() > 1 {
             return 1;
         }
         let chunks = self.samples(photons).div_ceil(CHUNK).max(1);
