@@ -76,7 +76,7 @@ impl SideSplit {
 pub struct PhotonEvaluator<'b> {
     binding: &'b Binding,
     stage: Stage,
-    /// Copies of the stage for candidates traced side by side ([`Evaluate::evaluate_all`]),
+    /// Copies of the stage for candidates traced side by side ([`Evaluate::prepare`]),
     /// made when first needed.
     helpers: Vec<Stage>,
     components: Components,
@@ -88,6 +88,10 @@ pub struct PhotonEvaluator<'b> {
     photons: u64,
     traces: u64,
     kept: Kept,
+    /// Traces made side by side ahead of their evaluation ([`Evaluate::prepare`]), each
+    /// with the photons of the kept trace it continued; counted only when an
+    /// evaluation reads one, so a trace the search never asks for counts nothing.
+    ready: HashMap<(Vec<u64>, u64), (Measurement, Option<u64>)>,
     first_sides: Option<Vec<SideSplit>>,
 }
 
@@ -125,6 +129,7 @@ impl<'b> PhotonEvaluator<'b> {
             photons: 0,
             traces: 0,
             kept: HashMap::new(),
+            ready: HashMap::new(),
             first_sides: None,
         }
     }
@@ -153,6 +158,13 @@ impl<'b> PhotonEvaluator<'b> {
         let key = (self.binding.arrangement(config), photons);
         if !self.kept.contains_key(&key) {
             let previous = previous(&self.kept, &key);
+            let from = previous.map(|p| p.photons);
+            // A trace readied ahead is the one this would make if it continued the same
+            // kept trace (the keeping may have dropped that one since).
+            if let Some((m, _)) = self.ready.remove(&key).filter(|(_, f)| *f == from) {
+                self.keep(key.clone(), m, from);
+                return Ok(&self.kept[&key]);
+            }
             let job = Job {
                 binding: self.binding,
                 components: &self.components,
@@ -183,18 +195,17 @@ impl<'b> PhotonEvaluator<'b> {
 }
 
 impl PhotonEvaluator<'_> {
-    /// Traces the arrangements of `configs` not kept yet side by side and keeps them in
-    /// the order of `configs`, as [`Evaluate::evaluate`] one after another would have
-    /// (a failed trace is left for it to report). The candidates are dealt to the
+    /// Traces the arrangements of `configs` not kept yet side by side, into
+    /// [`PhotonEvaluator::ready`] in place of what it held (a failed trace is left for
+    /// [`Evaluate::evaluate`] to make again and report). The candidates are dealt to the
     /// processes of a cluster job in turn (rank r takes the r-th, the (r + K)-th, …;
     /// issue 16: a batch of one-chunk looks keeps every rank busy, where a shared trace
     /// of one chunk would keep one), each rank traces its share on up to `threads`
     /// stages at once, each trace its own, and the ranks exchange the measurements: the
     /// exchange comes from this thread alone, in the same order on every rank, as MPI's
-    /// serialised calls need. A batch that would overflow the kept traces is left to
-    /// the one-by-one path, so the traces kept, and what later ones continue, are the
-    /// same as that path's whatever the thread and process counts.
+    /// serialised calls need.
     fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
+        self.ready.clear();
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
         for c in configs {
             let key = (self.binding.arrangement(c), photons);
@@ -202,7 +213,7 @@ impl PhotonEvaluator<'_> {
                 todo.push((key, c));
             }
         }
-        if todo.len() < 2 || self.kept.len() + todo.len() > KEPT_TRACES {
+        if todo.len() < 2 {
             return;
         }
         let (rank, ranks) = (cluster().rank(), cluster().ranks());
@@ -253,7 +264,7 @@ impl PhotonEvaluator<'_> {
         };
         for (((key, _), m), from) in todo.into_iter().zip(traced).zip(from) {
             if let Some(m) = m {
-                self.keep(key, m, from);
+                self.ready.insert(key, (m, from));
             }
         }
     }
@@ -408,28 +419,32 @@ impl Evaluate for PhotonEvaluator<'_> {
     }
 
     /// Traces side by side when a trace of `photons` alone would leave cores idle
-    /// (fewer chunks of [`CHUNK`] photons than threads of all the job's processes: the
-    /// screening's 2 048-photon looks are one chunk), each thread on its own copy of the
-    /// scene and acceleration structure (made once, when first needed). Every trace's
-    /// numbers depend on its configuration and the seed alone, so the evaluations are
-    /// those of [`Evaluate::evaluate`] one after another, bit for bit, on any number of
-    /// threads and processes.
-    fn evaluate_all(
-        &mut self,
-        configs: &[Configuration],
-        photons: u64,
-    ) -> Vec<Result<Evaluation, EvaluationError>> {
+    /// ([`Evaluate::side_by_side`]), each thread on its own copy of the scene and
+    /// acceleration structure (made once, when first needed), a cluster job's batch
+    /// dealt to its processes. Every trace's numbers depend on its configuration and
+    /// the seed alone, so the evaluations that read them are those of
+    /// [`Evaluate::evaluate`] alone, bit for bit, on any number of threads and
+    /// processes; their work is counted when read, where a trace alone would have been
+    /// made, so the kept traces and the counts are those of the run without readying.
+    fn prepare(&mut self, configs: &[Configuration], photons: u64) {
         let photons = self.samples(photons);
         let threads = rayon::current_num_threads();
-        let lanes = threads * cluster().ranks();
-        if configs.len() > 1
-            && lanes > 1
-            && self.first_sides.is_some()
-            && photons < lanes as u64 * CHUNK
-        {
+        if configs.len() > 1 && self.side_by_side(photons) > 1 {
             self.trace_side_by_side(configs, photons, threads);
         }
-        configs.iter().map(|c| self.evaluate(c, photons)).collect()
+    }
+
+    /// As many as there are threads, of all the job's processes, for each trace's
+    /// chunks of [`CHUNK`] photons to keep one busy (the screening's and the fast looks'
+    /// 2 048 photons are one chunk), once the first evaluation is made; 1 when one trace
+    /// alone keeps every core busy.
+    fn side_by_side(&self, photons: u64) -> usize {
+        if self.first_sides.is_none() {
+            return 1;
+        }
+        let lanes = rayon::current_num_threads() * cluster().ranks();
+        let chunks = self.samples(photons).div_ceil(CHUNK).max(1);
+        (lanes as u64 / chunks).max(1) as usize
     }
 
     /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is

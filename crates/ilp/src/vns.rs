@@ -13,7 +13,9 @@
 //!    are indistinguishable, so any is "the current solution"), draw x′ ∈ N(x, r), snap
 //!    it to its cell; a cell already in the cache costs an iteration but no tracing;
 //!    otherwise evaluate it; if it joined the ISOC and beat a member, it is an
-//!    improvement: r = 0.05 again; after I tries without one, r += 0.05;
+//!    improvement: r = 0.05 again; after I tries without one, r += 0.05 (the first
+//!    looks of the candidates the walk will draw next are readied side by side when one
+//!    leaves cores idle, `walk`, without changing a thing);
 //! 3. repeat step 2 until `max_iterations` candidates were drawn (cache hits included,
 //!    as in ILPSolver), every cell was evaluated, or the caller asked to stop;
 //! 4. with `REFINE_ISOC_ON_END`, re-evaluate the ISOC with N samples and rebuild it.
@@ -45,6 +47,7 @@ use std::fmt;
 use std::time::Instant;
 
 mod screen;
+mod walk;
 
 /// When candidates are evaluated with the full sample count N (ILPSolver's strategies).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -293,15 +296,31 @@ pub trait Evaluate {
     -> Result<Evaluation, Self::Error>;
 
     /// Evaluates each of `configs` with `photons` samples, as [`Evaluate::evaluate`]
-    /// would one after another and with the same numbers: an evaluator that can trace
-    /// several at once on all cores does (issue 15's parallel candidates), so the
-    /// search's results do not depend on the thread count.
+    /// would one after another and with the same numbers, after readying them all at
+    /// once ([`Evaluate::prepare`]).
     fn evaluate_all(
         &mut self,
         configs: &[Configuration],
         photons: u64,
     ) -> Vec<Result<Evaluation, Self::Error>> {
+        self.prepare(configs, photons);
         configs.iter().map(|c| self.evaluate(c, photons)).collect()
+    }
+
+    /// Readies evaluations of `configs` with `photons` samples that [`Evaluate::evaluate`]
+    /// may be asked for next: an evaluator that can trace several at once on all cores
+    /// does (issue 15's parallel candidates). The search may go on to ask for only some
+    /// of them, in their order, or for none (the walk readies the candidates it will
+    /// draw if none of them changes its course): readying must change neither what
+    /// `evaluate` returns nor the work it reports, so the search's results do not
+    /// depend on the thread count or on how far ahead it readied.
+    fn prepare(&mut self, _configs: &[Configuration], _photons: u64) {}
+
+    /// How many evaluations of `photons` samples [`Evaluate::prepare`] would trace side
+    /// by side to keep every core busy: the walk readies that many candidates ahead
+    /// (1, the default: none ahead).
+    fn side_by_side(&self, _photons: u64) -> usize {
+        1
     }
 
     /// The samples an evaluation asked for `requested` really takes (the photon tracer
@@ -853,15 +872,17 @@ impl<'s> Search<'s> {
 
     /// Evaluates `config` with `photons` samples, and again with `full` when the first
     /// leaves its constraints undecided but it could join (the first then is reported
-    /// as `refine`). Returns the last evaluation and its time.
+    /// as `refine`); `lead` is added to the first's time (see [`Search::candidate`]).
+    /// Returns the last evaluation and its time.
     fn evaluate_deciding<E: Evaluate, O: Observer>(
         &mut self,
         eval: &mut E,
         observer: &mut O,
         (iteration, config, cell): (u64, &Configuration, &Cell),
-        (photons, full): (u64, u64),
+        (photons, full, lead): (u64, u64, f64),
     ) -> Result<(Evaluation, f64), SearchError<E::Error>> {
         let (e, seconds) = self.evaluate(eval, config, photons)?;
+        let seconds = seconds + lead;
         if photons >= full || !self.undecided_but_promising(&e) {
             return Ok((e, seconds));
         }
@@ -892,7 +913,7 @@ impl<'s> Search<'s> {
         let config = self.start.clone();
         let cell = self.space.cell(&config);
         let (evaluation, seconds) =
-            self.evaluate_deciding(eval, observer, (0, &config, &cell), (photons, full))?;
+            self.evaluate_deciding(eval, observer, (0, &config, &cell), (photons, full, 0.0))?;
         let verdict = self.decide(&config, &cell, &evaluation, true);
         self.started = true;
         self.iteration = 1;
@@ -906,138 +927,47 @@ impl<'s> Search<'s> {
         self.report(observer, cell, record)
     }
 
-    /// Algorithm 3.2: up to `tries` candidates in N(x, r); `Some(true)` on the first
-    /// improvement, `None` when the observer asked to stop.
-    fn first_improvement<E: Evaluate, O: Observer>(
-        &mut self,
-        r: f64,
-        tries: u32,
-        eval: &mut E,
-        observer: &mut O,
-    ) -> Result<Option<bool>, SearchError<E::Error>> {
-        for _ in 0..tries {
-            if observer.should_stop() {
-                return Ok(None);
-            }
-            if self.iteration >= self.settings.max_iterations || self.exhausted() {
-                return Ok(Some(false));
-            }
-            // Around a random ISOC member; while there is none, around the configuration
-            // closest to meeting the constraints (the search first walks toward
-            // feasibility), else the start.
-            let members = self.isoc.members();
-            let centre = if let Some(m) = (!members.is_empty())
-                .then(|| &members[self.rng.below(members.len())])
-                .or(self.closest.first().map(|(_, m)| m))
-            {
-                m.config.clone()
-            } else {
-                self.start.clone()
-            };
-            let closest_before = self.closest.first().map(|(v, _)| *v);
-            // Every other try moves the cheap variables alone (dimming levels: the
-            // evaluator reads them from the arrangement's trace, for no photons).
-            let neighbour = if self.space.has_cheap_part() && self.iteration % 2 == 1 {
-                self.space.cheap_neighbour(&centre, r, &mut self.rng)
-            } else {
-                self.space.neighbour(&centre, r, &mut self.rng)
-            };
-            let candidate = self.space.snap(&neighbour);
-            let cell = self.space.cell(&candidate);
-            let iteration = self.iteration;
-            self.iteration += 1;
-            observer.iteration(self.iteration);
-            if self.cache.get(&cell).is_some() {
-                continue;
-            }
-            if let Some(why) = eval.refuses(&candidate) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
-                continue;
-            }
-            if self.candidate(iteration, candidate, cell, eval, observer)? == Verdict::Better {
-                return Ok(Some(true));
-            }
-            // With no feasible configuration yet, coming closer to one is the
-            // improvement.
-            let closer = self.closest.first().map(|(v, _)| *v);
-            if self.isoc.members().is_empty()
-                && closer.is_some_and(|v| closest_before.is_none_or(|b| v < b))
-            {
-                return Ok(Some(true));
-            }
-        }
-        Ok(Some(false))
-    }
-
-    /// The stopping rule's last check: evaluates every cell next to an ISOC member
-    /// (one step along one coordinate) not evaluated yet, as candidates. Random draws
-    /// can miss the one better cell beside a member (in 2-D a sweep misses a given
-    /// adjacent cell about half the time); after this the ISOC is a local optimum over
-    /// its adjacent cells. `Some(true)` when one was admitted, `None` when the observer
-    /// asked to stop.
-    fn adjacent<E: Evaluate, O: Observer>(
-        &mut self,
-        eval: &mut E,
-        observer: &mut O,
-    ) -> Result<Option<bool>, SearchError<E::Error>> {
-        let admitted = self.admissions;
-        let mut cells = Vec::new();
-        for m in self.isoc.members() {
-            for (i, &c) in self.space.cells_per_dimension().iter().enumerate() {
-                let k = m.cell.0[i];
-                for next in [k.checked_sub(1), (k + 1 < c).then_some(k + 1)]
-                    .into_iter()
-                    .flatten()
-                {
-                    let mut cell = m.cell.clone();
-                    cell.0[i] = next;
-                    let config = self.space.snap(&self.space.cell_centre(&cell));
-                    cells.push((self.space.cell(&config), config));
-                }
-            }
-        }
-        for (cell, config) in cells {
-            if observer.should_stop() {
-                return Ok(None);
-            }
-            if self.iteration >= self.settings.max_iterations {
-                break;
-            }
-            if self.cache.get(&cell).is_some() {
-                continue;
-            }
-            let iteration = self.iteration;
-            self.iteration += 1;
-            observer.iteration(self.iteration);
-            if let Some(why) = eval.refuses(&config) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
-                continue;
-            }
-            self.candidate(iteration, config, cell, eval, observer)?;
-        }
-        Ok(Some(self.admissions > admitted))
-    }
-
-    /// Evaluates a new cell, in two stages under `REFINE_ISOC_ON_INTERSECTION` (§4.7).
-    fn candidate<E: Evaluate, O: Observer>(
-        &mut self,
-        iteration: u64,
-        config: Configuration,
-        cell: Cell,
-        eval: &mut E,
-        observer: &mut O,
-    ) -> Result<Verdict, SearchError<E::Error>> {
+    /// The sample counts of a candidate's looks before its decisive evaluation, and
+    /// that evaluation's count (before any re-evaluation with N to decide its
+    /// constraints): n under `REFINE_ISOC_ON_INTERSECTION` then N, n, 4n, … then N
+    /// under [`Strategy::Paired`], n or N alone otherwise.
+    fn schedule<E: Evaluate>(&self, eval: &E) -> (Vec<u64>, u64) {
         let (n, full) = self.settings.sample_counts(eval);
         let looks = match self.settings.strategy {
             Strategy::Paired => looks(n, full, |m| eval.samples(m)),
             Strategy::RefineOnIntersection if n < full => vec![n],
             _ => Vec::new(),
         };
+        let decisive = if self.settings.strategy.two_stage() {
+            full
+        } else {
+            n
+        };
+        (looks, decisive)
+    }
+
+    /// The samples of a candidate's first evaluation, the one the walk readies ahead.
+    fn first_look<E: Evaluate>(&self, eval: &E) -> u64 {
+        let (looks, decisive) = self.schedule(eval);
+        looks.first().copied().unwrap_or(decisive)
+    }
+
+    /// Evaluates a new cell, in two stages under `REFINE_ISOC_ON_INTERSECTION` (§4.7);
+    /// `lead` is the time spent readying its first evaluation ahead (side by side with
+    /// others, [`Evaluate::prepare`]), counted in that evaluation's seconds.
+    fn candidate<E: Evaluate, O: Observer>(
+        &mut self,
+        (iteration, config, cell): (u64, Configuration, Cell),
+        mut lead: f64,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<Verdict, SearchError<E::Error>> {
+        let full = self.settings.sample_counts(eval).1;
+        let (looks, photons) = self.schedule(eval);
         let z_early = early_look_z(self.settings.confidence, looks.len());
         for n in looks {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
+            let seconds = seconds + std::mem::take(&mut lead);
             let verdict = if self.invalid(&fast) {
                 Some(Verdict::Invalid)
             } else if self.feasibility(&fast) == Feasibility::Infeasible {
@@ -1072,13 +1002,12 @@ impl<'s> Search<'s> {
                 break;
             }
         }
-        let photons = if self.settings.strategy.two_stage() {
-            full
-        } else {
-            n
-        };
-        let (evaluation, seconds) =
-            self.evaluate_deciding(eval, observer, (iteration, &config, &cell), (photons, full))?;
+        let (evaluation, seconds) = self.evaluate_deciding(
+            eval,
+            observer,
+            (iteration, &config, &cell),
+            (photons, full, lead),
+        )?;
         let verdict = self.decide(&config, &cell, &evaluation, false);
         let record = Record {
             iteration,

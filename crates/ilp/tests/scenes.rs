@@ -628,6 +628,45 @@ fn candidates_side_by_side_are_candidates_one_by_one() {
     assert!(all.traces() == 13 && one.traces() == 12);
 }
 
+/// Readying candidates ahead leaves no trace of the ones never asked for: after 2 048-
+/// photon looks at 8 placements are readied side by side on 2 threads and only the
+/// first 3 are evaluated (the walk's course changed there), then 4 others, the
+/// evaluations and the work counted (traces, photons, rays) are those of an evaluator
+/// that readied nothing.
+#[test]
+fn candidates_readied_but_not_asked_for_count_nothing() {
+    let (mut scene, pb) = statue_scene();
+    let binding = Binding::new(&pb, &mut scene).unwrap();
+    let at = |k: usize| Configuration {
+        coords: vec![0.05 + 0.08 * k as f64, 0.9 - 0.07 * k as f64],
+    };
+    let readied: Vec<Configuration> = (0..8).map(at).collect();
+    let asked: Vec<Configuration> = (0..3).chain(9..13).map(at).collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let mut one = PhotonEvaluator::new(&binding, scene.clone(), pb.seed, 64, pb.photons);
+    let mut ahead = PhotonEvaluator::new(&binding, scene, pb.seed, 64, pb.photons);
+    let first = Configuration {
+        coords: vec![0.5, 0.5],
+    };
+    for e in [&mut one, &mut ahead] {
+        invlight_ilp::Evaluate::evaluate(e, &first, 2048).unwrap();
+    }
+    pool.install(|| {
+        assert_eq!(invlight_ilp::Evaluate::side_by_side(&ahead, 2048), 2);
+        invlight_ilp::Evaluate::prepare(&mut ahead, &readied, 2048);
+    });
+    for c in &asked {
+        let read = invlight_ilp::Evaluate::evaluate(&mut ahead, c, 2048).unwrap();
+        let alone = invlight_ilp::Evaluate::evaluate(&mut one, c, 2048).unwrap();
+        assert_eq!(read, alone, "{c:?}");
+    }
+    assert_eq!(ahead.traces(), one.traces());
+    assert_eq!(ahead.work(), one.work());
+}
+
 /// `lightAim` (issue 14): a spot authored straight down at the middle of a black room
 /// finds the aim that puts its beam on a small desk 1.56 m off its axis: the desk's
 /// centre is where the aim of one cell centre of the cone (maxTilt 40°, meshSize 24x8:

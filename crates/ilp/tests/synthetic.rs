@@ -54,12 +54,21 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
     type Error = String;
     fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, String> {
         let bits: Vec<u64> = c.coords.iter().map(|x| x.to_bits()).collect();
-        if !self.seen.insert((bits.clone(), photons)) {
+        if !self.seen.insert((bits, photons)) {
             return Err(format!("{:?} traced twice with {photons}", c.coords));
         }
-        let h = bits
+        Ok(self.estimate(c, photons))
+    }
+}
+
+impl<F: Fn(&[f64]) -> f64> Noisy<F> {
+    /// The evaluation at `c` with `photons`: a function of the two and the seed alone.
+    fn estimate(&self, c: &Configuration, photons: u64) -> Evaluation {
+        let h = c
+            .coords
             .iter()
-            .fold(mix(self.seed ^ photons), |h, &b| mix(h ^ b));
+            .map(|x| x.to_bits())
+            .fold(mix(self.seed ^ photons), |h, b| mix(h ^ b));
         // The goal draws from the stream h itself, each constraint from its own.
         let noisy = |value: f64, sigma1: f64, k: u64| {
             let se = sigma1 / (photons as f64).sqrt();
@@ -74,7 +83,7 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
                 samples: photons,
             }
         };
-        Ok(Evaluation {
+        Evaluation {
             goal: noisy((self.f)(&c.coords), self.sigma1, 0),
             constraints: self
                 .constraints
@@ -83,7 +92,7 @@ impl<F: Fn(&[f64]) -> f64> Evaluate for Noisy<F> {
                 .map(|(k, (g, s))| noisy(g(&c.coords), *s, k as u64 + 1))
                 .collect(),
             groups: Vec::new(),
-        })
+        }
     }
 }
 
@@ -550,4 +559,136 @@ fn an_infeasible_problem_walks_toward_feasibility_and_says_what_came_closest() {
     );
     assert!((v - (1.0 - 10.0 / 12.0)).abs() < 0.03, "shortfall {v}");
     assert!(standing.closest.windows(2).all(|w| w[0].0 <= w[1].0));
+}
+
+/// [`Noisy`] that readies evaluations ahead as the photon tracer does side by side
+/// (issue 15's parallel candidates): `prepare` computes them into `ready`, `evaluate`
+/// checks that a readied one is what it evaluates, and counts it. It refuses x₀ > 0.9,
+/// as the tracer refuses a placement outside the scene.
+struct Readied<F: Fn(&[f64]) -> f64> {
+    inner: Noisy<F>,
+    width: usize,
+    ready: Vec<(Configuration, u64, Evaluation)>,
+    readied: u64,
+    served: u64,
+}
+
+impl<F: Fn(&[f64]) -> f64> Evaluate for Readied<F> {
+    type Error = String;
+
+    fn evaluate(&mut self, c: &Configuration, photons: u64) -> Result<Evaluation, String> {
+        let e = self.inner.evaluate(c, photons)?;
+        if let Some(at) = self
+            .ready
+            .iter()
+            .position(|(r, p, _)| r == c && *p == photons)
+        {
+            assert_eq!(self.ready.remove(at).2, e);
+            self.served += u64::from(photons > 1);
+        }
+        Ok(e)
+    }
+
+    fn prepare(&mut self, configs: &[Configuration], photons: u64) {
+        self.ready = configs
+            .iter()
+            .map(|c| (c.clone(), photons, self.inner.estimate(c, photons)))
+            .collect();
+        // The screening's looks (1 sample) are all read; the walk's are guesses.
+        if photons > 1 {
+            self.readied += configs.len() as u64;
+        }
+    }
+
+    fn side_by_side(&self, _photons: u64) -> usize {
+        self.width
+    }
+
+    fn refuses(&self, c: &Configuration) -> Option<String> {
+        (c.coords[0] > 0.9).then(|| "outside".to_string())
+    }
+}
+
+/// The walk that readies candidates ahead is the walk one candidate at a time: the same
+/// records (but their seconds), ISOC, outcome and counts, readying 2, 3 or 8 at once,
+/// on every strategy and several seeds; with a constraint that keeps the search
+/// infeasible for a while (its centre the closest), refusals, a dimming-like cheap
+/// variable (every other candidate) and a grid small enough to run out of cells. The
+/// guesses are right often enough to matter: most readied looks are read.
+#[test]
+fn readying_candidates_ahead_changes_nothing() {
+    let f = |x: &[f64]| 4.0 - 9.0 * (x[0] - 0.6).powi(2) - 3.0 * (x[1] - 0.3).powi(2);
+    let g = |x: &[f64]| 10.0 * x[0];
+    let spaces = [
+        Space::new(vec![segment("x"), segment("level")], &[24, 8]).with_cheap(&[1]),
+        Space::new(vec![segment("x"), segment("y")], &[5, 4]),
+    ];
+    type Run = (
+        Vec<(u64, Vec<f64>, Evaluation, Verdict)>,
+        Vec<Cell>,
+        Outcome,
+        u64,
+        u64,
+    );
+    let mut readied = (0, 0);
+    for (s, space) in spaces.iter().enumerate() {
+        for strategy in [
+            Strategy::RefineOnIntersection,
+            Strategy::RefineOnEnd,
+            Strategy::NoRefine,
+            Strategy::Paired,
+        ] {
+            for seed in [1, 2, 3] {
+                let run = |width: usize| -> (Run, u64, u64) {
+                    let settings = Settings {
+                        seed,
+                        constraints: vec![Bound::MinLux(4.0)],
+                        ..settings(300, strategy)
+                    };
+                    let mut eval = Readied {
+                        inner: Noisy::new(f, 2.0).with(g, 0.5),
+                        width,
+                        ready: Vec::new(),
+                        readied: 0,
+                        served: 0,
+                    };
+                    eval.inner.seed = seed;
+                    let start = Configuration {
+                        coords: vec![0.05, 0.5],
+                    };
+                    let mut search = Search::new(space, settings, &start);
+                    let mut log = Log::default();
+                    let outcome = search.run(&mut eval, &mut log).unwrap();
+                    let rows = log
+                        .records
+                        .into_iter()
+                        .map(|r| (r.iteration, r.config.coords, r.evaluation, r.verdict))
+                        .collect();
+                    let members = search.isoc().members().iter();
+                    let cells = members.map(|m| m.cell.clone()).collect();
+                    let counts = (search.iteration(), search.evaluations());
+                    let run = (rows, cells, outcome, counts.0, counts.1);
+                    (run, eval.readied, eval.served)
+                };
+                let (alone, none, _) = run(1);
+                assert_eq!(none, 0);
+                assert!(alone.0.len() > 10, "{strategy:?} seed {seed}");
+                for width in [2, 3, 8] {
+                    let (ahead, r, served) = run(width);
+                    assert!(
+                        ahead == alone,
+                        "{width} ahead, space {s}, {strategy:?}, seed {seed}"
+                    );
+                    if width == 2 {
+                        readied.0 += r;
+                        readied.1 += served;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        2 * readied.1 > readied.0,
+        "{readied:?} read of those readied"
+    );
 }

@@ -107,7 +107,7 @@ impl Search<'_> {
                 let iteration = self.iteration;
                 self.iteration += 1;
                 observer.iteration(self.iteration);
-                self.candidate(iteration, config, cell, eval, observer)?;
+                self.candidate((iteration, config, cell), 0.0, eval, observer)?;
             }
         }
         Ok(true)
