@@ -89,8 +89,8 @@ for example in cone office; do
     done
   done
 done
-# The paired search screens cells side by side on threads (each rank traces the batch
-# alone, since exchanges come from one thread at a time): still the same files.
+# The paired search screens cells in batches, and the walk readies its next candidates,
+# dealt to the ranks whole and exchanged: still the same files.
 args=(--iterations 40 --photons 20000 --strategy PAIRED_ISOC)
 solve "$PLAIN" solve "$cone/problem.xml" -o "$work/paired-plain" "${args[@]}"
 for k in 2 3; do
@@ -99,6 +99,13 @@ for k in 2 3; do
   for f in solutions.csv result.json; do
     same "$work/paired-plain/$f" "$work/paired-$k/$f" "paired solve, K = $k"
   done
+done
+# Nodes may differ in cores: ranks of 1 and 3 threads choose their batches alike.
+uneven=(solve "$cone/problem.xml" -o "$work/uneven" "${args[@]}" --no-images --no-report --json)
+timeout 300 "${mpirun[@]}" -np 1 "$MPI" "${uneven[@]}" --threads 1 : -np 1 "$MPI" "${uneven[@]}" --threads 3 \
+  > /dev/null || fail "paired solve on ranks of 1 and 3 threads: did not finish"
+for f in solutions.csv result.json; do
+  same "$work/paired-plain/$f" "$work/uneven/$f" "paired solve on ranks of 1 and 3 threads"
 done
 echo "solve: solutions.csv and result.json the same for K = 1, 2, 3 as the default binary"
 

@@ -93,6 +93,9 @@ pub struct PhotonEvaluator<'b> {
     /// evaluation reads one, so a trace the search never asks for counts nothing.
     ready: HashMap<(Vec<u64>, u64), (Measurement, Option<u64>)>,
     first_sides: Option<Vec<SideSplit>>,
+    /// The threads of all the job's processes, counted once they are asked for
+    /// ([`PhotonEvaluator::lanes`]).
+    lanes: std::cell::OnceCell<usize>,
 }
 
 /// Why an evaluation failed.
@@ -131,7 +134,23 @@ impl<'b> PhotonEvaluator<'b> {
             kept: HashMap::new(),
             ready: HashMap::new(),
             first_sides: None,
+            lanes: std::cell::OnceCell::new(),
         }
+    }
+
+    /// The threads of all the job's processes, the same figure on every process: in a
+    /// cluster job each process says its own (one exchange, the first time), since nodes
+    /// may differ in cores and the candidates readied side by side, which every process
+    /// must choose alike, are sized by it.
+    fn lanes(&self) -> usize {
+        *self.lanes.get_or_init(|| {
+            let mine = rayon::current_num_threads() as u64;
+            let all = cluster();
+            if all.ranks() == 1 {
+                return mine as usize;
+            }
+            all.all_gather(&[mine]).iter().sum::<u64>() as usize
+        })
     }
 
     /// Rays cast and photons traced so far.
@@ -434,17 +453,16 @@ impl Evaluate for PhotonEvaluator<'_> {
         }
     }
 
-    /// As many as there are threads, of all the job's processes, for each trace's
-    /// chunks of [`CHUNK`] photons to keep one busy (the screening's and the fast looks'
-    /// 2 048 photons are one chunk), once the first evaluation is made; 1 when one trace
-    /// alone keeps every core busy.
+    /// As many as there are threads, of all the job's processes ([`Self::lanes`]), for
+    /// each trace's chunks of [`CHUNK`] photons to keep one busy (the screening's and the
+    /// fast looks' 2 048 photons are one chunk), once the first evaluation is made; 1
+    /// when one trace alone keeps every core busy.
     fn side_by_side(&self, photons: u64) -> usize {
         if self.first_sides.is_none() {
             return 1;
         }
-        let lanes = rayon::current_num_threads() * cluster().ranks();
         let chunks = self.samples(photons).div_ceil(CHUNK).max(1);
-        (lanes as u64 / chunks).max(1) as usize
+        (self.lanes() as u64 / chunks).max(1) as usize
     }
 
     /// Whole groups of photons, at least the tracer's minimum; a count past `u64` is
