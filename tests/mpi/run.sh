@@ -107,6 +107,14 @@ timeout 300 "${mpirun[@]}" -np 1 "$MPI" "${uneven[@]}" --threads 1 : -np 1 "$MPI
 for f in solutions.csv result.json; do
   same "$work/paired-plain/$f" "$work/uneven/$f" "paired solve on ranks of 1 and 3 threads"
 done
+# Rank 0 writes the report (its plan's map traced alone) after the others have ended.
+timeout 300 "${mpirun[@]}" -np 2 "$MPI" solve "$office/problem.xml" -o "$work/report-2" \
+  --iterations 25 --photons 10000 --no-images > /dev/null 2>&1 ||
+  fail "a solve with its report on 2 ranks did not finish (rank 0 waiting for the others?)"
+test -s "$work/report-2/report.html" || fail "a solve on 2 ranks wrote no report"
+for f in solutions.csv result.json; do
+  same "$work/office-plain/$f" "$work/report-2/$f" "office solve with its report, K = 2"
+done
 echo "solve: solutions.csv and result.json the same for K = 1, 2, 3 as the default binary"
 
 # 3. A rank that cannot load the scene ends the job, named.

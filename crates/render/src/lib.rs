@@ -52,7 +52,7 @@ pub use integrator::{
 };
 pub use map::{
     GridSpacing, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
-    MapSummary, illuminance_map,
+    MapSummary, illuminance_map, illuminance_map_across,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{

@@ -1,7 +1,7 @@
 //! Illuminance grids over a planar surface, as lighting standards ask for them
 //! (EN 12464-1 §5.4: a regular grid of cells, Emin, Eavg, Emax and uniformity
 //! U0 = Emin/Eavg). The grid and its measurement are the photon layer's
-//! ([`SurfaceGrid`], [`measure_with`]), the same the search's uniformity intentions
+//! ([`SurfaceGrid`], [`invlight_photon::measure_with`]), the same the search's uniformity intentions
 //! read: each cell's value is the luminous power the photons bring to it over its
 //! covered area and N, with the standard error of the stratified photon groups, so
 //! every value carries its interval, and U0's interval comes from the groups'
@@ -13,8 +13,8 @@
 
 use glam::Vec3;
 use invlight_photon::{
-    Components, Estimator, GridError, GridRequest, Request, Side, SurfaceGrid, TraceSettings,
-    behind_warning, en12464_spacing, measure_with, photons_traced,
+    Cluster, Components, Estimator, GridError, GridRequest, Request, Side, SurfaceGrid,
+    TraceSettings, behind_warning, cluster, en12464_spacing, measure_across, photons_traced,
 };
 use invlight_scene::{Scene, SurfaceId};
 use invlight_stats::{Confidence, Estimate};
@@ -174,6 +174,20 @@ pub fn illuminance_map(
     settings: &MapSettings,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<IlluminanceMap, MapError> {
+    illuminance_map_across(scene, accel, surface, settings, progress, cluster())
+}
+
+/// [`illuminance_map`] traced by the processes of `cluster`, which must all ask for it
+/// (`invlight map` on K ranks); what one process does alone, as rank 0 writing a
+/// solve's report after the others ended, is traced with [`invlight_photon::Alone`].
+pub fn illuminance_map_across(
+    scene: &Scene,
+    accel: &Accel,
+    surface: SurfaceId,
+    settings: &MapSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    cluster: &dyn Cluster,
+) -> Result<IlluminanceMap, MapError> {
     let grid = settings.spacing.grid(scene, surface)?;
     photons_traced(settings.trace.photons)
         .ok_or(MapError::TooManyPhotons(settings.trace.photons))?;
@@ -190,7 +204,7 @@ pub fn illuminance_map(
         estimator: settings.estimator,
         keep_groups: false,
     };
-    let measured = measure_with(scene, accel, &request, &settings.trace, progress);
+    let measured = measure_across(scene, accel, &request, &settings.trace, progress, cluster);
     let g = &measured.grids[0];
     let (w, grid) = ([1.0], &g.grid);
     let cells = (0..grid.cells())

@@ -12,9 +12,9 @@ use invlight_ilp::{
     Binding, Confidence, Diagnostic, Isoc, Member, Problem, Record, ResultFile, RunFile, Search,
     Solutions, Standing, Strategy,
 };
-use invlight_photon::{Estimator, GridError, TraceSettings};
+use invlight_photon::{Alone, Estimator, GridError, TraceSettings};
 use invlight_render::{
-    ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map, plain,
+    ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map_across, plain,
 };
 use invlight_scene::Scene;
 use invlight_stats::significant;
@@ -480,9 +480,10 @@ impl<'a> SolveReport<'a> {
                 trace: g.trace,
                 estimator: Estimator::Connected,
             };
-            // Nothing moves: one world-space tree, as `invlight map` builds.
+            // Nothing moves: one world-space tree, as `invlight map` builds. The page is
+            // rank 0's alone in a cluster job (the others have ended): its own trace.
             let accel = Accel::with_movable(&scene, &[]);
-            let map = illuminance_map(&scene, &accel, target, &settings, None);
+            let map = illuminance_map_across(&scene, &accel, target, &settings, None, &Alone);
             match map {
                 Ok(map) => {
                     let mut s = grid_section(
