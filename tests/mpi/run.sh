@@ -157,4 +157,35 @@ for f in solutions.csv result.json; do
 done
 [ "$(wc -l < "$work/killed/solutions.csv")" -gt $((kept + 100)) ] || fail "the resumed run added few rows"
 echo "a killed rank: the job ends (status $status) naming rank 1; --resume on 3 ranks continues its $kept rows as one process does"
+
+# 5. Ctrl-C reaching the ranks one by one (as srun forwards it): rank 0's flag stops every
+# rank at the same candidate, one flagged alone is ignored, and the files stay valid.
+set +e
+"${mpirun[@]}" -np 2 sh -c 'echo $$ > "$0.$OMPI_COMM_WORLD_RANK"; exec "$@"' "$work/ipid" \
+  "$MPI" solve "$cone/problem.xml" -o "$work/interrupted" "${full[@]}" --no-images --no-report \
+  > "$work/interrupted.out" 2>&1 &
+job=$!
+for _ in $(seq 600); do
+  rows=$(cat "$work/interrupted/solutions.csv" 2>/dev/null | wc -l)
+  [ "$rows" -gt 20 ] && break
+  sleep 0.1
+done
+kill -INT "$(cat "$work/ipid.1")"
+sleep 0.5
+kill -INT "$(cat "$work/ipid.0")"
+for _ in $(seq 1200); do kill -0 $job 2>/dev/null || break; sleep 0.1; done
+kill -0 $job 2>/dev/null && { kill -KILL $job; fail "an interrupted job did not end (a rank left waiting?)"; }
+wait $job
+status=$?
+set -e
+[ $status -ne 0 ] || fail "an interrupted solve ended with status 0"
+kept=$(($(wc -l < "$work/interrupted/solutions.csv") - 1))
+[ "$kept" -lt 300 ] || fail "the interrupted job was not stopped early ($kept rows)"
+cp -r "$work/interrupted" "$work/interrupted-plain"
+solve "$PLAIN" solve "$cone/problem.xml" -o "$work/interrupted-plain" "${full[@]}" --resume
+solve "${mpirun[@]}" -np 2 "$MPI" solve "$cone/problem.xml" -o "$work/interrupted" "${full[@]}" --resume
+for f in solutions.csv result.json; do
+  same "$work/interrupted-plain/$f" "$work/interrupted/$f" "an interrupted job resumed on 2 ranks"
+done
+echo "Ctrl-C on every rank: the job stops together (status $status) after $kept rows; --resume continues them"
 echo "tests/mpi/run.sh: all passed"

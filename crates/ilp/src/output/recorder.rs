@@ -112,7 +112,16 @@ impl<F: FnMut(Progress<'_>)> Observer for Recorder<'_, F> {
         self.refused += 1;
     }
 
+    /// The stop flag; in a cluster job rank 0's, sent to every rank (one word each),
+    /// since the ranks must stop at the same candidate: a rank that stopped on its own
+    /// flag (a launcher such as `srun` forwards Ctrl-C to every rank, each seeing it at
+    /// its own moment) would leave the others waiting in an exchange forever.
     fn should_stop(&mut self) -> bool {
-        self.stop.load(Ordering::Relaxed)
+        let mine = self.stop.load(Ordering::Relaxed);
+        let job = invlight_photon::cluster();
+        if job.ranks() == 1 {
+            return mine;
+        }
+        job.all_gather(&[u64::from(mine)])[0] == 1
     }
 }
