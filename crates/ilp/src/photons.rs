@@ -21,8 +21,8 @@ use crate::space::Configuration;
 use crate::vns::{Evaluate, Evaluation};
 use invlight_photon::CHUNK;
 use invlight_photon::{
-    Alone, Cluster, Components, Estimator, GridError, Measurement, Request, TraceSettings, cluster,
-    measure_across, measure_more, photons_traced,
+    Alone, Cluster, Components, Estimator, GridError, GridRequest, Measurement, Request,
+    TraceSettings, cluster, measure_across, measure_more, photons_traced,
 };
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
@@ -219,11 +219,11 @@ impl PhotonEvaluator<'_> {
     /// [`Evaluate::evaluate`] to make again and report). The candidates are dealt to the
     /// processes of a cluster job in turn (rank r takes the r-th, the (r + K)-th, …;
     /// issue 16: a batch of one-chunk looks keeps every rank busy, where a shared trace
-    /// of one chunk would keep one), each rank traces its share on up to `threads`
-    /// stages at once, each trace its own, and the ranks exchange the measurements: the
+    /// of one chunk would keep one), each rank traces its share on as many stages
+    /// at once as it has threads, each trace its own, and the ranks exchange the measurements: the
     /// exchange comes from this thread alone, in the same order on every rank, as MPI's
     /// serialised calls need.
-    fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64, threads: usize) {
+    fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64) {
         self.ready.clear();
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
         for c in configs {
@@ -237,7 +237,7 @@ impl PhotonEvaluator<'_> {
         }
         let (rank, ranks) = (cluster().rank(), cluster().ranks());
         let mine: Vec<usize> = (rank..todo.len()).step_by(ranks).collect();
-        let stages = threads.min(mine.len()).max(1);
+        let stages = rayon::current_num_threads().min(mine.len()).max(1);
         while self.helpers.len() + 1 < stages {
             let copy = Stage {
                 scene: self.stage.scene.clone(),
@@ -257,29 +257,25 @@ impl PhotonEvaluator<'_> {
             .collect();
         let from: Vec<Option<u64>> = previous.iter().map(|p| p.map(|m| m.photons)).collect();
         let work: Vec<_> = mine.iter().map(|&i| (todo[i].1, previous[i])).collect();
-        let mut lanes: Vec<&mut Stage> = std::iter::once(&mut self.stage)
+        let mut copies: Vec<&mut Stage> = std::iter::once(&mut self.stage)
             .chain(self.helpers.iter_mut())
             .take(stages)
             .collect();
-        let traced: Vec<Option<Measurement>> = if work.is_empty() {
-            Vec::new()
-        } else {
-            let per = work.len().div_ceil(stages);
-            let parts: Vec<Vec<_>> = lanes
-                .par_iter_mut()
-                .zip(work.par_chunks(per))
-                .map(|(stage, part)| {
-                    part.iter()
-                        .map(|(c, p)| job.trace(stage, c, photons, *p, &Alone).ok())
-                        .collect()
-                })
-                .collect();
-            parts.into_iter().flatten().collect()
-        };
+        let per = work.len().div_ceil(stages).max(1);
+        let parts: Vec<Vec<_>> = copies
+            .par_iter_mut()
+            .zip(work.par_chunks(per))
+            .map(|(stage, part)| {
+                part.iter()
+                    .map(|(c, p)| job.trace(stage, c, photons, *p, &Alone).ok())
+                    .collect()
+            })
+            .collect();
+        let traced: Vec<Option<Measurement>> = parts.into_iter().flatten().collect();
         let traced = if ranks == 1 {
             traced
         } else {
-            job.exchange(&mut self.stage, &todo, &traced, ranks)
+            job.exchange(&mut self.stage, &todo, traced, (rank, ranks))
         };
         for (((key, _), m), from) in todo.into_iter().zip(traced).zip(from) {
             if let Some(m) = m {
@@ -328,35 +324,43 @@ impl Job<'_> {
         if self.binding.apply_arrangement(&mut stage.scene, config) {
             stage.accel.update_instances(&stage.scene);
         }
-        let reading = &self.binding.reading;
-        let grids = reading
+        let grids = self
+            .binding
+            .reading
             .grid_requests(&stage.scene)
             .map_err(|(name, e)| EvaluationError::Grid(name, e))?;
-        Ok(Request {
-            surfaces: &reading.surfaces,
+        Ok(self.request(grids))
+    }
+
+    /// The request of a trace laying `grids`.
+    fn request(&self, grids: Vec<GridRequest>) -> Request<'_> {
+        Request {
+            surfaces: &self.binding.reading.surfaces,
             grids,
             components: self.components,
             estimator: Estimator::Connected,
             // The paired search compares configurations by their groups.
             keep_groups: true,
-        })
+        }
     }
 
     /// Every rank's measurements of a batch `todo` dealt in turn to `ranks` processes,
     /// from this rank's share `mine` ([`PhotonEvaluator::trace_side_by_side`]): packed,
-    /// gathered from all ranks and read back in `todo`'s order, each read with the
-    /// request of its configuration, which `stage` is arranged as to know it. A failed
-    /// trace travels as a failure (one word), to be traced again, and reported, one by
-    /// one.
+    /// gathered from all ranks and read back in `todo`'s order (this rank's own kept as
+    /// they are), each other's read with the request of its configuration, which
+    /// `stage` is arranged as to know its grids when there are any. A failed trace
+    /// travels as a failure (one word), to be traced again, and reported, one by one.
     fn exchange(
         &self,
         stage: &mut Stage,
         todo: &[((Vec<u64>, u64), &Configuration)],
-        mine: &[Option<Measurement>],
-        ranks: usize,
+        mine: Vec<Option<Measurement>>,
+        (rank, ranks): (usize, usize),
     ) -> Vec<Option<Measurement>> {
         let mut words = Vec::new();
-        for m in mine {
+        let mut lengths = Vec::with_capacity(mine.len());
+        for m in &mine {
+            let start = words.len();
             match m {
                 Some(m) => {
                     words.push(1);
@@ -364,16 +368,26 @@ impl Job<'_> {
                 }
                 None => words.push(0),
             }
+            lengths.push(words.len() - start);
         }
         let all = cluster().all_gather(&words);
         let mut all = all.into_iter();
         let mut out: Vec<Option<Measurement>> = todo.iter().map(|_| None).collect();
+        let mut own = mine.into_iter().zip(lengths);
         for r in 0..ranks {
             for i in (r..todo.len()).step_by(ranks) {
-                if all.next() == Some(1) {
-                    let request = self
-                        .arrange(stage, todo[i].1)
-                        .expect("a configuration another rank could trace");
+                if r == rank {
+                    let (m, length) = own.next().expect("this rank's share");
+                    all.nth(length - 1);
+                    out[i] = m;
+                } else if all.next() == Some(1) {
+                    // Without grids the request is the same for every configuration.
+                    let request = if self.binding.reading.grids.is_empty() {
+                        self.request(Vec::new())
+                    } else {
+                        self.arrange(stage, todo[i].1)
+                            .expect("a configuration another rank could trace")
+                    };
                     out[i] = Some(Measurement::unpack(&request, &mut all));
                 }
             }
@@ -447,9 +461,8 @@ impl Evaluate for PhotonEvaluator<'_> {
     /// made, so the kept traces and the counts are those of the run without readying.
     fn prepare(&mut self, configs: &[Configuration], photons: u64) {
         let photons = self.samples(photons);
-        let threads = rayon::current_num_threads();
         if configs.len() > 1 && self.side_by_side(photons) > 1 {
-            self.trace_side_by_side(configs, photons, threads);
+            self.trace_side_by_side(configs, photons);
         }
     }
 

@@ -172,29 +172,19 @@ impl Measurement {
     /// # Panics
     /// If `words` ends first or do not come from a measurement of such a request.
     pub fn unpack(request: &Request, words: &mut impl Iterator<Item = u64>) -> Measurement {
-        let mut next = || {
+        let word = |words: &mut dyn Iterator<Item = u64>| {
             words
                 .next()
                 .expect("a packed measurement of the same request")
         };
-        let (photons, rays, connection_rays) = (next(), next(), next());
         let reals = |words: &mut dyn Iterator<Item = u64>| -> Vec<f64> {
-            let mut next = || {
-                words
-                    .next()
-                    .expect("a packed measurement of the same request")
-            };
-            let n = next() as usize;
-            (0..n).map(|_| f64::from_bits(next())).collect()
+            let n = word(words) as usize;
+            (0..n).map(|_| f64::from_bits(word(words))).collect()
         };
+        let (photons, rays, connection_rays) = (word(words), word(words), word(words));
         let areas = reals(words);
         let targets = request.surfaces.len();
-        let hits: Vec<u64> = words.take(targets).collect();
-        assert_eq!(
-            hits.len(),
-            targets,
-            "a packed measurement of the same request"
-        );
+        let hits = (0..targets).map(|_| word(words)).collect();
         let k = request.components.count();
         let channels = (0..targets)
             .map(|_| {
@@ -211,20 +201,14 @@ impl Measurement {
                 let mut sums = CellTallies::new(g.grid.cells(), k).sums;
                 sums.unpack(words);
                 let mut m = GridMeasurement::new(g.grid.clone(), g.side, sums);
-                let mut next = || words.next().expect("a packed grid of the same request");
-                m.photons = next();
-                m.flux = f64::from_bits(next());
+                m.photons = word(words);
+                m.flux = f64::from_bits(word(words));
                 m
             })
             .collect();
         let component_flux = reals(words);
-        let mut next = || {
-            words
-                .next()
-                .expect("a packed measurement of the same request")
-        };
-        let (escaped, flux) = (f64::from_bits(next()), f64::from_bits(next()));
-        let boundary = (next() == 1).then(|| Box::new(Measurement::unpack(request, words)));
+        let (escaped, flux) = (f64::from_bits(word(words)), f64::from_bits(word(words)));
+        let boundary = (word(words) == 1).then(|| Box::new(Measurement::unpack(request, words)));
         Measurement {
             photons,
             rays,
@@ -239,6 +223,11 @@ impl Measurement {
             flux,
             boundary,
         }
+    }
+
+    /// The totals each kept group holds: every target's 2K channels.
+    fn group_width(&self) -> usize {
+        self.areas.len() * 2 * self.components()
     }
 
     /// The number of components.
@@ -543,10 +532,8 @@ pub fn measure_more(
         Some(state) if photons > previous.photons => {
             let mut state = state.clone();
             // The boundary's groups are a prefix of the previous measurement's.
-            state.groups = previous.groups[..previous.groups.len().min(
-                (state.photons / GROUP) as usize * previous.areas.len() * 2 * previous.components(),
-            )]
-                .to_vec();
+            let kept = (state.photons / GROUP) as usize * previous.group_width();
+            state.groups = previous.groups[..previous.groups.len().min(kept)].to_vec();
             state.rays = previous.rays;
             trace_into(
                 scene,

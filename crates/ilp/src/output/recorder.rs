@@ -112,7 +112,7 @@ impl<F: FnMut(Progress<'_>)> Observer for Recorder<'_, F> {
         self.refused += 1;
     }
 
-    /// The stop flag; in a cluster job rank 0's, sent to every rank (one word each),
+    /// The stop flag; in a cluster job rank 0's, sent to every rank (one word),
     /// since the ranks must stop at the same candidate: a rank that stopped on its own
     /// flag (a launcher such as `srun` forwards Ctrl-C to every rank, each seeing it at
     /// its own moment) would leave the others waiting in an exchange forever.
@@ -122,6 +122,7 @@ impl<F: FnMut(Progress<'_>)> Observer for Recorder<'_, F> {
         if job.ranks() == 1 {
             return mine;
         }
-        job.all_gather(&[u64::from(mine)])[0] == 1
+        let said: &[u64] = if job.rank() == 0 { &[mine as u64] } else { &[] };
+        job.all_gather(said)[0] == 1
     }
 }
