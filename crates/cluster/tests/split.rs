@@ -120,6 +120,11 @@ fn a_continued_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
     let whole = measure_with(&scene, &accel, &request, &settings(6 * CHUNK), None);
     for first in [2 * CHUNK, CHUNK + 640] {
         let previous = measure_with(&scene, &accel, &request, &settings(first), None);
+        // A continuation casts the rays of the chunks from the boundary on, counted
+        // beside the previous measurement's (a chunk's rays are its own, whoever traces it).
+        let before = previous.resumable_photons();
+        let skipped = measure_with(&scene, &accel, &request, &settings(before), None).rays;
+        let rays = previous.rays + whole.rays - skipped;
         for k in [1, 2, 3] {
             let (continued, words): (Vec<Measurement>, _) = on_ranks(k, |r| {
                 measure_more(
@@ -133,7 +138,7 @@ fn a_continued_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
                 )
             });
             for (rank, mut m) in continued.into_iter().enumerate() {
-                // What this call cast is counted beside what the previous one did.
+                assert_eq!(m.rays, rays, "rank {rank} of {k}, from {first} photons");
                 m.rays = whole.rays;
                 assert!(
                     m == whole,

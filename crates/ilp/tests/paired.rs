@@ -641,4 +641,11 @@ fn the_optimum_is_in_the_isoc_as_often_as_promised() {
         found[0],
         found[1]
     );
+    // Pairs tell more configurations apart: a smaller set around the optimum.
+    assert!(
+        members[0] <= members[1],
+        "ISOC members over the seeds: paired {} vs thesis {}",
+        members[0],
+        members[1]
+    );
 }

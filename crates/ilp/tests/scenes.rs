@@ -620,7 +620,11 @@ fn candidates_side_by_side_are_candidates_one_by_one() {
         coords: vec![0.5, 0.5],
     };
     invlight_ilp::Evaluate::evaluate(&mut all, &first, 2048).unwrap();
-    let together = pool.install(|| invlight_ilp::Evaluate::evaluate_all(&mut all, &configs, 2048));
+    let together = pool.install(|| {
+        // Two lanes for one-chunk looks: the batch is traced side by side.
+        assert_eq!(invlight_ilp::Evaluate::side_by_side(&all, 2048), 2);
+        invlight_ilp::Evaluate::evaluate_all(&mut all, &configs, 2048)
+    });
     for (c, e) in configs.iter().zip(together) {
         let alone = invlight_ilp::Evaluate::evaluate(&mut one, c, 2048).unwrap();
         assert_eq!(e.unwrap(), alone, "{c:?}");
