@@ -466,7 +466,7 @@ impl Evaluate for PhotonEvaluator<'_> {
         }
     }
 
-    /// As many as there are threads, of all the job's processes ([`Self::lanes`]), for
+    /// As many as there are threads, of all the job's processes (`PhotonEvaluator::lanes`), for
     /// each trace's chunks of [`CHUNK`] photons to keep one busy (the screening's and the
     /// fast looks' 2 048 photons are one chunk), once the first evaluation is made; 1
     /// when one trace alone keeps every core busy.
