@@ -2488,7 +2488,8 @@ mod daylight {
 
     /// `<sunTime days … objective="mean">`: the open plane reads the mean over the
     /// instants of 1000 lx × cos Z (0 while the sun is down), cos Z from SPA for each
-    /// instant here (invlight-scene's SunPosition, tested against the SPA paper).
+    /// instant here (invlight-scene's SunPosition, tested against the SPA paper); the
+    /// same with `--north 90`.
     #[test]
     fn sun_schedule_reads_the_mean_over_its_instants() {
         use invlight_scene::daylight::{Date, Site, SunOptions, SunPosition, TimeOfDay};
@@ -2505,17 +2506,20 @@ mod daylight {
             }
         }
         let expected = sum / 39.0;
-        let m = measure(
-            &data("daylight/mean.xml"),
-            &["Open"],
-            &["--side", "front", "-n", "200000"],
-        );
-        let s = named(&m["surfaces"], "Open");
-        let (mean, sigma) = (f64_of(&s["mean"]), f64_of(&s["std_error"]));
-        assert!(
-            (mean - expected).abs() <= 4.0 * sigma,
-            "{mean} ± {sigma} vs {expected}"
-        );
+        // A north turned on the command line goes over the problem's daylight once (the
+        // schedule's suns are put on the scene from it) and turns every sun alike: a
+        // horizontal plane reads the same mean of cos Z.
+        for north in [&[][..], &["--north", "90"]] {
+            let mut flags = vec!["--side", "front", "-n", "200000"];
+            flags.extend(north);
+            let m = measure(&data("daylight/mean.xml"), &["Open"], &flags);
+            let s = named(&m["surfaces"], "Open");
+            let (mean, sigma) = (f64_of(&s["mean"]), f64_of(&s["std_error"]));
+            assert!(
+                (mean - expected).abs() <= 4.0 * sigma,
+                "{north:?}: {mean} ± {sigma} vs {expected}"
+            );
+        }
         assert!(expected > 500.0 && expected < 650.0, "{expected}");
     }
 

@@ -10,7 +10,7 @@ use invlight_ilp::{Problem, configured_scene};
 use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photon_count};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
-use invlight_scene::daylight::{Daylight, Site, SkySpec, SunAt};
+use invlight_scene::daylight::{Daylight, DaylightFlags, Site, SkySpec, SunAt};
 use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
 pub use invlight_scene::{finite, positive};
 use invlight_stats::Confidence;
@@ -74,20 +74,26 @@ impl LoadArgs {
         }
     }
 
-    /// Puts --site, --north, --sun and --sky on the scene over a problem's daylight `of`
-    /// ([`invlight_scene::daylight::DaylightFlags::over`]); refuses a scene whose
-    /// ray-tracing structure would not fit the memory limit.
-    fn fits(&self, mut scene: Scene, path: &Path, of: Option<&Daylight>) -> anyhow::Result<Scene> {
-        let flags = Daylight::flags(self.site, self.north, self.sun, self.sky);
-        crate::warn(flags.over(of, &mut scene)?);
+    /// --site, --north, --sun and --sky.
+    fn daylight(&self) -> DaylightFlags {
+        Daylight::flags(self.site, self.north, self.sun, self.sky)
+    }
+
+    /// Puts the flags' daylight on a scene file's scene (a problem's goes over its own);
+    /// refuses a scene whose ray-tracing structure would not fit the memory limit.
+    fn fits(&self, mut scene: Scene, path: &Path, file: bool) -> anyhow::Result<Scene> {
+        if file {
+            crate::warn(self.daylight().light(&mut scene)?);
+        }
         Accel::check_memory(&scene, path, self.options().max_memory)?;
         Ok(scene)
     }
 
-    /// Loads a problem file's scene, these options overriding its `<scene>`'s.
-    pub fn load_problem(&self, problem: &Problem) -> anyhow::Result<Scene> {
+    /// Loads a problem file's scene, these options over its `<scene>`'s and its daylight.
+    pub fn load_problem(&self, problem: &mut Problem) -> anyhow::Result<Scene> {
+        crate::warn(problem.lit_by(&self.daylight())?);
         let scene = problem.load_scene(&self.options(), self.scale, self.up, &self.luminaire)?;
-        self.fits(scene, &problem.scene.path, Some(&problem.daylight))
+        self.fits(scene, &problem.scene.path, false)
     }
 }
 
@@ -112,9 +118,9 @@ impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
         let (path, options, lum) = (&self.scene, self.load.options(), &self.load.luminaire);
-        let file = || self.load.fits(load_with(path, &options, lum)?, path, None);
+        let file = || self.load.fits(load_with(path, &options, lum)?, path, true);
         configured_scene(path, self.config.as_deref(), file, |p| {
-            self.load.load_problem(p)
+            self.load.load_problem(&mut p.clone())
         })
     }
 }

@@ -24,11 +24,11 @@ pub struct ReportCommandArgs {
 
 /// Runs `invlight report`.
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
-    let problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
+    let mut problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
     let bounces = problem.bounces();
     let requirement = args.report.requirement()?;
     let grid = args.grid.grid(problem.seed, bounces);
-    let scene = args.load.load_problem(&problem)?;
+    let scene = args.load.load_problem(&mut problem)?;
     let written = SolveReport::rebuild(&args.dir, &problem, scene, requirement.as_ref(), grid)?;
     crate::print(&(written.lines() + "\n"))?;
     Ok(ExitCode::SUCCESS)

@@ -82,7 +82,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     problem.seed = args.trace.seed.unwrap_or(problem.seed);
     problem.max_bounces = args.trace.max_bounces.or(problem.max_bounces);
     let max_bounces = problem.bounces();
-    let mut scene = args.load.load_problem(&problem)?;
+    let mut scene = args.load.load_problem(&mut problem)?;
     scene.require_light(&problem.scene.path)?;
     let binding = Binding::new(&problem, &mut scene)?;
     crate::warn(&binding.warnings);

@@ -17,22 +17,14 @@ pub struct SunArgs {
     /// The local clock time, HH:MM or HH:MM:SS (24-hour, in the zone of --site).
     #[arg(long)]
     pub time: TimeOfDay,
-    /// Metres above sea level: SPA's parallax, and the ISO 2533 air that refracts.
-    #[arg(
-        long,
-        value_name = "M",
-        default_value_t = 0.0,
-        allow_negative_numbers = true
-    )]
-    pub elevation: f64,
-    /// True north, degrees clockwise seen from above from the scene's −Z (Y-up) or +Y (Z-up).
-    #[arg(
-        long,
-        value_name = "DEG",
-        default_value_t = 0.0,
-        allow_negative_numbers = true
-    )]
-    pub north: f64,
+    /// Metres above sea level: SPA's parallax, and the ISO 2533 air that refracts
+    /// [default: 0].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub elevation: Option<f64>,
+    /// True north, degrees clockwise seen from above from the scene's −Z (Y-up) or +Y
+    /// (Z-up) [default: 0].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub north: Option<f64>,
     /// The scene's up axis, for the direction.
     #[arg(long, value_name = "y|z", default_value = "y")]
     pub up: invlight_scene::UpAxis,
@@ -46,8 +38,8 @@ pub struct SunArgs {
 pub fn run(args: SunArgs) -> anyhow::Result<ExitCode> {
     let site = args
         .site
-        .with_elevation(args.elevation)?
-        .with_north(args.north)?;
+        .with_elevation(args.elevation.unwrap_or(0.0))?
+        .with_north(args.north.unwrap_or(0.0))?;
     let (options, up) = (SunOptions::default(), args.up.vector());
     let report = SunReport::new(&site, &args.date, &args.time, &options, up)?;
     if args.json {

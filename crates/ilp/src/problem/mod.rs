@@ -14,7 +14,9 @@ mod daylight;
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
-use invlight_scene::daylight::{Date, Daylight, SkyKind, SunSchedule, TimeOfDay};
+use invlight_scene::daylight::{
+    Date, Daylight, DaylightError, DaylightFlags, SkyKind, SunSchedule, TimeOfDay,
+};
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
@@ -345,6 +347,21 @@ impl Problem {
                 .map_err(|e| Diagnostic::at_line(&self.path, *line, format!("<sunTime>: {e}")))?;
         }
         Ok(scene)
+    }
+
+    /// Puts the command line's daylight over this problem's own
+    /// ([`DaylightFlags::over`]): what its scene is lit by, once, in
+    /// [`Problem::load_scene`], and what its search's suns follow. Returns what the
+    /// flags' daylight is worth a warning for (the file's own was warned of when read).
+    pub fn lit_by(&mut self, flags: &DaylightFlags) -> Result<Vec<String>, DaylightError> {
+        let daylight = flags.over(&self.daylight)?;
+        let warnings = if daylight == self.daylight {
+            Vec::new()
+        } else {
+            daylight.warnings()
+        };
+        self.daylight = daylight;
+        Ok(warnings)
     }
 
     /// The bounce cap of its photon paths: `maxBounces`, else the tracer's own.

@@ -113,26 +113,27 @@ pub struct DaylightFlags {
 }
 
 impl DaylightFlags {
-    /// Puts these flags on a scene that already has `base` on it (a problem file's
-    /// daylight, or none for a scene file): each part given replaces `base`'s and the
-    /// parts not given are `base`'s, so that `--sun` alone moves a problem's sun at its
-    /// own `<site>`, and `--north` turns whichever site there is. Nothing is done when
-    /// no flag is given (the scene keeps what it has). Returns [`Daylight::apply`]'s
-    /// warnings.
-    pub fn over(
-        &self,
-        base: Option<&Daylight>,
-        scene: &mut Scene,
-    ) -> Result<Vec<String>, DaylightError> {
+    /// These flags over `base` (a problem file's daylight, or none for a scene file):
+    /// each part given replaces `base`'s and the parts not given are `base`'s, so that
+    /// `--sun` alone moves a problem's sun at its own `<site>`, and `--north` turns
+    /// whichever site there is; with no flag, `base` itself. The result is what a
+    /// problem's scene is lit by and its search reads, put on the scene once.
+    pub fn over(&self, base: &Daylight) -> Result<Daylight, DaylightError> {
         if self.daylight.is_empty() && self.north.is_none() {
-            return Ok(Vec::new());
+            return Ok(*base);
         }
-        let mut daylight = self.daylight.or(&base.copied().unwrap_or_default());
+        let mut daylight = self.daylight.or(base);
         if let Some(north) = self.north {
             let site = daylight.site.ok_or(DaylightError::NorthNeedsSite)?;
             daylight.site = Some(site.with_north(north)?);
         }
-        daylight.apply(scene)
+        Ok(daylight)
+    }
+
+    /// Puts these flags' daylight on a scene file's scene (one without a daylight of its
+    /// own); returns its warnings.
+    pub fn light(&self, scene: &mut Scene) -> Result<Vec<String>, DaylightError> {
+        self.over(&Daylight::default())?.apply(scene)
     }
 }
 
@@ -200,10 +201,29 @@ impl Daylight {
     }
 
     /// Puts the sun, then the sky, on `scene` ([`Daylight::apply_sun`],
-    /// [`Daylight::apply_sky`]); returns what is worth a warning.
+    /// [`Daylight::apply_sky`]); returns what is worth a warning ([`Daylight::warnings`]).
     pub fn apply(&self, scene: &mut Scene) -> Result<Vec<String>, DaylightError> {
-        let mut warnings = self.apply_sun(scene)?;
+        self.apply_sun(scene)?;
         self.apply_sky(scene)?;
+        Ok(self.warnings())
+    }
+
+    /// What this daylight is worth a warning for: a sun below the horizon, which gives
+    /// no light, and a site whose clock is far from its meridian (a sign mistaken).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if let (Some(sun), Some(site)) = (self.sun, self.site)
+            && let Ok(position) =
+                SunPosition::new(&site, &sun.date, &sun.time, &SunOptions::default())
+            && !position.is_up()
+        {
+            warnings.push(format!(
+                "the sun is {:.1}° below the horizon on {} at {}: it gives no light",
+                -position.altitude(),
+                sun.date,
+                sun.time
+            ));
+        }
         if let Some(site) = self.site
             && site.meridian_offset_hours().abs() > 3.0
         {
@@ -214,35 +234,28 @@ impl Daylight {
                 site.timezone()
             ));
         }
-        Ok(warnings)
+        warnings
     }
 
     /// Points the scene's sun where it stands at `sun`'s date and time at the site, with
     /// the illuminance given or else IES RP-21's clear-sky beam (0 when the sun is
     /// down). The sun is the scene's only directional light, or the one named
     /// [`SUN_NAME`] among several; a scene with none gets one of that name.
-    pub fn apply_sun(&self, scene: &mut Scene) -> Result<Vec<String>, DaylightError> {
+    pub fn apply_sun(&self, scene: &mut Scene) -> Result<(), DaylightError> {
         let Some(sun) = self.sun else {
-            return Ok(Vec::new());
+            return Ok(());
         };
         let site = self.site.ok_or(DaylightError::NeedsSite)?;
         let position = SunPosition::new(&site, &sun.date, &sun.time, &SunOptions::default())?;
-        let mut warnings = Vec::new();
         let lux = if position.is_up() {
             sun.illuminance
                 .unwrap_or_else(|| position.clear_sky_direct_normal())
         } else {
-            warnings.push(format!(
-                "the sun is {:.1}° below the horizon on {} at {}: it gives no light",
-                -position.altitude(),
-                sun.date,
-                sun.time
-            ));
             0.0
         };
         let direction = position.travel(&site.compass(scene.up)?);
         set_sun(scene, direction, lux)?;
-        Ok(warnings)
+        Ok(())
     }
 
     /// Puts the sky on the scene, replacing any it has. The clear sky needs the sun's
@@ -455,7 +468,7 @@ mod tests {
     }
 
     /// The command line's parts replace a problem's and take the rest from it: `--sun`
-    /// alone shines at the problem's site; no flag leaves the scene alone.
+    /// alone shines at the problem's site; no flag leaves the problem's daylight as it is.
     #[test]
     fn flags_go_over_a_problems_daylight() {
         let base = Daylight {
@@ -463,26 +476,26 @@ mod tests {
             sun: Some("2025-12-21,10:00".parse().unwrap()),
             sky: None,
         };
-        let mut scene = Scene::default();
-        base.apply(&mut scene).unwrap();
-        let before = scene.clone();
         let none = Daylight::flags(None, None, None, None);
-        assert!(none.over(Some(&base), &mut scene).unwrap().is_empty());
-        assert_eq!(scene, before);
-        let travel = |scene: &Scene| match scene.lights[..] {
-            [
-                Light {
-                    kind: LightKind::Directional { direction, .. },
-                    ..
-                },
-            ] => direction,
-            _ => panic!("{:?}", scene.lights),
+        assert_eq!(none.over(&base), Ok(base));
+        let travel = |daylight: Daylight| {
+            let mut scene = Scene::default();
+            daylight.apply(&mut scene).unwrap();
+            match scene.lights[..] {
+                [
+                    Light {
+                        kind: LightKind::Directional { direction, .. },
+                        ..
+                    },
+                ] => direction,
+                _ => panic!("{:?}", scene.lights),
+            }
         };
         let afternoon =
             Daylight::flags(None, None, Some("2025-12-21,16:00".parse().unwrap()), None);
-        afternoon.over(Some(&base), &mut scene).unwrap();
+        assert_eq!(afternoon.over(&base).unwrap().site, base.site);
         // The afternoon sun stands in the west (−X of a Y-up scene): its light travels east.
-        let east = travel(&scene);
+        let east = travel(afternoon.over(&base).unwrap());
         assert!(east.x > 0.5, "{east}");
         // North turned 90° clockwise onto +X puts east on +Z and west on −Z: the light
         // travels +Z, each vector turned with the compass.
@@ -490,19 +503,21 @@ mod tests {
             north: Some(90.0),
             ..afternoon
         };
-        turned.over(Some(&base), &mut scene).unwrap();
-        let d = travel(&scene);
+        let d = travel(turned.over(&base).unwrap());
         assert!(
             (d - Vec3::new(-east.z, east.y, east.x)).length() < 1e-5,
             "{d} {east}"
         );
-        let e = afternoon.over(None, &mut Scene::default());
+        let e = afternoon
+            .over(&Daylight::default())
+            .unwrap()
+            .apply(&mut Scene::default());
         assert_eq!(e, Err(DaylightError::NeedsSite));
         let north_alone = Daylight::flags(None, Some(10.0), None, None);
-        let e = north_alone.over(None, &mut Scene::default()).unwrap_err();
+        let e = north_alone.over(&Daylight::default()).unwrap_err();
         assert!(e.to_string().contains("--site"), "{e}");
         let bad = Daylight::flags(base.site, Some(f64::NAN), None, None);
-        assert!(bad.over(None, &mut Scene::default()).is_err());
+        assert!(bad.over(&Daylight::default()).is_err());
     }
 
     /// A sun is added to a scene without one, set on its only directional light, and
