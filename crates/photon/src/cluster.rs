@@ -113,12 +113,12 @@ fn unsqueeze(squeezed: &[u64]) -> Vec<u64> {
     out
 }
 
-/// [`trace_chunks`] shared by the processes of `cluster`: each block's chunks are split
+/// [`trace_chunks`](crate::trace_chunks) shared by the processes of `cluster`: each block's chunks are split
 /// into K runs of consecutive chunks, run r traced by rank r on its threads, packed,
 /// gathered by every rank and folded in chunk order. A block holds K times the chunks a
 /// process alone would trace at a time, so each rank's memory is the same as alone and
 /// a trace of up to 256·K chunks (10⁶·K photons) takes one exchange. `progress` hears
-/// of every block once gathered. On one process it is [`trace_chunks`] itself.
+/// of every block once gathered. On one process it is [`trace_chunks`](crate::trace_chunks) itself.
 #[allow(clippy::too_many_arguments)]
 pub fn trace_shared<V: PathVisitor + Pack + Send>(
     scene: &Scene,
