@@ -148,9 +148,12 @@ pub struct Daylight {
     pub sky: Option<SkySpec>,
 }
 
-impl Site {
-    /// Reads `LAT,LON,TZ` (`-34.9,-56.2,-3`), as [`Site::new`] takes them.
-    pub fn parse_triple(text: &str) -> Result<Site, DaylightError> {
+impl FromStr for Site {
+    type Err = DaylightError;
+
+    /// Reads `LAT,LON,TZ` (`-34.9,-56.2,-3`), as the command line's `--site` gives them
+    /// and [`Site::new`] takes them.
+    fn from_str(text: &str) -> Result<Site, DaylightError> {
         let numbers: Option<Vec<f64>> = text.split(',').map(|x| x.trim().parse().ok()).collect();
         match numbers.as_deref() {
             Some(&[lat, lon, tz]) => Site::new(lat, lon, tz),
@@ -159,15 +162,6 @@ impl Site {
                 expected: "LAT,LON,TZ in degrees and hours, like -34.9,-56.2,-3",
             }),
         }
-    }
-}
-
-impl FromStr for Site {
-    type Err = DaylightError;
-
-    /// Reads `LAT,LON,TZ` ([`Site::parse_triple`]), as the command line's `--site` gives it.
-    fn from_str(text: &str) -> Result<Site, DaylightError> {
-        Site::parse_triple(text)
     }
 }
 
@@ -457,14 +451,10 @@ mod tests {
             let e = text.parse::<SkySpec>().unwrap_err().to_string();
             assert!(e.contains(what), "{text}: {e}");
         }
-        let site = Site::parse_triple("-34.9, -56.2, -3").unwrap();
-        assert_eq!(site.longitude(), -56.2);
-        assert!(Site::parse_triple("-34.9,-56.2").is_err());
-        assert!(Site::parse_triple("-94,0,0").is_err());
-        assert_eq!(
-            "-34.9,-56.2,-3".parse::<Site>(),
-            Site::parse_triple("-34.9,-56.2,-3")
-        );
+        let site: Site = "-34.9, -56.2, -3".parse().unwrap();
+        assert_eq!(site, Site::new(-34.9, -56.2, -3.0).unwrap());
+        assert!("-34.9,-56.2".parse::<Site>().is_err());
+        assert!("-94,0,0".parse::<Site>().is_err());
     }
 
     /// The command line's parts replace a problem's and take the rest from it: `--sun`
