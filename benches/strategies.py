@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The thesis' search against PAIRED_ISOC on the bundled examples, one after the other
+"""The thesis' search against PAIRED_ISOC and RACE_ISOC_ON_END on the bundled examples, one after the other
 in one run, with tools/check_examples.py's reduced budgets and its check of the answer
 (issue 15). For each run: evaluations, photons traced (what `solve` reports), photons
 the rows ask for (the sum of solutions.csv's photons column: what re-tracing every
@@ -7,7 +7,7 @@ evaluation from its first photon would cost), screened rows, seconds of search, 
 elapsed seconds at which the final best member first joined the ISOC (time to
 solution), the ISOC's size, why it stopped, and whether the answer is in the region.
 
-    python3 benches/strategies.py [--bin PATH] [--only NAME ...] [-j THREADS]
+    python3 benches/strategies.py [--bin PATH] [--only NAME ...] [-j THREADS] [--strategies S ...]
 
 Python 3 standard library only; the runs' folders go to a temporary folder.
 """
@@ -43,6 +43,8 @@ def main():
     ap.add_argument("--bin", default=os.path.join(REPO, "target", "release", "invlight"))
     ap.add_argument("--only", nargs="*", choices=sorted(check.EXAMPLES))
     ap.add_argument("-j", default="2")
+    ap.add_argument("--strategies", nargs="*", default=[None, "PAIRED_ISOC", "RACE_ISOC_ON_END"],
+                    help="the strategies to run, one after the other; 'default' is the problem file's (default: default PAIRED_ISOC RACE_ISOC_ON_END)")
     args = ap.parse_args()
     print("| example | strategy | evaluations | screened | photons traced | photons asked | search s | best found at s | ISOC | stopped | in region |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
@@ -51,7 +53,7 @@ def main():
             if args.only and name not in args.only:
                 continue
             problem = os.path.join("examples", name, "problem.xml")
-            for strategy in (None, "PAIRED_ISOC"):
+            for strategy in [None if s in (None, "default") else s for s in args.strategies]:
                 out = os.path.join(tmp, "%s-%s" % (name, strategy or "default"))
                 cmd = [args.bin, "solve", problem, "--output", out, "--json", "--no-images",
                        "--no-report", "-j", args.j] + budget + (["--strategy", strategy] if strategy else [])

@@ -195,29 +195,50 @@ fn bad_input_is_an_input_error() {
     assert!(format!("{err:#}").contains("--photons"), "{err:#}");
 }
 
-/// `--strategy PAIRED_ISOC` (issue 15): the same `solutions.csv` on 1 and 2 threads (the
-/// groups paired are the same photons whatever the thread count), the strategy kept in
-/// run.json, and why the search stopped in result.json.
+/// `--strategy PAIRED_ISOC` and `RACE_ISOC_ON_END` (issue 15): the same `solutions.csv`
+/// on 1 and 2 threads (the groups paired are the same photons whatever the thread
+/// count), the strategy kept in run.json, and why the search stopped in result.json.
+/// The race runs on examples/cornell-cone, whose flat top keeps many members: with
+/// n = 2 048 and N = 40 000 photons its ISOC is looked at with 8 192 and 32 768 first.
 #[test]
 fn paired_search_is_the_same_on_any_thread_count_and_says_why_it_stopped() {
     let dir = tempfile::tempdir().unwrap();
-    let mut runs = Vec::new();
-    for threads in [1, 2] {
-        let out = dir.path().join(format!("t{threads}"));
-        let mut a = args(&out);
-        a.iterations = Some(200);
-        a.strategy = Some(Strategy::Paired);
-        a.trace.threads = Some(threads);
-        assert_eq!(run(a).unwrap(), ExitCode::SUCCESS);
-        let result = ResultFile::read(&out.join("result.json")).unwrap();
-        let stopped = result.stopped.expect("a finished search says why");
-        assert!(
-            stopped.starts_with("decided") || stopped.starts_with("maxIterations"),
-            "{stopped}"
-        );
-        let run_file = std::fs::read_to_string(out.join("run.json")).unwrap();
-        assert!(run_file.contains("PAIRED_ISOC"), "{run_file}");
-        runs.push(untimed(&rows(&out)));
+    let cone = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cornell-cone/problem.xml");
+    for strategy in [Strategy::Paired, Strategy::RaceOnEnd] {
+        let mut runs = Vec::new();
+        for threads in [1, 2] {
+            let out = dir.path().join(format!("{}-{threads}", strategy.name()));
+            let mut a = args(&out);
+            a.iterations = Some(200);
+            a.strategy = Some(strategy);
+            a.trace.threads = Some(threads);
+            if strategy == Strategy::RaceOnEnd {
+                a.problem = cone.clone();
+                a.iterations = Some(120);
+                a.trace.photons = Some(40_000);
+            }
+            assert_eq!(run(a).unwrap(), ExitCode::SUCCESS);
+            let result = ResultFile::read(&out.join("result.json")).unwrap();
+            let stopped = result.stopped.expect("a finished search says why");
+            assert!(
+                stopped.starts_with("decided") || stopped.starts_with("maxIterations"),
+                "{stopped}"
+            );
+            let run_file = std::fs::read_to_string(out.join("run.json")).unwrap();
+            assert!(run_file.contains(strategy.name()), "{run_file}");
+            runs.push(untimed(&rows(&out)));
+        }
+        if strategy == Strategy::RaceOnEnd {
+            let look = |photons: &str, verdict: &str| {
+                runs[0]
+                    .iter()
+                    .filter(|r| r.contains(photons) && r.ends_with(verdict))
+                    .count()
+            };
+            assert!(look(",8192,", ",beaten") > 0, "nobody raced out at 4n");
+            assert!(look(",32768,", ",refine") > 1);
+            assert_eq!(look(",32768,", ",refine"), look(",40000,", ",final"));
+        }
+        assert_eq!(runs[0], runs[1], "{}", strategy.name());
     }
-    assert_eq!(runs[0], runs[1]);
 }

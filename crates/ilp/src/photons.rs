@@ -30,8 +30,12 @@ use invlight_trace::Accel;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// How many traces the evaluator keeps for dimmings of their arrangements.
-const KEPT_TRACES: usize = 64;
+/// The most traces the evaluator keeps for dimmings of their arrangements and for
+/// continuations, and the most bytes they may hold together: `PAIRED_ISOC_ON_END`'s
+/// race continues every survivor's trace of the look before (a hundred members on a
+/// flat top), and a problem with many components and grids keeps traces of megabytes.
+const KEPT_TRACES: usize = 1024;
+const KEPT_BYTES: usize = 256 << 20;
 
 /// The light a measured surface receives on each side, for the warning that much of it
 /// arrives from behind.
@@ -88,6 +92,8 @@ pub struct PhotonEvaluator<'b> {
     photons: u64,
     traces: u64,
     kept: Kept,
+    /// What the kept traces hold, [`Measurement::heap_bytes`] summed.
+    kept_bytes: usize,
     /// Traces made side by side ahead of their evaluation ([`Evaluate::prepare`]), each
     /// with the photons of the kept trace it continued; counted only when an
     /// evaluation reads one, so a trace the search never asks for counts nothing.
@@ -132,6 +138,7 @@ impl<'b> PhotonEvaluator<'b> {
             photons: 0,
             traces: 0,
             kept: HashMap::new(),
+            kept_bytes: 0,
             ready: HashMap::new(),
             first_sides: None,
             lanes: std::cell::OnceCell::new(),
@@ -206,10 +213,15 @@ impl<'b> PhotonEvaluator<'b> {
         self.rays += m.rays + m.connection_rays - rays_before;
         self.photons += m.photons - reused;
         self.traces += 1;
-        if self.kept.len() >= KEPT_TRACES {
+        let bytes = m.heap_bytes();
+        if self.kept.len() >= KEPT_TRACES || self.kept_bytes + bytes > KEPT_BYTES {
             self.kept.clear();
+            self.kept_bytes = 0;
         }
-        self.kept.insert(key, m);
+        self.kept_bytes += bytes;
+        if let Some(old) = self.kept.insert(key, m) {
+            self.kept_bytes -= old.heap_bytes();
+        }
     }
 }
 

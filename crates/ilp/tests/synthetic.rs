@@ -320,6 +320,7 @@ fn every_strategy_finds_the_peak() {
         Strategy::RefineOnEnd,
         Strategy::NoRefine,
         Strategy::Paired,
+        Strategy::RaceOnEnd,
     ] {
         // σ = 0.1 with N, 0.2 with n: differences between neighbouring cells are a few
         // σ, so a fast draw rarely sends the optimum to case A (where the tabu cache
@@ -340,7 +341,10 @@ fn every_strategy_finds_the_peak() {
             .iter()
             .filter(|r| r.verdict == Verdict::Final)
             .count();
-        assert_eq!(finals > 0, strategy == Strategy::RefineOnEnd);
+        assert_eq!(
+            finals > 0,
+            matches!(strategy, Strategy::RefineOnEnd | Strategy::RaceOnEnd)
+        );
         let refines = records
             .iter()
             .filter(|r| r.verdict == Verdict::Refine)
@@ -637,12 +641,21 @@ fn readying_candidates_ahead_changes_nothing() {
             Strategy::RefineOnEnd,
             Strategy::NoRefine,
             Strategy::Paired,
+            Strategy::RaceOnEnd,
         ] {
             for seed in [1, 2, 3] {
                 let run = |width: usize| -> (Run, u64, u64) {
+                    // RACE_ISOC_ON_END with n = N/16: its race looks at 4n (readied
+                    // side by side) before N.
+                    let fast_quality = if strategy == Strategy::RaceOnEnd {
+                        1.0 / 16.0
+                    } else {
+                        0.25
+                    };
                     let settings = Settings {
                         seed,
                         constraints: vec![Bound::MinLux(4.0)],
+                        fast_quality,
                         ..settings(300, strategy)
                     };
                     let mut eval = Readied {

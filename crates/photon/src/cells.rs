@@ -40,6 +40,13 @@ pub struct CellSums {
 }
 
 impl CellSums {
+    /// The bytes its sums take on the heap.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        (self.sum.len() + self.cross.len() + self.with_total.len()) * size_of::<f64>()
+            + self.hits.len() * size_of::<u64>()
+            + self.total.heap_bytes()
+    }
+
     fn new(cells: usize, components: usize) -> CellSums {
         let k = components;
         CellSums {

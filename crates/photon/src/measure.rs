@@ -120,6 +120,26 @@ pub struct Measurement {
 }
 
 impl Measurement {
+    /// About the bytes it holds on the heap (its sums, groups, grids and the partial
+    /// chunk's boundary), for a caller that keeps many measurements within a budget.
+    pub fn heap_bytes(&self) -> usize {
+        let grids: usize = self
+            .grids
+            .iter()
+            .map(|g| g.sums.heap_bytes() + g.grid.areas.len() * size_of::<f64>())
+            .sum();
+        size_of::<Measurement>()
+            + (self.areas.len() + self.groups.len() + self.component_flux.len()) * size_of::<f64>()
+            + self.hits.len() * size_of::<u64>()
+            + self
+                .channels
+                .iter()
+                .map(ChannelSums::heap_bytes)
+                .sum::<usize>()
+            + grids
+            + self.boundary.as_ref().map_or(0, |b| b.heap_bytes())
+    }
+
     /// The measurement [`measure_more`] continues from: this one when it ends on a chunk
     /// boundary, else its sums at the last boundary if it kept them.
     fn boundary(&self) -> Option<&Measurement> {

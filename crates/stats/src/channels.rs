@@ -25,6 +25,11 @@ fn upper(c: usize, i: usize, j: usize) -> usize {
 }
 
 impl ChannelSums {
+    /// The bytes its sums take on the heap.
+    pub fn heap_bytes(&self) -> usize {
+        (self.sum.len() + self.cross.len()) * size_of::<f64>()
+    }
+
     /// Empty sums of `channels` channels.
     pub fn new(channels: usize) -> ChannelSums {
         ChannelSums {

@@ -783,9 +783,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             Some(s) => Strategy::parse(s.trim()).ok_or_else(|| {
                 self.error(
                     objectives,
-                    format!(
-                        "strategy is '{s}', expected REFINE_ISOC_ON_INTERSECTION, REFINE_ISOC_ON_END or NO_REFINE_ISOC"
-                    ),
+                    format!("strategy is '{s}', expected {}", Strategy::names()),
                 )
             })?,
         };
