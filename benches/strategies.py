@@ -67,7 +67,9 @@ def main():
                                           stdout=subprocess.PIPE, check=True)
                     return json.loads(done.stdout)
 
-                ok, what = test(best, again) if test in (check.office_target, check.office_ies) else test(best)
+                # The checks that measure the answer again take a second argument.
+                takes_again = test.__code__.co_argcount == 2
+                ok, what = test(best, again) if takes_again else test(best)
                 found, rows = time_to_best(out, best)
                 traced = re.search(r"(\d+) evaluations, (\d+) photons", run.stderr.decode()).group(2)
                 asked = sum(int(r["photons"]) for r in rows)
