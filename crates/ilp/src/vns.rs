@@ -780,7 +780,11 @@ impl<'s> Search<'s> {
             Strategy::RaceOnEnd => self.race(eval, observer)?,
             _ => true,
         };
-        Ok(if complete { outcome } else { Outcome::Interrupted })
+        Ok(if complete {
+            outcome
+        } else {
+            Outcome::Interrupted
+        })
     }
 
     fn exhausted(&self) -> bool {
