@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// The most traces the evaluator keeps for dimmings of their arrangements and for
-/// continuations, and the most bytes they may hold together: `PAIRED_ISOC_ON_END`'s
+/// continuations, and the most bytes they may hold together: `RACE_ISOC_ON_END`'s
 /// race continues every survivor's trace of the look before (a hundred members on a
 /// flat top), and a problem with many components and grids keeps traces of megabytes.
 const KEPT_TRACES: usize = 1024;
@@ -231,10 +231,10 @@ impl PhotonEvaluator<'_> {
     /// [`Evaluate::evaluate`] to make again and report). The candidates are dealt to the
     /// processes of a cluster job in turn (rank r takes the r-th, the (r + K)-th, …;
     /// issue 16: a batch of one-chunk looks keeps every rank busy, where a shared trace
-    /// of one chunk would keep one), each rank traces its share on as many stages
-    /// at once as it has threads, each trace its own, and the ranks exchange the measurements: the
-    /// exchange comes from this thread alone, in the same order on every rank, as MPI's
-    /// serialised calls need.
+    /// of one chunk would keep one), each rank traces its share on as many stages at
+    /// once as it has threads, each trace its own, and the ranks exchange the
+    /// measurements: the exchange comes from this thread alone, in the same order on
+    /// every rank, as MPI's serialised calls need.
     fn trace_side_by_side(&mut self, configs: &[Configuration], photons: u64) {
         self.ready.clear();
         let mut todo: Vec<((Vec<u64>, u64), &Configuration)> = Vec::new();
@@ -478,8 +478,9 @@ impl Evaluate for PhotonEvaluator<'_> {
         }
     }
 
-    /// As many as there are threads, of all the job's processes (`PhotonEvaluator::lanes`), for
-    /// each trace's chunks of [`CHUNK`] photons to keep one busy (the screening's and the
+    /// As many as there are threads, of all the job's processes
+    /// (`PhotonEvaluator::lanes`), for each trace's chunks of [`CHUNK`] photons to keep
+    /// one busy (the screening's and the
     /// fast looks' 2 048 photons are one chunk), once the first evaluation is made; 1
     /// when one trace alone keeps every core busy.
     fn side_by_side(&self, photons: u64) -> usize {

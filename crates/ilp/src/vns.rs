@@ -165,9 +165,9 @@ pub enum Verdict {
     /// `REFINE_ISOC_ON_END` and `RACE_ISOC_ON_END`: an ISOC member re-evaluated with
     /// N; the final ISOC is rebuilt from these rows.
     Final,
-    /// The global screening of [`Strategy::Paired`] and [`Strategy::RaceOnEnd`]: a cell of a space-filling set looked at
-    /// once with the fewest samples, not offered to the ISOC (the search may evaluate
-    /// it again as a candidate).
+    /// The global screening of [`Strategy::Paired`] and [`Strategy::RaceOnEnd`]: a cell
+    /// of a space-filling set looked at once with the fewest samples, not offered to the
+    /// ISOC (the search may evaluate it again as a candidate).
     Screened,
 }
 
@@ -447,13 +447,13 @@ pub enum Outcome {
     Exhausted,
     /// The observer asked to stop; the ISOC is as it was (not refined).
     Interrupted,
-    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: a whole sweep of the radii 0.05 … 0.95 around the ISOC,
-    /// I candidates each, admitted no configuration, nor did the cells adjacent to its
-    /// members (see [`Search::run`]).
+    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: a whole sweep of the radii
+    /// 0.05 … 0.95 around the ISOC, I candidates each, admitted no configuration, nor
+    /// did the cells adjacent to its members (see [`Search::run`]).
     Settled,
-    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: the global screening found every configuration it tried
-    /// (and the initial one) indistinguishable from no light at all, until the budget
-    /// or the cells ran out.
+    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: the global screening found every
+    /// configuration it tried (and the initial one) indistinguishable from no light at
+    /// all, until the budget or the cells ran out.
     Unlit,
 }
 
@@ -605,8 +605,9 @@ impl<'s> Search<'s> {
     /// The median over the candidates decided so far of var(X−Y)/(var X + var Y), X the
     /// candidate and Y the best ISOC member then, from their common groups, with the
     /// number of such pairs; `None` when no evaluation kept its groups (only
-    /// [`Strategy::Paired`] and [`Strategy::RaceOnEnd`] keep them). It is what pairing gains over eq. 3.7: the
-    /// paired threshold is its square root times eq. 3.7's (issue 15 asks for it).
+    /// [`Strategy::Paired`] and [`Strategy::RaceOnEnd`] keep them). It is what pairing
+    /// gains over eq. 3.7: the paired threshold is its square root times eq. 3.7's
+    /// (issue 15 asks for it).
     pub fn variance_ratio(&self) -> Option<(f64, usize)> {
         let mut r = self.ratios.clone();
         r.sort_by(f64::total_cmp);

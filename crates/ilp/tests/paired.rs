@@ -650,29 +650,22 @@ fn the_optimum_is_in_the_isoc_as_often_as_promised() {
     );
 }
 
-/// Samples a search evaluated, and those of the rows after its walk (the race's or the
-/// final re-evaluation's: rows with the last iteration's number and more than n).
-#[derive(Default)]
-struct Spent {
-    all: u64,
-    rows: Vec<(u64, u64, Verdict)>,
-}
-
-impl Observer for Spent {
-    fn evaluated(&mut self, r: &Record, _: Standing<'_>, _: bool) -> std::io::Result<()> {
-        self.all += r.evaluation.goal.samples;
-        self.rows
-            .push((r.iteration, r.evaluation.goal.samples, r.verdict));
-        Ok(())
-    }
+/// The rows a search wrote after its walk (the race's or the final re-evaluation's:
+/// they carry the last iteration's number), as (samples, verdict).
+fn after_walk(log: &Log, last: u64) -> Vec<(u64, Verdict)> {
+    log.records
+        .iter()
+        .filter(|r| r.iteration == last)
+        .map(|r| (r.evaluation.goal.samples, r.verdict))
+        .collect()
 }
 
 /// `RACE_ISOC_ON_END` against the thesis' `REFINE_ISOC_ON_END` on the honesty test's
 /// peak ([`the_optimum_is_in_the_isoc_as_often_as_promised`]), with the walk at
 /// n = 700 samples (7 groups) and N = 40 000 (400 groups), so the race looks at
 /// 2 800 and 11 200 before N: the optimum is in the raced ISOC for at least 95 % of
-/// 200 seeds and as often as in the thesis' (within 2: the two walks differ), and
-/// the steps after the walks cost at most half the thesis' samples in all.
+/// 200 seeds and at least as often as in the thesis' (197 against 191 now), and the
+/// steps after the walks cost at most half the thesis' samples in all.
 #[test]
 fn a_raced_isoc_keeps_the_optimum_for_fewer_samples() {
     let segment = |id: &str| Variable {
@@ -711,33 +704,23 @@ fn a_raced_isoc_keeps_the_optimum_for_fewer_samples() {
                     coords: vec![0.9, 0.1],
                 },
             );
-            let mut spent = Spent::default();
-            search.run(&mut eval, &mut spent).unwrap();
+            let mut log = Log::default();
+            search.run(&mut eval, &mut log).unwrap();
             found[k] += search.isoc().members().iter().any(|m| m.cell == optimum) as u32;
             members[k] += search.isoc().members().len();
-            let last = search.iteration();
-            end[k] += spent
-                .rows
-                .iter()
-                .filter(|(i, s, _)| *i == last && *s > 700)
-                .map(|(_, s, _)| s)
-                .sum::<u64>();
+            let rows = after_walk(&log, search.iteration());
+            end[k] += rows.iter().map(|(s, _)| s).sum::<u64>();
             if strategy == Strategy::RaceOnEnd {
-                let looks: Vec<u64> = spent
-                    .rows
+                let looks: Vec<u64> = rows
                     .iter()
-                    .filter(|(i, _, v)| *i == last && *v != Verdict::Final)
-                    .map(|(_, s, _)| *s)
+                    .filter(|(_, v)| *v != Verdict::Final)
+                    .map(|(s, _)| *s)
                     .collect();
                 assert!(
                     looks.iter().all(|s| [2_800, 11_200].contains(s)),
                     "seed {seed}: race looks {looks:?}"
                 );
-                beaten += spent
-                    .rows
-                    .iter()
-                    .filter(|(i, _, v)| *i == last && *v == Verdict::Beaten)
-                    .count();
+                beaten += rows.iter().filter(|(_, v)| *v == Verdict::Beaten).count();
             }
         }
     }
@@ -746,7 +729,7 @@ fn a_raced_isoc_keeps_the_optimum_for_fewer_samples() {
     );
     assert!(found[0] >= 190, "raced: optimum in {} of {seeds}", found[0]);
     assert!(
-        found[0] + 2 >= found[1],
+        found[0] >= found[1],
         "raced {} vs thesis {}",
         found[0],
         found[1]
@@ -794,14 +777,10 @@ fn a_race_loses_an_equal_member_no_more_than_promised() {
             ..settings(Strategy::RaceOnEnd, seed)
         };
         let mut search = Search::new(&space, settings, &Configuration { coords: vec![0.25] });
-        let mut spent = Spent::default();
-        search.run(&mut eval, &mut spent).unwrap();
-        let last = search.iteration();
-        let raced = spent
-            .rows
-            .iter()
-            .filter(|(i, s, _)| *i == last && *s == 2_800)
-            .count();
+        let mut log = Log::default();
+        search.run(&mut eval, &mut log).unwrap();
+        let rows = after_walk(&log, search.iteration());
+        let raced = rows.iter().filter(|(s, _)| *s == 2_800).count();
         if raced != 2 {
             continue;
         }
@@ -850,10 +829,9 @@ fn a_race_stopped_and_resumed_ends_as_the_race_never_stopped() {
     search.run(&mut eval(), &mut whole).unwrap();
     let last = search.iteration();
     let walk = whole.records.iter().filter(|r| r.iteration < last).count();
-    let first_look = whole
-        .records
+    let first_look = after_walk(&whole, last)
         .iter()
-        .filter(|r| r.iteration == last && r.evaluation.goal.samples == 2_800)
+        .filter(|(s, _)| *s == 2_800)
         .count();
     assert!(first_look > 1, "a race of {first_look}");
     let mut stopped = Log {
