@@ -7,7 +7,7 @@ evaluation from its first photon would cost), screened rows, seconds of search, 
 elapsed seconds at which the final best member first joined the ISOC (time to
 solution), the ISOC's size, why it stopped, and whether the answer is in the region.
 
-    python3 benches/strategies.py [--bin PATH] [--only NAME ...] [-j THREADS] [--strategies S ...]
+    python3 benches/strategies.py [--bin PATH] [--only NAME ...] [-j THREADS] [--strategies S ...] [--full]
 
 Python 3 standard library only; the runs' folders go to a temporary folder.
 """
@@ -45,6 +45,8 @@ def main():
     ap.add_argument("-j", default="2")
     ap.add_argument("--strategies", nargs="*", default=[None, "PAIRED_ISOC", "RACE_ISOC_ON_END"],
                     help="the strategies to run, one after the other; 'default' is the problem file's (default: default PAIRED_ISOC RACE_ISOC_ON_END)")
+    ap.add_argument("--full", action="store_true",
+                    help="the problem files' own budgets instead of check_examples' reduced ones")
     args = ap.parse_args()
     print("| example | strategy | evaluations | screened | photons traced | photons asked | search s | best found at s | ISOC | stopped | in region |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
@@ -56,7 +58,7 @@ def main():
             for strategy in [None if s in (None, "default") else s for s in args.strategies]:
                 out = os.path.join(tmp, "%s-%s" % (name, strategy or "default"))
                 cmd = [args.bin, "solve", problem, "--output", out, "--json", "--no-images",
-                       "--no-report", "-j", args.j] + budget + (["--strategy", strategy] if strategy else [])
+                       "--no-report", "-j", args.j] + ([] if args.full else budget) + (["--strategy", strategy] if strategy else [])
                 run = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, check=True)
                 result = json.loads(run.stdout)
                 best = result["isoc"][0]

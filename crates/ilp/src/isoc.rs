@@ -139,21 +139,26 @@ impl Isoc {
     /// Whether an estimate is not in case A: its interval reaches the SIISOC (or lies
     /// above it), so it may belong to the ISOC (§4.6, §4.7).
     pub fn reaches(&self, e: &Estimate) -> bool {
+        self.reaches_at(e, self.z)
+    }
+
+    /// Whether the estimate's interval at `z` reaches the SIISOC: case A with a
+    /// sequential search's early-look z for the candidate, so that its repeated looks
+    /// keep their error bound ([`crate::early_look_z`]).
+    pub fn reaches_at(&self, e: &Estimate, z: f64) -> bool {
         match self.siisoc {
             None => true,
-            Some(s) => !e.interval(self.z).below(&s),
+            Some(s) => !e.interval(z).below(&s),
         }
     }
 
     /// Whether a member is better than `candidate` by their paired differences at `z`
     /// (a sequential search's early look, with its own z): eq. 3.7 never screens here,
-    /// only pairs, and an ISOC that does not pair screens nothing out.
+    /// only pairs, whether or not the ISOC pairs its own comparisons.
     pub fn screens_out(&self, candidate: &Member, z: f64) -> bool {
-        self.paired
-            && self
-                .members
-                .iter()
-                .any(|m| compare_paired(&candidate.groups, &m.groups, z) == Some(Comparison::Worse))
+        self.members
+            .iter()
+            .any(|m| compare_paired(&candidate.groups, &m.groups, z) == Some(Comparison::Worse))
     }
 
     /// Offers a candidate (§4.6, cases A and B).

@@ -43,7 +43,7 @@ use crate::cache::{Cache, Entry};
 use crate::intention::{Bound, Feasibility};
 use crate::isoc::{Admission, Isoc, Member};
 use crate::space::{Cell, Configuration, Space};
-use invlight_stats::{Confidence, Estimate};
+use invlight_stats::{Confidence, Estimate, student_quantile};
 use invlight_stats::{SplitMix64, mix, variance_ratio};
 use std::collections::HashSet;
 use std::fmt;
@@ -488,14 +488,27 @@ impl Outcome {
     }
 }
 
-/// The sample counts at which [`Strategy::Paired`] looks at a candidate before its full
-/// evaluation: n, 4n, 16n, … while below N (`samples` rounds each as the evaluator
-/// will). Most candidates are told worse than a member after a few groups; those close
-/// to the ISOC go on. A fixed schedule, so the error of the looks is bounded in advance
-/// ([`early_look_z`]).
-pub fn looks(n: u64, full: u64, samples: impl Fn(u64) -> u64) -> Vec<u64> {
+/// How far below the thesis' fast evaluation n = q·N [`Strategy::Paired`]'s first look
+/// is: n/16, two steps of the ladder of [`looks`]. Each look continues the trace of the
+/// one before, so a candidate that goes on costs what it would have from n (only the
+/// early looks' z grows, [`early_look_z`]), while one far below the ISOC or far from
+/// its constraints — most of a walk's — is told so with a sixteenth of n: q = 0.25, the
+/// thesis' value and the examples', otherwise spends a quarter of N on each of them.
+const BELOW_FAST: u64 = 16;
+
+/// The fewest groups at which a sequential search's early look decides: where
+/// [`student_quantile`]'s expansion is accurate to 0.5 %. The photon layer's
+/// evaluations hold at least 32.
+const MIN_LOOK_GROUPS: usize = 10;
+
+/// The sample counts at which a sequential search looks at a candidate before its full
+/// evaluation: `first`, 4·first, 16·first, … while below N (`samples` rounds each as
+/// the evaluator will). Most candidates are told worse than a member after a few
+/// groups; those close to the ISOC go on. A fixed schedule, so the error of the looks
+/// is bounded in advance ([`early_look_z`]).
+pub fn looks(first: u64, full: u64, samples: impl Fn(u64) -> u64) -> Vec<u64> {
     let mut out = Vec::new();
-    let mut m = n;
+    let mut m = first;
     while m < full {
         out.push(m);
         m = samples(m.saturating_mul(4));
@@ -980,12 +993,15 @@ impl<'s> Search<'s> {
 
     /// The sample counts of a candidate's looks before its decisive evaluation, and
     /// that evaluation's count (before any re-evaluation with N to decide its
-    /// constraints): n under `REFINE_ISOC_ON_INTERSECTION` then N, n, 4n, … then N
-    /// under [`Strategy::Paired`], n or N alone otherwise.
+    /// constraints): n under `REFINE_ISOC_ON_INTERSECTION` then N; n/16, n/4, n, …
+    /// then N under [`Strategy::Paired`]; n/16, n/4 then n under
+    /// [`Strategy::RaceOnEnd`] (whose ISOC is raced to N at the end); n or N alone
+    /// otherwise.
     fn schedule<E: Evaluate>(&self, eval: &E) -> (Vec<u64>, u64) {
         let (n, full) = self.settings.sample_counts(eval);
         let looks = match self.settings.strategy {
-            Strategy::Paired => looks(n, full, |m| eval.samples(m)),
+            Strategy::Paired => looks(eval.samples(n / BELOW_FAST), full, |m| eval.samples(m)),
+            Strategy::RaceOnEnd => looks(eval.samples(n / BELOW_FAST), n, |m| eval.samples(m)),
             Strategy::RefineOnIntersection if n < full => vec![n],
             _ => Vec::new(),
         };
@@ -1013,20 +1029,41 @@ impl<'s> Search<'s> {
         eval: &mut E,
         observer: &mut O,
     ) -> Result<Verdict, SearchError<E::Error>> {
-        let full = self.settings.sample_counts(eval).1;
+        let (fast_n, full) = self.settings.sample_counts(eval);
         let (looks, photons) = self.schedule(eval);
         let z_early = early_look_z(self.settings.confidence, looks.len());
+        let sequential = self.settings.strategy.paired();
         for n in looks {
             let (fast, seconds) = self.evaluate(eval, &config, n)?;
             let seconds = seconds + std::mem::take(&mut lead);
-            let verdict = if self.invalid(&fast) {
+            // The thesis' one fast look decides at the ISOC's own levels; a sequential
+            // search's several looks each at the early-look level, so that together
+            // they wrongly reject a candidate no more often than the bound promises,
+            // and by Student's t, whose quantile is accurate from ten groups on
+            // (`student_quantile`): a look of fewer decides nothing.
+            let groups = fast.groups.len();
+            let (z_two, z_one) = if sequential {
+                let t = match groups {
+                    0 => z_early,
+                    g => student_quantile(z_early, g as u64 - 1),
+                };
+                (t, t)
+            } else {
+                (self.isoc.z(), self.settings.confidence.z_one_sided())
+            };
+            let verdict = if sequential && (1..MIN_LOOK_GROUPS).contains(&groups) {
+                None
+            } else if self.invalid_at(&fast, z_two) {
                 Some(Verdict::Invalid)
-            } else if self.feasibility(&fast) == Feasibility::Infeasible {
+            } else if self.feasibility_at(&fast, z_one) == Feasibility::Infeasible {
                 self.keep_closest(self.member(config.clone(), cell.clone(), &fast));
                 Some(Verdict::Infeasible)
-            } else if !self.isoc.reaches(&self.settings.sense.score(&fast.goal)) {
+            } else if !self
+                .isoc
+                .reaches_at(&self.settings.sense.score(&fast.goal), z_two)
+            {
                 Some(Verdict::Bad)
-            } else if self.settings.strategy == Strategy::Paired
+            } else if sequential
                 && self
                     .isoc
                     .screens_out(&self.member(config.clone(), cell.clone(), &fast), z_early)
@@ -1036,7 +1073,8 @@ impl<'s> Search<'s> {
                 None
             };
             // A score without groups (a uniformity, a power, a target) cannot be
-            // screened by pairs: more looks would only cost photons, so N comes next.
+            // screened by pairs, but its looks below n may still find it below the
+            // SIISOC or infeasible; from n on, only N decides.
             let pairs = !self.settings.sense.score_groups(&fast.groups).is_empty();
             let record = Record {
                 iteration,
@@ -1049,7 +1087,7 @@ impl<'s> Search<'s> {
             if let Some(v) = verdict {
                 return Ok(v);
             }
-            if !pairs {
+            if !pairs && n >= fast_n {
                 break;
             }
         }

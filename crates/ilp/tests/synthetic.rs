@@ -349,7 +349,11 @@ fn every_strategy_finds_the_peak() {
             .iter()
             .filter(|r| r.verdict == Verdict::Refine)
             .count();
-        assert_eq!(refines > 0, strategy.two_stage());
+        // RACE_ISOC_ON_END looks at a candidate below n before its n-sample evaluation.
+        assert_eq!(
+            refines > 0,
+            strategy.two_stage() || strategy == Strategy::RaceOnEnd
+        );
     }
 }
 
