@@ -349,6 +349,12 @@ fn every_strategy_finds_the_peak() {
             .iter()
             .filter(|r| r.verdict == Verdict::Refine)
             .count();
+        // The sequential searches tell some candidates worse before n = 2 500 samples.
+        let out_early = records
+            .iter()
+            .filter(|r| r.evaluation.goal.samples < 2500)
+            .any(|r| matches!(r.verdict, Verdict::Bad | Verdict::Beaten));
+        assert_eq!(out_early, strategy.paired(), "{strategy:?}");
         // RACE_ISOC_ON_END looks at a candidate below n before its n-sample evaluation.
         assert_eq!(
             refines > 0,
