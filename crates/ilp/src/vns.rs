@@ -488,12 +488,13 @@ impl Outcome {
     }
 }
 
-/// How far below the thesis' fast evaluation n = q·N [`Strategy::Paired`]'s first look
-/// is: n/16, two steps of the ladder of [`looks`]. Each look continues the trace of the
-/// one before, so a candidate that goes on costs what it would have from n (only the
-/// early looks' z grows, [`early_look_z`]), while one far below the ISOC or far from
-/// its constraints — most of a walk's — is told so with a sixteenth of n: q = 0.25, the
-/// thesis' value and the examples', otherwise spends a quarter of N on each of them.
+/// How far below the thesis' fast evaluation n = q·N the first look of
+/// [`Strategy::Paired`] and [`Strategy::RaceOnEnd`] is: n/16, two steps of the ladder
+/// of [`looks`]. Each look continues the trace of the one before, so a candidate that
+/// goes on costs what it would have from n (only the early looks' z grows,
+/// [`early_look_z`]), while one far below the ISOC or far from its constraints — most
+/// of a walk's — is told so with a sixteenth of n. With the thesis' q = 0.25 (the
+/// examples' too) each of those would otherwise cost a quarter of N.
 const BELOW_FAST: u64 = 16;
 
 /// The fewest groups at which a sequential search's early look decides: where
