@@ -97,7 +97,8 @@ impl Strategy {
     }
 
     /// Whether evaluations keep their groups for paired comparisons, the search
-    /// screens the space first and stops when decided (issue 15).
+    /// screens the space first, looks at a candidate with n/16, n/4, … before
+    /// deciding, and stops when decided (issue 15).
     pub fn paired(self) -> bool {
         matches!(self, Strategy::Paired | Strategy::RaceOnEnd)
     }
