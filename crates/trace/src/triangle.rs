@@ -43,10 +43,9 @@ impl TriBlock {
     /// The triangle in lane `lane`.
     #[inline(always)]
     pub fn lane(&self, lane: usize) -> Tri {
+        let corner = |c: &[[f32; 8]; 3]| Vec3::new(c[0][lane], c[1][lane], c[2][lane]);
         Tri {
-            v: self
-                .v
-                .map(|c| Vec3::new(c[0][lane], c[1][lane], c[2][lane])),
+            v: [corner(&self.v[0]), corner(&self.v[1]), corner(&self.v[2])],
         }
     }
 }
@@ -90,12 +89,24 @@ impl LaneHits {
     }
 }
 
+/// Largest origin coordinate for which `vertex − origin` stays finite for vertices
+/// within `MAX_COORDINATE` (10⁹), with room to spare.
+const TAME_ORIGIN: f32 = 1.0e37;
+
 /// Per-ray constants of the sheared frame: `shear · (p − origin)` gives a vertex's
 /// coordinates (x, y across the ray, z along it scaled to t).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TriRay {
     origin: Vec3A,
     shear: Mat3A,
+    /// The shear's non-zero entries for the block test: `axes` are the paper's
+    /// (kx, ky, kz), `coefficients` (−Sx, −Sy, Sz), so that a vertex's sheared
+    /// coordinates are `d[kx] + (−Sx)·d[kz]`, `d[ky] + (−Sy)·d[kz]` and `Sz·d[kz]`.
+    axes: [usize; 3],
+    coefficients: [f32; 3],
+    /// Whether `p − origin` is finite for every traced vertex `p` (|p| ≤
+    /// `MAX_COORDINATE`): then the shear's zero entries add signed zeros only.
+    tame: bool,
 }
 
 /// A hit: distance and the barycentrics of vertices 1 and 2.
@@ -134,6 +145,9 @@ impl TriRay {
         TriRay {
             origin,
             shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
+            axes: [kx, ky, kz],
+            coefficients: [-sx, -sy, sz],
+            tame: origin.is_finite() && origin.abs().max_element() <= TAME_ORIGIN,
         }
     }
 
@@ -196,112 +210,125 @@ pub(crate) fn block_hits(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32)
     hits
 }
 
-/// [`block_hits`] with all eight lanes in one pass of AVX2 instructions: every
-/// operation of [`TriRay::intersect`], in its order, on eight lanes (multiplies and adds
-/// apart, as there: no fused multiply-add), so each lane's result is bit for bit the
-/// one-triangle test's. Lanes with an edge function of zero are left to that test, which
-/// recomputes them in double precision; they are rare (a ray through an edge or a
-/// vertex).
+/// [`block_hits`] with all eight lanes in one pass of AVX2 instructions: the operations
+/// of [`TriRay::intersect`], in its order, on eight lanes (multiplies and adds apart, as
+/// there: no fused multiply-add), less the shear's products with its entries of zero,
+/// so each lane's result is bit for bit the one-triangle test's. Lanes with an edge
+/// function of zero are left to that test, which recomputes them in double precision;
+/// they are rare (a ray through an edge or a vertex). A ray from beyond 10³⁷ (never a
+/// traced scene's) is tested lane by lane.
+///
+/// Without a target feature of its own so that it is always inlined, into the
+/// traversal compiled with AVX2 (`Accel::intersect_avx2`, …), where its intrinsics are
+/// inlined in turn; as a `#[target_feature]` function the compiler called it out of
+/// line, with its result passed through memory.
+///
+/// # Safety
+///
+/// The CPU must have AVX2.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline]
-pub(crate) fn block_hits_avx2(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) -> LaneHits {
+#[inline(always)]
+pub(crate) unsafe fn block_hits_avx2(
+    block: &TriBlock,
+    ray: &TriRay,
+    t_max: f32,
+    lanes: u32,
+) -> LaneHits {
     use std::arch::x86_64::*;
-    let lanes = lanes & 0xff;
-    let origin = [
-        _mm256_set1_ps(ray.origin.x),
-        _mm256_set1_ps(ray.origin.y),
-        _mm256_set1_ps(ray.origin.z),
-    ];
-    let cols = [ray.shear.x_axis, ray.shear.y_axis, ray.shear.z_axis];
-    let mut shear = [[_mm256_setzero_ps(); 3]; 3];
-    for (s, col) in shear.iter_mut().zip(cols) {
-        for (s, c) in s.iter_mut().zip(col.to_array()) {
-            *s = _mm256_set1_ps(c);
-        }
+    // SAFETY: the caller runs on a CPU with AVX2; each load reads a row of 8 floats at a
+    // 32-byte aligned offset of the 32-byte aligned block, each store the 8 floats of
+    // its array (unaligned is allowed).
+    if !ray.tame {
+        return block_hits(block, ray, t_max, lanes);
     }
-    // The corners in the sheared frame: `shear * (p − origin)` as glam's `Mat3A *
-    // Vec3A` computes it, (col₀·d.x + col₁·d.y) + col₂·d.z.
-    let mut q = [[_mm256_setzero_ps(); 3]; 3];
-    for (q, corner) in q.iter_mut().zip(&block.v) {
-        let mut d = [_mm256_setzero_ps(); 3];
-        for (d, (row, o)) in d.iter_mut().zip(corner.iter().zip(origin)) {
-            // SAFETY: `row` is 8 floats at a 32-byte aligned offset of the 32-byte
-            // aligned block.
-            *d = _mm256_sub_ps(unsafe { _mm256_load_ps(row.as_ptr()) }, o);
+    let (mut hits, exact) = unsafe {
+        let lanes = lanes & 0xff;
+        let origin = [
+            _mm256_set1_ps(ray.origin.x),
+            _mm256_set1_ps(ray.origin.y),
+            _mm256_set1_ps(ray.origin.z),
+        ];
+        let [kx, ky, kz] = ray.axes;
+        let [sx, sy, sz] = ray.coefficients.map(|c| _mm256_set1_ps(c));
+        // The corners in the sheared frame from the shear's non-zero entries. Each is
+        // `shear * (p − origin)` as glam's `Mat3A * Vec3A` computes it but for the
+        // products with the entries of zero, which add signed zeros (`d` is finite:
+        // `tame`): it differs only where a coordinate is zero, in that zero's sign, and
+        // a sign of zero reaches no result but through an edge function of zero, whose
+        // lane is left to the one-triangle test below.
+        let mut q = [[_mm256_setzero_ps(); 3]; 3];
+        for (q, corner) in q.iter_mut().zip(&block.v) {
+            let mut d = [_mm256_setzero_ps(); 3];
+            for (d, (row, o)) in d.iter_mut().zip(corner.iter().zip(origin)) {
+                *d = _mm256_sub_ps(_mm256_load_ps(row.as_ptr()), o);
+            }
+            *q = [
+                _mm256_add_ps(d[kx], _mm256_mul_ps(sx, d[kz])),
+                _mm256_add_ps(d[ky], _mm256_mul_ps(sy, d[kz])),
+                _mm256_mul_ps(sz, d[kz]),
+            ];
         }
-        for (i, q) in q.iter_mut().enumerate() {
-            *q = _mm256_add_ps(
-                _mm256_add_ps(
-                    _mm256_mul_ps(shear[0][i], d[0]),
-                    _mm256_mul_ps(shear[1][i], d[1]),
-                ),
-                _mm256_mul_ps(shear[2][i], d[2]),
-            );
-        }
-    }
-    let [a, b, c] = q;
-    let u = _mm256_sub_ps(_mm256_mul_ps(c[0], b[1]), _mm256_mul_ps(c[1], b[0]));
-    let v = _mm256_sub_ps(_mm256_mul_ps(a[0], c[1]), _mm256_mul_ps(a[1], c[0]));
-    let w = _mm256_sub_ps(_mm256_mul_ps(b[0], a[1]), _mm256_mul_ps(b[1], a[0]));
-    let zero = _mm256_setzero_ps();
-    let exact = _mm256_or_ps(
-        _mm256_or_ps(
-            _mm256_cmp_ps::<_CMP_EQ_OQ>(u, zero),
-            _mm256_cmp_ps::<_CMP_EQ_OQ>(v, zero),
-        ),
-        _mm256_cmp_ps::<_CMP_EQ_OQ>(w, zero),
-    );
-    let negative = _mm256_or_ps(
-        _mm256_or_ps(
-            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
-            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
-        ),
-        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
-    );
-    let positive = _mm256_or_ps(
-        _mm256_or_ps(
-            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
-            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
-        ),
-        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
-    );
-    let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-    let t_scaled = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(u, a[2]), _mm256_mul_ps(v, b[2])),
-        _mm256_mul_ps(w, c[2]),
-    );
-    let sign_bit = _mm256_set1_ps(-0.0);
-    let t_signed = _mm256_xor_ps(t_scaled, _mm256_and_ps(det, sign_bit));
-    let det_abs = _mm256_andnot_ps(sign_bit, det);
-    let t_max8 = _mm256_set1_ps(t_max);
-    let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
-    let t = _mm256_mul_ps(t_scaled, inv);
-    let pass = _mm256_and_ps(
-        _mm256_and_ps(
-            _mm256_cmp_ps::<_CMP_NEQ_UQ>(det, zero),
-            _mm256_and_ps(
-                _mm256_cmp_ps::<_CMP_GT_OQ>(t_signed, zero),
-                _mm256_cmp_ps::<_CMP_LT_OQ>(t_signed, _mm256_mul_ps(t_max8, det_abs)),
+        let [a, b, c] = q;
+        let u = _mm256_sub_ps(_mm256_mul_ps(c[0], b[1]), _mm256_mul_ps(c[1], b[0]));
+        let v = _mm256_sub_ps(_mm256_mul_ps(a[0], c[1]), _mm256_mul_ps(a[1], c[0]));
+        let w = _mm256_sub_ps(_mm256_mul_ps(b[0], a[1]), _mm256_mul_ps(b[1], a[0]));
+        let zero = _mm256_setzero_ps();
+        let exact = _mm256_or_ps(
+            _mm256_or_ps(
+                _mm256_cmp_ps::<_CMP_EQ_OQ>(u, zero),
+                _mm256_cmp_ps::<_CMP_EQ_OQ>(v, zero),
             ),
-        ),
-        _mm256_and_ps(
-            _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
-            _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max8),
-        ),
-    );
-    let pass = _mm256_andnot_ps(_mm256_and_ps(negative, positive), pass);
-    let exact = _mm256_movemask_ps(exact) as u32 & lanes;
-    let mut hits = LaneHits {
-        mask: _mm256_movemask_ps(pass) as u32 & lanes & !exact,
-        ..LaneHits::NONE
-    };
-    // SAFETY: each store writes the 8 floats of its array (unaligned is allowed).
-    unsafe {
+            _mm256_cmp_ps::<_CMP_EQ_OQ>(w, zero),
+        );
+        let negative = _mm256_or_ps(
+            _mm256_or_ps(
+                _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
+                _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
+            ),
+            _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
+        );
+        let positive = _mm256_or_ps(
+            _mm256_or_ps(
+                _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
+                _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
+            ),
+            _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
+        );
+        let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+        let t_scaled = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(u, a[2]), _mm256_mul_ps(v, b[2])),
+            _mm256_mul_ps(w, c[2]),
+        );
+        let sign_bit = _mm256_set1_ps(-0.0);
+        let t_signed = _mm256_xor_ps(t_scaled, _mm256_and_ps(det, sign_bit));
+        let det_abs = _mm256_andnot_ps(sign_bit, det);
+        let t_max8 = _mm256_set1_ps(t_max);
+        let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
+        let t = _mm256_mul_ps(t_scaled, inv);
+        let pass = _mm256_and_ps(
+            _mm256_and_ps(
+                _mm256_cmp_ps::<_CMP_NEQ_UQ>(det, zero),
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GT_OQ>(t_signed, zero),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(t_signed, _mm256_mul_ps(t_max8, det_abs)),
+                ),
+            ),
+            _mm256_and_ps(
+                _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max8),
+            ),
+        );
+        let pass = _mm256_andnot_ps(_mm256_and_ps(negative, positive), pass);
+        let exact = _mm256_movemask_ps(exact) as u32 & lanes;
+        let mut hits = LaneHits {
+            mask: _mm256_movemask_ps(pass) as u32 & lanes & !exact,
+            ..LaneHits::NONE
+        };
         _mm256_storeu_ps(hits.t.as_mut_ptr(), t);
         _mm256_storeu_ps(hits.u.as_mut_ptr(), _mm256_mul_ps(v, inv));
         _mm256_storeu_ps(hits.v.as_mut_ptr(), _mm256_mul_ps(w, inv));
-    }
+        (hits, exact)
+    };
     let mut rest = exact;
     while rest != 0 {
         let lane = rest.trailing_zeros() as usize;
@@ -377,6 +404,10 @@ mod tests {
             _ => rng.vec(2.0),
         };
         let mut dir = target - origin;
+        if rng.below(100) == 0 {
+            // From so far that only the lane-by-lane test takes it.
+            return ((origin * 1.0e38).into(), dir.into());
+        }
         if rng.below(8) == 0 {
             dir[rng.below(3) as usize] = 0.0;
         }
