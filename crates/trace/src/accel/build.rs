@@ -342,9 +342,9 @@ fn traceable(p: Vec3) -> bool {
 
 /// Peak bytes per bottom-level triangle while [`Accel`] builds: PLOC's nodes, Morton
 /// codes and the input boxes, the reinsertion pass and the 8-wide tree. The peak is
-/// PLOC's: the leaf blocks (36 bytes a slot and 4 for its index, with empty lanes) are
-/// laid out after its temporaries are freed. Measured: 1 M triangles in one mesh peaked at 355 bytes each
-/// (`hostile_bench memory 1000000 1`, VmHWM); rounded up.
+/// PLOC's: the leaf blocks (36 bytes a slot and 4 for its index, empty lanes included)
+/// are laid out after its temporaries are freed. Measured: 1 M triangles in one mesh
+/// peaked at 355 bytes each (`hostile_bench memory 1000000 1`, VmHWM); rounded up.
 pub const BUILD_BYTES_PER_TRIANGLE: u64 = 400;
 
 /// Bytes per instance: its transforms, its top-level entry and box, and the top level's
@@ -498,6 +498,10 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
             }
         }
     }
+    // Grown by doubling: cut to length, as the node lists are.
+    blocks.shrink_to_fit();
+    triangles.shrink_to_fit();
+    instances.shrink_to_fit();
     Blas {
         nodes,
         blocks,
