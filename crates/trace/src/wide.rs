@@ -9,6 +9,7 @@
 //! widen the box exit distance, which robust traversal needs (Ize, "Robust BVH Ray
 //! Traversal", *JCGT* 2(2), 2013: scale t_far by 1 + 2γ₃).
 
+use crate::triangle::{self, LaneHits, TriBlock, TriRay};
 use glam::{UVec2, Vec3A, Vec4};
 use obvhs::cwbvh::node::CwBvhNode;
 use std::mem::MaybeUninit;
@@ -67,19 +68,25 @@ impl NodeRay {
     }
 }
 
-/// A child-box test: the hit mask of `node`'s children for `ray` within
-/// `0 ≤ t ≤ t_max`, in obvhs's layout (internal children in the high byte at their
-/// octant-ordered slot, leaf triangles in the low 24 bits).
-pub(crate) trait NodeTest {
-    /// The hit mask.
+/// The two tests traversal repeats, in one implementation per instruction set: the
+/// child boxes of a node and the triangles of a leaf block.
+pub(crate) trait Kernels {
+    /// The hit mask of `node`'s children for `ray` within `0 ≤ t ≤ t_max`, in obvhs's
+    /// layout (internal children in the high byte at their octant-ordered slot, leaf
+    /// triangles in the low 24 bits).
     fn hits(node: &CwBvhNode, ray: &NodeRay, t_max: f32) -> u32;
+
+    /// The hits of `ray` with the lanes `lanes` of `block` at `0 < t < t_max`
+    /// ([`triangle::block_hits`]).
+    fn leaf(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) -> LaneHits;
 }
 
-/// Four children at a time with `glam::Vec4` (SSE2 on x86-64, scalar elsewhere).
+/// Four children at a time with `glam::Vec4` (SSE2 on x86-64, scalar elsewhere), and
+/// one triangle at a time.
 pub(crate) struct Portable;
 
-/// Eight children at a time with AVX2; only called where the CPU has it (see
-/// `Accel::intersect`), inlined into functions compiled with the feature.
+/// Eight children and eight triangles at a time with AVX2; only called where the CPU
+/// has it (see `Accel::intersect`), inlined into functions compiled with the feature.
 #[cfg(target_arch = "x86_64")]
 pub(crate) struct Avx2;
 
@@ -98,7 +105,12 @@ fn child_mask(node: &CwBvhNode, ray: &NodeRay, mut hit: u32) -> u32 {
     mask
 }
 
-impl NodeTest for Portable {
+impl Kernels for Portable {
+    #[inline(always)]
+    fn leaf(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) -> LaneHits {
+        triangle::block_hits(block, ray, t_max, lanes)
+    }
+
     #[inline(always)]
     fn hits(node: &CwBvhNode, ray: &NodeRay, t_max: f32) -> u32 {
         let scale = node.compute_extent() * ray.inv_dir;
@@ -152,12 +164,18 @@ impl NodeTest for Portable {
 }
 
 #[cfg(target_arch = "x86_64")]
-impl NodeTest for Avx2 {
+impl Kernels for Avx2 {
     #[inline(always)]
     fn hits(node: &CwBvhNode, ray: &NodeRay, t_max: f32) -> u32 {
         // SAFETY: `Avx2` is only used inside functions compiled with AVX2 enabled, which
         // are only called after detecting it.
         unsafe { hits_avx2(node, ray, t_max) }
+    }
+
+    #[inline(always)]
+    fn leaf(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) -> LaneHits {
+        // SAFETY: as for `hits`.
+        unsafe { triangle::block_hits_avx2(block, ray, t_max, lanes) }
     }
 }
 
@@ -193,7 +211,7 @@ fn slab_avx2(
     )
 }
 
-/// [`NodeTest`] for all eight children in one pass of 8-lane instructions.
+/// [`Kernels::hits`] for all eight children in one pass of 8-lane instructions.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
@@ -237,32 +255,43 @@ fn hits_avx2(node: &CwBvhNode, ray: &NodeRay, t_max: f32) -> u32 {
     child_mask(node, ray, hit)
 }
 
-/// Asks the cache for the line holding `p` (a hint: any address is allowed).
+/// Asks the cache for the lines holding `*p` (a hint: any address is allowed).
 #[inline(always)]
 fn prefetch<P>(p: *const P) {
     #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch never faults, whatever the address.
-    unsafe {
+    {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        _mm_prefetch::<_MM_HINT_T0>(p as *const i8);
+        let p = p as *const i8;
+        let mut offset = 0;
+        while offset < size_of::<P>() {
+            // SAFETY: a prefetch never faults, whatever the address.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(offset)) };
+            offset += 64;
+        }
+        // SAFETY: as above.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(size_of::<P>().max(1) - 1)) };
     }
 }
 
-/// Visits, near to far, the primitive slots of `nodes` whose leaves the ray reaches
-/// before `*t_max`. `leaf(slot, t_max)` may shrink `*t_max` (closest hit) and returns
-/// `true` to end the traversal (any hit). `prims` are the primitives by slot: when a
-/// node is tested, the children and triangles it lets through are prefetched all at
-/// once, so their cache misses overlap instead of following one another (the trees
+/// Visits, near to far, the leaves of `nodes` the ray reaches before `*t_max`, a node's
+/// at a time: `leaves(base, mask, t_max)` gets the primitive slots `base + i` for the
+/// set bits `i` of `mask` (below 24), to be tested highest bit first; it may shrink
+/// `*t_max` (closest hit) and returns `true` to end the traversal (any hit).
+///
+/// `prims` are the primitives, `PER` slots to an element (eight
+/// for the bottom level's [`TriBlock`]s, one for the top level's instances): when a
+/// node is tested, the children and the primitives it lets through are prefetched all
+/// at once, so their cache misses overlap instead of following one another (the trees
 /// outgrow the caches; a miss costs ~100 ns here). Allocates nothing.
 #[inline(always)]
-pub(crate) fn traverse<T: NodeTest, P, F>(
+pub(crate) fn traverse<K: Kernels, P, F, const PER: u32>(
     nodes: &[CwBvhNode],
     prims: &[P],
     ray: &NodeRay,
     t_max: &mut f32,
-    mut leaf: F,
+    mut leaves: F,
 ) where
-    F: FnMut(u32, &mut f32) -> bool,
+    F: FnMut(u32, u32, &mut f32) -> bool,
 {
     if nodes.is_empty() {
         return;
@@ -273,12 +302,11 @@ pub(crate) fn traverse<T: NodeTest, P, F>(
     let mut nodes_group = UVec2::new(0, 0x8000_0000);
     let mut prims_group = UVec2::ZERO;
     loop {
-        while prims_group.y != 0 {
-            let local = 31 - prims_group.y.leading_zeros();
-            prims_group.y &= !(1u32 << local);
-            if leaf(prims_group.x + local, t_max) {
+        if prims_group.y != 0 {
+            if leaves(prims_group.x, prims_group.y, t_max) {
                 return;
             }
+            prims_group.y = 0;
         }
         if nodes_group.y & 0xff00_0000 != 0 {
             let hits = nodes_group.y;
@@ -293,7 +321,7 @@ pub(crate) fn traverse<T: NodeTest, P, F>(
             let slot = (offset - 24) ^ (ray.oct_inv4 & 0xff);
             let relative = (hits & !(0xffff_ffffu32 << slot)).count_ones();
             let node = &nodes[(nodes_group.x + relative) as usize];
-            let mask = T::hits(node, ray, *t_max);
+            let mask = K::hits(node, ray, *t_max);
             let mut inner = mask >> 24;
             while inner != 0 {
                 let slot = inner.trailing_zeros() ^ (ray.oct_inv4 & 0xff);
@@ -305,11 +333,14 @@ pub(crate) fn traverse<T: NodeTest, P, F>(
                         .wrapping_add((node.child_base_idx + relative) as usize),
                 );
             }
-            let mut leaves = mask & 0x00ff_ffff;
-            while leaves != 0 {
-                let slot = node.primitive_base_idx + leaves.trailing_zeros();
-                leaves &= leaves - 1;
-                prefetch(prims.as_ptr().wrapping_add(slot as usize));
+            let mut rest = mask & 0x00ff_ffff;
+            while rest != 0 {
+                let slot = node.primitive_base_idx + rest.trailing_zeros();
+                let element = slot / PER;
+                // The element's other slots need no prefetch of their own.
+                let next = (element + 1) * PER - node.primitive_base_idx;
+                rest &= u32::MAX.checked_shl(next).unwrap_or(0);
+                prefetch(prims.as_ptr().wrapping_add(element as usize));
             }
             nodes_group = UVec2::new(
                 node.child_base_idx,

@@ -6,7 +6,7 @@ use super::traverse::avx2_available;
 use super::tree::{BuildPreset, build_cwbvh, build_triangle_cwbvh};
 use super::{Accel, AccelStats, Blas, MERGED, Placed, TlasItem};
 use crate::holes::{HOLE_THICKNESS, HoleVolume};
-use crate::triangle::Tri;
+use crate::triangle::{Tri, TriBlock};
 use crate::wide;
 use glam::{Affine3A, Vec3};
 use invlight_scene::{InstanceId, MAX_COORDINATE, Mesh, Scene};
@@ -168,7 +168,7 @@ impl Accel {
         }
         let stats = AccelStats {
             meshes: blas.iter().filter(|b| !b.nodes.is_empty()).count(),
-            triangles: blas.iter().map(|b| b.tris.len()).sum(),
+            triangles: blas.iter().map(|b| b.count).sum(),
             blas_nodes: blas.iter().map(|b| b.nodes.len()).sum(),
             max_depth: blas
                 .iter()
@@ -322,8 +322,12 @@ impl Accel {
         self.stats.holes = self.holes.len();
         self.stats.tlas_nodes = self.tlas.len();
         self.stats.tlas_seconds = start.elapsed().as_secs_f64();
+        let (blocks, slots) = self.blas.iter().fold((0, 0), |(b, s), blas| {
+            (b + blas.blocks.len(), s + blas.triangles.len())
+        });
         self.stats.bytes = (self.stats.blas_nodes + self.stats.tlas_nodes) * size_of::<CwBvhNode>()
-            + self.stats.triangles * size_of::<Tri>()
+            + blocks * size_of::<TriBlock>()
+            + slots * size_of::<u32>()
             + self.stats.instances * size_of::<TlasItem>();
     }
 }
@@ -337,9 +341,10 @@ fn traceable(p: Vec3) -> bool {
 }
 
 /// Peak bytes per bottom-level triangle while [`Accel`] builds: PLOC's nodes, Morton
-/// codes and the input boxes, the reinsertion pass and the 8-wide tree, our triangle
-/// copies in leaf order. Measured: 1 M triangles in one mesh peaked at 355 bytes each
-/// (`hostile_bench memory 1000000 1`, VmHWM); rounded up.
+/// codes and the input boxes, the reinsertion pass and the 8-wide tree. The peak is
+/// PLOC's: the leaf blocks (36 bytes a slot and 4 for its index, empty lanes included)
+/// are laid out after its temporaries are freed. Measured: 1 M triangles in one mesh
+/// peaked at 355 bytes each (`hostile_bench memory 1000000 1`, VmHWM); rounded up.
 pub const BUILD_BYTES_PER_TRIANGLE: u64 = 400;
 
 /// Bytes per instance: its transforms, its top-level entry and box, and the top level's
@@ -432,7 +437,8 @@ fn mesh_triangles(mesh: &Mesh, hole_material: &[bool]) -> (Vec<Corners>, Option<
 
 /// The BVH over `tris` built with `preset`, with `owners[i]` the instance of `tris[i]`
 /// for a merged BVH (empty otherwise); the triangles are stored in the BVH's leaf order,
-/// a pre-split triangle once in each leaf that holds it.
+/// a pre-split triangle once in each leaf that holds it, each node's in blocks of eight
+/// (see [`Blas`]).
 fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) -> Blas {
     if tris.is_empty() {
         return Blas::default();
@@ -446,6 +452,7 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
         })
         .collect();
     let bvh = build_triangle_cwbvh(&prims, preset);
+    drop(prims);
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);
     for (v, _) in &tris {
@@ -455,20 +462,52 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
         }
     }
     let order = &bvh.primitive_indices;
-    Blas {
-        tris: order
-            .iter()
-            .map(|&i| {
-                let (v, index) = tris[i as usize];
-                Tri { v, index }
+    let mut nodes = bvh.nodes;
+    let mut blocks = Vec::new();
+    let mut triangles = Vec::new();
+    let mut instances = Vec::new();
+    let mut count = 0;
+    for node in &mut nodes {
+        // The node's slots run from its base to the end of its last leaf.
+        let slots = (0..8)
+            .filter(|&c| node.is_leaf(c) && !node.is_child_empty(c))
+            .map(|c| {
+                let (start, n) = node.child_primitives(c);
+                (start - node.primitive_base_idx + n) as usize
             })
-            .collect(),
-        instances: if owners.is_empty() {
-            Vec::new()
-        } else {
-            order.iter().map(|&i| owners[i as usize]).collect()
-        },
-        nodes: bvh.nodes,
+            .max()
+            .unwrap_or(0);
+        let first = node.primitive_base_idx as usize;
+        // Nodes without leaves get the running base too: their hit masks name no slot.
+        node.primitive_base_idx = (8 * blocks.len()) as u32;
+        for chunk in order[first..first + slots].chunks(8) {
+            let mut block = TriBlock::default();
+            for (lane, &i) in chunk.iter().enumerate() {
+                let (v, index) = tris[i as usize];
+                block.set(lane, &Tri { v });
+                triangles.push(index);
+                count += 1;
+                if !owners.is_empty() {
+                    instances.push(owners[i as usize]);
+                }
+            }
+            blocks.push(block);
+            triangles.resize(8 * blocks.len(), u32::MAX);
+            if !owners.is_empty() {
+                instances.resize(8 * blocks.len(), MERGED);
+            }
+        }
+    }
+    // Grown by doubling: cut to length, as the node lists are.
+    blocks.shrink_to_fit();
+    triangles.shrink_to_fit();
+    instances.shrink_to_fit();
+    Blas {
+        nodes,
+        blocks,
+        triangles,
+        count,
+        instances,
         bounds: Some((lo, hi)),
     }
 }

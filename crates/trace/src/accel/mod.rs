@@ -3,17 +3,18 @@
 //! the top level, as OptiX transform nodes did for ILPSolver (DESIGN.md §7).
 //!
 //! - `build`: the bottom level (a BVH per mesh, and the merged BVH of the static
-//!   instances [`Accel::with_movable`] bakes), the top level and the hole volumes, and
-//!   what a build costs in memory.
+//!   instances [`Accel::with_movable`] bakes) with its leaves laid out as blocks of
+//!   eight triangles, the top level and the hole volumes, and what a build costs in
+//!   memory.
 //! - `tree`: one compressed 8-wide BVH over a list of boxes: obvhs's builder, and the
 //!   groups of coincident boxes built apart from it.
 //! - `traverse`: closest hit and any hit, through the merged BVH of the static
 //!   instances, then the top level's loop over instances into each bottom level, with
-//!   AVX2 where the CPU has it.
+//!   AVX2 where the CPU has it (eight child boxes, then eight triangles, at a time).
 //! - `interaction`: the surface at a hit, read from the scene's mesh.
 //!
 //! The hole volumes are `crate::holes`, the node test and the loop over a tree
-//! `crate::wide`, the triangle test `crate::triangle`.
+//! `crate::wide`, the triangle test and the blocks of eight `crate::triangle`.
 
 mod build;
 mod interaction;
@@ -24,7 +25,7 @@ pub use build::{BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
 pub use tree::BuildPreset;
 
 use crate::holes::HoleVolume;
-use crate::triangle::Tri;
+use crate::triangle::TriBlock;
 use glam::{Affine3A, Mat4, Vec3};
 use invlight_scene::{InstanceId, MeshId};
 use obvhs::cwbvh::node::CwBvhNode;
@@ -50,7 +51,8 @@ pub struct AccelStats {
     pub tlas_nodes: usize,
     /// Deepest bottom-level tree, in nodes.
     pub max_depth: u32,
-    /// Bytes of nodes and triangles traversal touches.
+    /// Bytes of nodes and triangles traversal touches: the blocks of eight, empty lanes
+    /// included, with each slot's triangle index.
     pub bytes: usize,
     /// Seconds spent building the bottom level.
     pub blas_seconds: f64,
@@ -60,10 +62,21 @@ pub struct AccelStats {
 
 /// A mesh's bottom-level BVH and its triangles laid out in the BVH's leaf order, so a
 /// leaf's triangles are read from one place without an index indirection.
+///
+/// The triangles of each node's leaves are [`TriBlock`]s of eight, tested eight at a
+/// time: the node's `primitive_base_idx` is its first block times eight, and the leaf
+/// bits of its hit mask (below 24) are the slots `8 · block + lane` from there, so one
+/// bit per triangle still names it. A node with fewer than a multiple of eight
+/// triangles leaves lanes empty (`TriBlock`'s padding, never hit).
 #[derive(Debug, Clone, Default)]
 struct Blas {
     nodes: Vec<CwBvhNode>,
-    tris: Vec<Tri>,
+    blocks: Vec<TriBlock>,
+    /// Each slot's triangle, by its index in the mesh (or in the instance's mesh for the
+    /// merged BVH); `u32::MAX` for an empty lane.
+    triangles: Vec<u32>,
+    /// Triangles in the leaves, empty lanes left out.
+    count: usize,
     /// Bounds of the traced triangles, or `None` when there are none.
     bounds: Option<(Vec3, Vec3)>,
     /// For the merged BVH of static instances ([`Accel::with_movable`]): the instance of

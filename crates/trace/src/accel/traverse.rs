@@ -6,7 +6,7 @@
 use super::{Accel, TlasItem};
 use crate::ray::{Hit, Ray};
 use crate::triangle::TriRay;
-use crate::wide::{self, NodeRay, NodeTest};
+use crate::wide::{self, Kernels, NodeRay};
 use glam::{Vec3, Vec3A};
 
 impl Accel {
@@ -78,14 +78,14 @@ impl Accel {
     }
 
     #[inline(always)]
-    fn closest<T: NodeTest>(&self, ray: &Ray) -> Option<Hit> {
-        self.closest_unless::<T>(ray, f32::NEG_INFINITY)
+    fn closest<K: Kernels>(&self, ray: &Ray) -> Option<Hit> {
+        self.closest_unless::<K>(ray, f32::NEG_INFINITY)
     }
 
     #[inline(always)]
-    fn closest_unless<T: NodeTest>(&self, ray: &Ray, block: f32) -> Option<Hit> {
+    fn closest_unless<K: Kernels>(&self, ray: &Ray, block: f32) -> Option<Hit> {
         let mut best = None;
-        self.trace::<T, _>(
+        self.trace::<K, _>(
             ray,
             #[inline(always)]
             |hit| {
@@ -97,9 +97,9 @@ impl Accel {
     }
 
     #[inline(always)]
-    fn any<T: NodeTest>(&self, ray: &Ray) -> bool {
+    fn any<K: Kernels>(&self, ray: &Ray) -> bool {
         let mut blocked = false;
-        self.trace::<T, _>(
+        self.trace::<K, _>(
             ray,
             #[inline(always)]
             |_| {
@@ -126,11 +126,11 @@ impl Accel {
     /// would be compiled without AVX2 and call the node test out of line for every node
     /// (it did: 1.6 M rays per second in the photon loop instead of BENCHMARKS.md's figure).
     #[inline(always)]
-    fn trace<T: NodeTest, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
+    fn trace<K: Kernels, F: FnMut(Hit) -> bool>(&self, ray: &Ray, mut accept: F) {
         let world = WorldRay::new(ray);
         let mut t_max = ray.t_max;
         if let Some(merged) = &self.merged
-            && self.trace_instance::<T, F>(merged, &world, &mut t_max, &mut accept)
+            && self.trace_instance::<K, F>(merged, &world, &mut t_max, &mut accept)
         {
             return;
         }
@@ -138,17 +138,24 @@ impl Accel {
             0 => {}
             // A single entry: its own root test suffices.
             1 => {
-                self.trace_instance::<T, F>(&self.items[0], &world, &mut t_max, &mut accept);
+                self.trace_instance::<K, F>(&self.items[0], &world, &mut t_max, &mut accept);
             }
-            _ => wide::traverse::<T, _, _>(
+            _ => wide::traverse::<K, _, _, 1>(
                 &self.tlas,
                 &self.items,
                 &world.node,
                 &mut t_max,
                 #[inline(always)]
-                |slot, t_max| {
-                    let item = &self.items[slot as usize];
-                    self.trace_instance::<T, F>(item, &world, t_max, &mut accept)
+                |base, mut mask, t_max| {
+                    while mask != 0 {
+                        let local = 31 - mask.leading_zeros();
+                        mask &= !(1 << local);
+                        let item = &self.items[(base + local) as usize];
+                        if self.trace_instance::<K, F>(item, &world, t_max, &mut accept) {
+                            return true;
+                        }
+                    }
+                    false
                 },
             ),
         }
@@ -157,7 +164,7 @@ impl Accel {
     /// Walks the bottom level of the top-level entry `item`; returns `true` when
     /// `accept` asked to stop.
     #[inline(always)]
-    fn trace_instance<T: NodeTest, F: FnMut(Hit) -> bool>(
+    fn trace_instance<K: Kernels, F: FnMut(Hit) -> bool>(
         &self,
         item: &TlasItem,
         world: &WorldRay,
@@ -177,37 +184,64 @@ impl Accel {
             (NodeRay::new(o, d), None, o, d)
         };
         let mut stop = false;
-        wide::traverse::<T, _, _>(
+        wide::traverse::<K, _, _, 8>(
             &blas.nodes,
-            &blas.tris,
+            &blas.blocks,
             &node_ray,
             t_max,
             #[inline(always)]
-            |slot, t_max| {
-                let tri = &blas.tris[slot as usize];
+            |base, mut mask, t_max| {
                 let tri_ray = tri_ray.get_or_insert_with(|| TriRay::new(o, d));
-                let Some(h) = tri_ray.intersect(tri, *t_max) else {
-                    return false;
-                };
-                if !holes.is_empty() {
-                    let p = origin + dir * h.t;
-                    if holes.iter().any(|v| v.contains(p)) {
-                        return false;
+                // The node's blocks, and each block's lanes, highest slot first: the
+                // order in which the triangles were tested one at a time, so that of
+                // hits at one distance the same one is kept.
+                while mask != 0 {
+                    let at = (31 - mask.leading_zeros()) / 8;
+                    let lanes = (mask >> (8 * at)) & 0xff;
+                    mask &= !(0xff << (8 * at));
+                    let block = (base / 8 + at) as usize;
+                    let start = *t_max;
+                    let hits = K::leaf(&blas.blocks[block], tri_ray, start, lanes);
+                    let mut rest = hits.mask;
+                    while rest != 0 {
+                        let lane = (31 - rest.leading_zeros()) as usize;
+                        rest &= !(1 << lane);
+                        // Each lane against the distance as it stands at its turn, as
+                        // when tested one at a time: once a hit before it in the block
+                        // has shortened the ray, the lane is tested again.
+                        let h = if *t_max == start {
+                            hits.hit(lane)
+                        } else {
+                            match tri_ray.intersect(&blas.blocks[block].lane(lane), *t_max) {
+                                Some(h) => h,
+                                None => continue,
+                            }
+                        };
+                        if !holes.is_empty() {
+                            let p = origin + dir * h.t;
+                            if holes.iter().any(|v| v.contains(p)) {
+                                continue;
+                            }
+                        }
+                        *t_max = h.t;
+                        let slot = block * 8 + lane;
+                        stop = accept(Hit {
+                            t: h.t,
+                            instance: if blas.instances.is_empty() {
+                                item.instance
+                            } else {
+                                blas.instances[slot]
+                            },
+                            triangle: blas.triangles[slot],
+                            u: h.u,
+                            v: h.v,
+                        });
+                        if stop {
+                            return true;
+                        }
                     }
                 }
-                *t_max = h.t;
-                stop = accept(Hit {
-                    t: h.t,
-                    instance: if blas.instances.is_empty() {
-                        item.instance
-                    } else {
-                        blas.instances[slot as usize]
-                    },
-                    triangle: tri.index,
-                    u: h.u,
-                    v: h.v,
-                });
-                stop
+                false
             },
         );
         stop
