@@ -580,6 +580,20 @@ fn a_resumed_screening_repeats_nothing() {
     assert!(resumed.isoc().members().iter().any(|m| m.cell == peak));
 }
 
+/// [0, 1]² on 10 × 10 cells, the space of the honesty, race and resume tests.
+fn unit_square() -> Space {
+    let segment = |id: &str| Variable {
+        id: id.into(),
+        domain: Domain::Segment { min: 0.0, max: 1.0 },
+    };
+    Space::new(vec![segment("x"), segment("y")], &[10, 10])
+}
+
+/// Their peak, 10 − 3(|x − 0.43| + |y − 0.61|): the optimum's cell holds (0.43, 0.61).
+fn peak_2d(c: &[f64]) -> f64 {
+    10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs())
+}
+
 /// The ISOC's honesty over seeds (issue 15): on 10 × 10 cells of the 2-D peak
 /// 10 − 3(|x − 0.43| + |y − 0.61|), where half the noise is each configuration's own
 /// (σ_s = σ_o = 1 per group, 100 groups at N), so the optimum's cell ([0.4, 0.5) ×
@@ -590,12 +604,7 @@ fn a_resumed_screening_repeats_nothing() {
 /// at least as many as in the thesis' (198, 6.8 members).
 #[test]
 fn the_optimum_is_in_the_isoc_as_often_as_promised() {
-    let segment = |id: &str| Variable {
-        id: id.into(),
-        domain: Domain::Segment { min: 0.0, max: 1.0 },
-    };
-    let space = Space::new(vec![segment("x"), segment("y")], &[10, 10]);
-    let f = |c: &[f64]| 10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs());
+    let (space, f) = (unit_square(), peak_2d);
     let optimum = space.cell(&Configuration {
         coords: vec![0.43, 0.61],
     });
@@ -668,12 +677,7 @@ fn after_walk(log: &Log, last: u64) -> Vec<(u64, Verdict)> {
 /// steps after the walks cost at most half the thesis' samples in all.
 #[test]
 fn a_raced_isoc_keeps_the_optimum_for_fewer_samples() {
-    let segment = |id: &str| Variable {
-        id: id.into(),
-        domain: Domain::Segment { min: 0.0, max: 1.0 },
-    };
-    let space = Space::new(vec![segment("x"), segment("y")], &[10, 10]);
-    let f = |c: &[f64]| 10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs());
+    let (space, f) = (unit_square(), peak_2d);
     let optimum = space.cell(&Configuration {
         coords: vec![0.43, 0.61],
     });
@@ -797,12 +801,7 @@ fn a_race_loses_an_equal_member_no_more_than_promised() {
 /// same final ISOC, on the same estimates, as the search that was never stopped.
 #[test]
 fn a_race_stopped_and_resumed_ends_as_the_race_never_stopped() {
-    let segment = |id: &str| Variable {
-        id: id.into(),
-        domain: Domain::Segment { min: 0.0, max: 1.0 },
-    };
-    let space = Space::new(vec![segment("x"), segment("y")], &[10, 10]);
-    let f = |c: &[f64]| 10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs());
+    let (space, f) = (unit_square(), peak_2d);
     let settings = Settings {
         max_iterations: 300,
         photons: 40_000,
