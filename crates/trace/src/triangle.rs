@@ -199,7 +199,15 @@ impl TriRay {
 #[inline(always)]
 pub(crate) fn block_hits(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) -> LaneHits {
     let mut hits = LaneHits::NONE;
-    let mut rest = lanes & 0xff;
+    lanes_one_by_one(&mut hits, block, ray, t_max, lanes & 0xff);
+    hits
+}
+
+/// Tests the lanes of `block` selected by `lanes` one at a time with
+/// [`TriRay::intersect`], recording their hits in `hits`.
+#[inline(always)]
+fn lanes_one_by_one(hits: &mut LaneHits, block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32) {
+    let mut rest = lanes;
     while rest != 0 {
         let lane = rest.trailing_zeros() as usize;
         rest &= rest - 1;
@@ -207,7 +215,6 @@ pub(crate) fn block_hits(block: &TriBlock, ray: &TriRay, t_max: f32, lanes: u32)
             hits.set(lane, h);
         }
     }
-    hits
 }
 
 /// [`block_hits`] with all eight lanes in one pass of AVX2 instructions: the operations
@@ -329,14 +336,7 @@ pub(crate) unsafe fn block_hits_avx2(
         _mm256_storeu_ps(hits.v.as_mut_ptr(), _mm256_mul_ps(w, inv));
         (hits, exact)
     };
-    let mut rest = exact;
-    while rest != 0 {
-        let lane = rest.trailing_zeros() as usize;
-        rest &= rest - 1;
-        if let Some(h) = ray.intersect(&block.lane(lane), t_max) {
-            hits.set(lane, h);
-        }
-    }
+    lanes_one_by_one(&mut hits, block, ray, t_max, exact);
     hits
 }
 
