@@ -67,17 +67,20 @@ pub enum Strategy {
     /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
     /// the paired differences of their groups (common random numbers, issue 15) instead
     /// of eq. 3.7's independent variances, wherever both kept their groups; a candidate
-    /// is looked at with n, 4n, 16n, … samples ([`looks`]) and is out as soon as a
-    /// member beats it by pairs ([`early_look_z`]); [`Search::run`]'s stopping rule
+    /// is looked at with n/16, n/4, n, 4n, … samples ([`looks`]) and is out as soon as
+    /// a member beats it by pairs or it falls below the SIISOC or its constraints at
+    /// an early look's level ([`early_look_z`]); [`Search::run`]'s stopping rule
     /// ends the search when it is decided. `solutions.csv` keeps no groups, so the
     /// members a resumed run rebuilds from it are compared by eq. 3.7.
     Paired,
     /// The walk of `REFINE_ISOC_ON_END` (every candidate with n, compared by eq. 3.7)
-    /// with `PAIRED_ISOC`'s global screening and stopping rule; at the end the ISOC is
+    /// with `PAIRED_ISOC`'s global screening, early looks below n (n/16, n/4) and
+    /// stopping rule; at the end the ISOC is
     /// raced to N rather than re-evaluated whole (`race`): its members are looked at
     /// together with 4n, 16n, … samples, and a member that another beats by the paired
     /// differences of their groups at an early look's level ([`early_look_z`]) goes
-    /// no further. The walk does not pair: with n's few groups pairs decide many more
+    /// no further. The walk's decisions at n do not pair (only its early looks screen
+    /// by pairs, at their stricter level): with n's few groups pairs decide many more
     /// comparisons than eq. 3.7, each at its nominal error, and over a walk's hundreds
     /// of them they drop the optimum more often than the thesis' search does
     /// (`crates/ilp/tests/paired.rs`).
