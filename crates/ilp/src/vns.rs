@@ -75,11 +75,10 @@ pub enum Strategy {
     Paired,
     /// The walk of `REFINE_ISOC_ON_END` (every candidate with n, compared by eq. 3.7)
     /// with `PAIRED_ISOC`'s global screening, early looks below n (n/16, n/4) and
-    /// stopping rule; at the end the ISOC is
-    /// raced to N rather than re-evaluated whole (`race`): its members are looked at
-    /// together with 4n, 16n, … samples, and a member that another beats by the paired
-    /// differences of their groups at an early look's level ([`early_look_z`]) goes
-    /// no further. The walk's decisions at n do not pair (only its early looks screen
+    /// stopping rule; at the end the ISOC is raced to N rather than re-evaluated whole
+    /// (`race`): its members are looked at together with 4n, 16n, … samples, and a
+    /// member that another beats by the paired differences of their groups at an early
+    /// look's level ([`early_look_z`]) goes no further. The walk's decisions at n do not pair (only its early looks screen
     /// by pairs, at their stricter level): with n's few groups pairs decide many more
     /// comparisons than eq. 3.7, each at its nominal error, and over a walk's hundreds
     /// of them they drop the optimum more often than the thesis' search does
