@@ -78,11 +78,11 @@ pub enum Strategy {
     /// stopping rule; at the end the ISOC is raced to N rather than re-evaluated whole
     /// (`race`): its members are looked at together with 4n, 16n, … samples, and a
     /// member that another beats by the paired differences of their groups at an early
-    /// look's level ([`early_look_z`]) goes no further. The walk's decisions at n do not pair (only its early looks screen
-    /// by pairs, at their stricter level): with n's few groups pairs decide many more
-    /// comparisons than eq. 3.7, each at its nominal error, and over a walk's hundreds
-    /// of them they drop the optimum more often than the thesis' search does
-    /// (`crates/ilp/tests/paired.rs`).
+    /// look's level ([`early_look_z`]) goes no further. The walk's decisions at n do
+    /// not pair (only its early looks screen by pairs, at their stricter level): with
+    /// n's few groups pairs decide many more comparisons than eq. 3.7, each at its
+    /// nominal error, and over a walk's hundreds of them they drop the optimum more
+    /// often than the thesis' search does (`crates/ilp/tests/paired.rs`).
     RaceOnEnd,
 }
 
@@ -1037,8 +1037,8 @@ impl<'s> Search<'s> {
         let (looks, photons) = self.schedule(eval);
         let z_early = early_look_z(self.settings.confidence, looks.len());
         let sequential = self.settings.strategy.paired();
-        for n in looks {
-            let (fast, seconds) = self.evaluate(eval, &config, n)?;
+        for look in looks {
+            let (fast, seconds) = self.evaluate(eval, &config, look)?;
             let seconds = seconds + std::mem::take(&mut lead);
             // The thesis' one fast look decides at the ISOC's own levels; a sequential
             // search's several looks each at the early-look level, so that together
@@ -1091,7 +1091,7 @@ impl<'s> Search<'s> {
             if let Some(v) = verdict {
                 return Ok(v);
             }
-            if !pairs && n >= fast_n {
+            if !pairs && look >= fast_n {
                 break;
             }
         }

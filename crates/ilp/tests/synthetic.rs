@@ -326,12 +326,14 @@ fn every_strategy_finds_the_peak() {
         // σ, so a fast draw rarely sends the optimum to case A (where the tabu cache
         // would keep it out for good).
         let mut eval = Noisy::new(f, 10.0);
-        let (isoc, records, _) = run(&space, settings(400, strategy), vec![1.0, 0.0], &mut eval);
+        let settings = settings(400, strategy);
+        let (n, full) = settings.sample_counts(&eval);
+        let (isoc, records, _) = run(&space, settings, vec![1.0, 0.0], &mut eval);
         check_optimum(&space, &isoc, &[0.25, 0.72], &f);
         let want = if strategy == Strategy::NoRefine {
-            2500
+            n
         } else {
-            10_000
+            full
         };
         assert!(
             isoc.members().iter().all(|m| m.estimate.samples == want),
@@ -349,10 +351,10 @@ fn every_strategy_finds_the_peak() {
             .iter()
             .filter(|r| r.verdict == Verdict::Refine)
             .count();
-        // The sequential searches tell some candidates worse before n = 2 500 samples.
+        // The sequential searches tell some candidates worse before n samples.
         let out_early = records
             .iter()
-            .filter(|r| r.evaluation.goal.samples < 2500)
+            .filter(|r| r.evaluation.goal.samples < n)
             .any(|r| matches!(r.verdict, Verdict::Bad | Verdict::Beaten));
         assert_eq!(out_early, strategy.paired(), "{strategy:?}");
         // RACE_ISOC_ON_END looks at a candidate below n before its n-sample evaluation.
