@@ -364,26 +364,19 @@ mod tests {
         assert!(behind.intersect(&t, f32::INFINITY).is_none());
     }
 
-    /// SplitMix64 (Steele, Lea & Flood 2014): a fixed sequence without a dependency.
-    struct Rng(u64);
+    /// Test input drawn from the project's SplitMix64 stream.
+    struct Rng(invlight_stats::SplitMix64);
 
     impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-        /// Uniform in [−1, 1).
+        /// Uniform in [−1, 1].
         fn signed(&mut self) -> f32 {
-            (self.next() >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+            self.0.uniform(-1.0, 1.0) as f32
         }
         fn vec(&mut self, scale: f32) -> Vec3 {
             Vec3::new(self.signed(), self.signed(), self.signed()) * scale
         }
         fn below(&mut self, n: u64) -> u64 {
-            self.next() % n
+            self.0.below(n as usize) as u64
         }
     }
 
@@ -445,7 +438,7 @@ mod tests {
     /// hit.
     #[test]
     fn lanes_match_the_one_triangle_test() {
-        let mut rng = Rng(20);
+        let mut rng = Rng(invlight_stats::SplitMix64::new(20));
         #[cfg(target_arch = "x86_64")]
         let avx2 = is_x86_feature_detected!("avx2");
         let (mut hits, mut edges) = (0, 0);

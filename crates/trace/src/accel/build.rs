@@ -4,7 +4,7 @@
 
 use super::traverse::avx2_available;
 use super::tree::{BuildPreset, build_cwbvh, build_triangle_cwbvh};
-use super::{Accel, AccelStats, Blas, MERGED, Placed, TlasItem};
+use super::{Accel, AccelStats, Blas, EMPTY_SLOT, MERGED, Placed, TlasItem};
 use crate::holes::{HOLE_THICKNESS, HoleVolume};
 use crate::triangle::{Tri, TriBlock};
 use crate::wide;
@@ -168,7 +168,7 @@ impl Accel {
         }
         let stats = AccelStats {
             meshes: blas.iter().filter(|b| !b.nodes.is_empty()).count(),
-            triangles: blas.iter().map(|b| b.count).sum(),
+            triangles: blas.iter().map(Blas::triangle_count).sum(),
             blas_nodes: blas.iter().map(|b| b.nodes.len()).sum(),
             max_depth: blas
                 .iter()
@@ -466,7 +466,6 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
     let mut blocks = Vec::new();
     let mut triangles = Vec::new();
     let mut instances = Vec::new();
-    let mut count = 0;
     for node in &mut nodes {
         // The node's slots run from its base to the end of its last leaf.
         let slots = (0..8)
@@ -486,13 +485,12 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
                 let (v, index) = tris[i as usize];
                 block.set(lane, &Tri { v });
                 triangles.push(index);
-                count += 1;
                 if !owners.is_empty() {
                     instances.push(owners[i as usize]);
                 }
             }
             blocks.push(block);
-            triangles.resize(8 * blocks.len(), u32::MAX);
+            triangles.resize(8 * blocks.len(), EMPTY_SLOT);
             if !owners.is_empty() {
                 instances.resize(8 * blocks.len(), MERGED);
             }
@@ -506,7 +504,6 @@ fn build_blas(tris: Vec<Corners>, owners: Vec<InstanceId>, preset: BuildPreset) 
         nodes,
         blocks,
         triangles,
-        count,
         instances,
         bounds: Some((lo, hi)),
     }

@@ -73,15 +73,21 @@ struct Blas {
     nodes: Vec<CwBvhNode>,
     blocks: Vec<TriBlock>,
     /// Each slot's triangle, by its index in the mesh (or in the instance's mesh for the
-    /// merged BVH); `u32::MAX` for an empty lane.
+    /// merged BVH); [`EMPTY_SLOT`] for an empty lane.
     triangles: Vec<u32>,
-    /// Triangles in the leaves, empty lanes left out.
-    count: usize,
     /// Bounds of the traced triangles, or `None` when there are none.
     bounds: Option<(Vec3, Vec3)>,
     /// For the merged BVH of static instances ([`Accel::with_movable`]): the instance of
     /// each slot's triangle. Empty for a mesh's own BVH.
     instances: Vec<InstanceId>,
+}
+
+impl Blas {
+    /// Triangles in the leaves, empty lanes left out (a pre-split triangle once per
+    /// leaf that holds it).
+    fn triangle_count(&self) -> usize {
+        self.triangles.iter().filter(|&&t| t != EMPTY_SLOT).count()
+    }
 }
 
 /// A tree a ray enters and how: an instance as the top level stores it, or the merged
@@ -99,6 +105,9 @@ struct TlasItem {
 
 /// The entry of the merged BVH of static instances stands for no one instance.
 const MERGED: InstanceId = InstanceId::from_index(u32::MAX as usize);
+
+/// [`Blas::triangles`]' entry for a lane of a block no triangle fills.
+const EMPTY_SLOT: u32 = u32::MAX;
 
 /// Each scene instance's transforms.
 #[derive(Debug, Clone, Copy)]
