@@ -227,9 +227,11 @@ mod triple {
                     named(&runs[i]["surfaces"], surface),
                     named(&runs[0]["surfaces"], surface),
                 );
-                // The standard error comes from a difference of sums, which magnifies
-                // rounding.
-                for (key, tolerance) in [("mean", 1e-9), ("std_error", 1e-6)] {
+                // A connection's value is single precision (its solid angles and
+                // sampled point too), so the means agree to within f32 rounding, far
+                // below their standard errors (about 10⁻³ of the mean); the standard
+                // error comes from a difference of sums, which magnifies rounding.
+                for (key, tolerance) in [("mean", 1e-7), ("std_error", 1e-5)] {
                     let (x, y) = (f64_of(&a[key]), f64_of(&b[key]));
                     assert!(
                         (x - y).abs() <= tolerance * y,

@@ -165,6 +165,7 @@ impl TraceArgs {
             photons: self.photons(default)?,
             seed: self.seed.unwrap_or(1),
             max_bounces: self.max_bounces.unwrap_or(DEFAULT_MAX_BOUNCES),
+            ..TraceSettings::default()
         })
     }
 

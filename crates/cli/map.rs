@@ -6,7 +6,7 @@ use crate::InputError;
 use crate::args::{ReportArgs, SceneArgs, TraceArgs};
 use crate::render::save_image;
 use clap::Args;
-use invlight_photon::{Estimator, Side, photons_traced};
+use invlight_photon::{Estimator, Side};
 use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
 use invlight_report::{MapPage, Progress, file_safe};
 use invlight_trace::Accel;
@@ -75,8 +75,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
     };
-    let total = photons_traced(trace.photons).unwrap_or(trace.photons);
-    let bar = Progress::new(total, "photons", "this map");
+    let bar = Progress::photons(trace.photons, "this map");
     let report = |done: u64| bar.set(done);
     let map = pool
         .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))

@@ -25,9 +25,8 @@ pub struct ReportCommandArgs {
 /// Runs `invlight report`.
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
     let mut problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
-    let bounces = problem.bounces();
     let requirement = args.report.requirement()?;
-    let grid = args.grid.grid(problem.seed, bounces);
+    let grid = args.grid.grid(problem.seed, problem.bounces());
     let scene = args.load.load_problem(&mut problem)?;
     let written = SolveReport::rebuild(&args.dir, &problem, scene, requirement.as_ref(), grid)?;
     crate::print(&(written.lines() + "\n"))?;

@@ -86,6 +86,8 @@ pub struct PhotonEvaluator<'b> {
     components: Components,
     seed: u64,
     max_bounces: u32,
+    /// [`TraceSettings::roulette`] of every trace.
+    roulette: f32,
     /// N: what a problem of dimming levels alone traces, once.
     full: u64,
     rays: u64,
@@ -133,6 +135,7 @@ impl<'b> PhotonEvaluator<'b> {
             helpers: Vec::new(),
             seed,
             max_bounces,
+            roulette: 1.0,
             full,
             rays: 0,
             photons: 0,
@@ -196,6 +199,7 @@ impl<'b> PhotonEvaluator<'b> {
                 components: &self.components,
                 seed: self.seed,
                 max_bounces: self.max_bounces,
+                roulette: self.roulette,
             };
             let m = job.trace(&mut self.stage, config, photons, previous, cluster())?;
             self.keep(key.clone(), m, previous.map(|p| p.photons));
@@ -262,6 +266,7 @@ impl PhotonEvaluator<'_> {
             components: &self.components,
             seed: self.seed,
             max_bounces: self.max_bounces,
+            roulette: self.roulette,
         };
         let previous: Vec<Option<&Measurement>> = todo
             .iter()
@@ -323,6 +328,7 @@ struct Job<'a> {
     components: &'a Components,
     seed: u64,
     max_bounces: u32,
+    roulette: f32,
 }
 
 impl Job<'_> {
@@ -424,6 +430,7 @@ impl Job<'_> {
             photons,
             seed: self.seed,
             max_bounces: self.max_bounces,
+            roulette: self.roulette,
         };
         let (scene, accel) = (&stage.scene, &stage.accel);
         Ok(match previous {

@@ -29,6 +29,14 @@ pub struct TraceSettings {
     /// Surface interactions followed after the first hit from the light. Russian
     /// roulette ends paths on its own; this is a safety cap (the thesis used 4).
     pub max_bounces: u32,
+    /// Where the Russian roulette starts, as a share of the power a photon leaves its
+    /// light with: a photon is reflected without roulette while its expected reflected
+    /// power stays above this share, and at or below it survives with the probability
+    /// that keeps its power there (`path::Roulette`). 1 is the classic roulette (thesis
+    /// Algorithm 2.2), where every photon keeps its power; lower values trace more of each
+    /// photon's reflections, which pays where reflected light carries the variance
+    /// ([`crate::tune_roulette`]). Any positive value gives the same mean.
+    pub roulette: f32,
 }
 
 impl Default for TraceSettings {
@@ -37,6 +45,7 @@ impl Default for TraceSettings {
             photons: 1_000_000,
             seed: 1,
             max_bounces: DEFAULT_MAX_BOUNCES,
+            roulette: 1.0,
         }
     }
 }
@@ -160,6 +169,7 @@ pub(crate) fn trace_chunk<V: PathVisitor>(
             emitters,
             &mut sampler,
             settings.max_bounces,
+            settings.roulette,
             visitor,
         );
         if (i + 1).is_multiple_of(GROUP) || i + 1 == last {

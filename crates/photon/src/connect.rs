@@ -5,13 +5,21 @@
 //! Why: a photon tracer that only counts arrivals (thesis §3.3) learns about a target
 //! from the photons that happen to hit it. A photon that leaves a light or a diffuse
 //! surface sends its expected power toward the target along every direction that sees
-//! it; a connection estimates that flux from one point drawn on the target (uniform in
-//! area) and a ray toward it, before the Russian roulette decides the photon's fate, so even
-//! absorbed photons report what their reflection would have brought.
+//! it; a connection estimates that flux from one point drawn on the target and a ray
+//! toward it, before the Russian roulette decides the photon's fate, so even absorbed
+//! photons report what their reflection would have brought.
+//!
+//! The point is drawn uniformly in the solid angle the target subtends from x when the
+//! target has at most [`SOLID_ANGLE_TRIANGLES`] triangles (a floor, a desk top, a
+//! board: [`Targets::solid_angles`]), which cancels the target's own cos θ_y/r², and
+//! uniformly in area otherwise (and from the sun's beam). One stratified 2-D number
+//! chooses the triangle (by area or by solid angle) and the point in it, so a group's
+//! points stay spread over the whole target.
 //!
 //! Both ways of reaching a target point y from a departure x (the connection, and the
 //! photon's own next ray hitting it) are kept and weighted by the balance heuristic
-//! (Veach 1997, §9.2): with p_a = 1/A the connection's density of y per unit area and
+//! (Veach 1997, §9.2): with p_a the connection's density of y per unit area (1/A by
+//! area, |cos θ_y|/(r²Ω) by solid angle) and
 //! p_b = s·f(ω)·|cos θ_y|/r² the photon's (s the probability the photon leaves along
 //! this lobe, f its directional density), the connection counts p_a/(p_a + p_b) and the
 //! arrival p_b/(p_a + p_b). The weights add up to one for every y, so the sum stays
@@ -179,6 +187,18 @@ impl Departure<'_> {
             Lobe::Parallel { direction, area } => {
                 (self.survival * n_y.dot(direction).abs() / area, 1.0)
             }
+            // cos θ_x/π · |cos θ_y| / r² with both cosines taken on the unnormalised
+            // d = y − x: one division, no square root (the path's commonest lobe).
+            Lobe::Cosine { normal } => {
+                let d = y - self.point;
+                let r2 = d.length_squared();
+                let c = normal.dot(d);
+                if !(r2 > 0.0 && c > 0.0) {
+                    return (0.0, 1.0);
+                }
+                let density = self.survival * c * n_y.dot(d).abs() / (PI * r2 * r2);
+                (density, 1.0)
+            }
             lobe => {
                 let d = y - self.point;
                 let r2 = d.length_squared();
@@ -216,6 +236,62 @@ struct Shape {
     /// The instances the target covers, sorted: a connection counts when its ray's first
     /// hit is one of them.
     instances: Vec<InstanceId>,
+    /// Whether connections draw their points by solid angle ([`Shape::solid_angles`]):
+    /// targets of at most [`SOLID_ANGLE_TRIANGLES`] triangles.
+    solid: bool,
+}
+
+/// The solid angles a target's triangles subtend from a departure, when its connections
+/// draw points by solid angle ([`Targets::solid_angles`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidAngles {
+    /// Each triangle's, sr (0 past the target's triangles).
+    angles: [f32; SOLID_ANGLE_TRIANGLES],
+    /// Their sum, Ω: a connection draws y with density |cos θ_y| / (r² Ω).
+    pub total: f32,
+}
+
+/// The most triangles a target may have for its connections to be drawn by solid angle:
+/// each connection and each arrival on it computes every triangle's solid angle.
+pub const SOLID_ANGLE_TRIANGLES: usize = 4;
+
+/// The solid angles, sr, outside which a departure's connection draws by area instead:
+/// below, the spherical triangle is too thin to sample accurately; above, it nearly
+/// covers the hemisphere (pbrt-v4 `MinSphericalSampleArea`, `MaxSphericalSampleArea`).
+const SOLID_ANGLE_RANGE: (f32, f32) = (3e-4, 6.22);
+
+impl Shape {
+    /// Each triangle's solid angle seen from `x` and their sum, when the sum lies in
+    /// [`SOLID_ANGLE_RANGE`] and the target draws by solid angle; `None` when the
+    /// connection from `x` draws by area.
+    #[inline]
+    fn solid_angles(&self, x: Vec3) -> Option<SolidAngles> {
+        if !self.solid {
+            return None;
+        }
+        let mut angles = [0.0; SOLID_ANGLE_TRIANGLES];
+        for (a, &(p0, e1, e2, _)) in angles.iter_mut().zip(&self.tris) {
+            *a = sampling::solid_angle(p0 - x, p0 + e1 - x, p0 + e2 - x);
+        }
+        let total: f32 = angles.iter().sum();
+        (total > SOLID_ANGLE_RANGE.0 && total < SOLID_ANGLE_RANGE.1)
+            .then_some(SolidAngles { angles, total })
+    }
+
+    /// The density per unit area, at `y` on a triangle of unit normal `n_y`, of the
+    /// connection's point from `x` given [`Shape::solid_angles`]'s `total`:
+    /// |cos θ_y| / (r² Ω), or 1/A when it draws by area.
+    #[inline]
+    fn connection_density(&self, x: Vec3, y: Vec3, n_y: Vec3, total: Option<f32>) -> f32 {
+        match total {
+            Some(total) => {
+                let d = y - x;
+                let r2 = d.length_squared();
+                n_y.dot(d).abs() / (r2.sqrt() * r2 * total)
+            }
+            None => 1.0 / self.area,
+        }
+    }
 }
 
 /// The measured targets as connections see them: the triangles photons can arrive on
@@ -250,6 +326,7 @@ impl Targets {
                 }
                 shape.by_area = Distribution1D::new(areas);
                 shape.area = shape.by_area.total() as f32;
+                shape.solid = shape.tris.len() <= SOLID_ANGLE_TRIANGLES;
                 shape
             })
             .collect();
@@ -266,46 +343,91 @@ impl Targets {
         self.shapes.is_empty()
     }
 
-    /// The share of an arrival on target `t` that the arrival counts, p_b/(p_a + p_b),
-    /// from its [`Departure::arrival_density`] p_b (which does not depend on the target,
-    /// so an arrival on several targets computes it once); 1 for a target with nothing
-    /// to connect to.
+    /// The solid angles target `t`'s triangles subtend from `from` when its connection
+    /// draws by solid angle: a target of at most [`SOLID_ANGLE_TRIANGLES`] triangles,
+    /// seen from a point (not the sun's beam) within a solid angle that can be sampled
+    /// accurately. `None` when it draws by area.
+    ///
+    /// Why: a uniform point on the target's area gives the connection the factor
+    /// cos θ_y / r² of the target's own geometry, which swings widely from a wall's
+    /// foot to a floor's far corner; a point uniform in solid angle cancels it, leaving
+    /// the departure's cosine and visibility. On the Mitsuba comparison's floor (two
+    /// triangles) it cuts the variance to 0.57 of area sampling's (BENCHMARKS.md). Each
+    /// solid angle costs an arc tangent per triangle, hence the limit.
     #[inline]
-    pub fn arrival_weight(&self, t: usize, density: f32) -> f32 {
-        let area = self.shapes[t].area;
-        if area <= 0.0 {
+    pub fn solid_angles(&self, t: usize, from: &Departure) -> Option<SolidAngles> {
+        match from.lobe {
+            Lobe::Parallel { .. } | Lobe::Specular => None,
+            _ => self.shapes[t].solid_angles(from.point),
+        }
+    }
+
+    /// The share of an arrival at `y` (unit normal `n_y`) on target `t` that the arrival
+    /// counts, p_b/(p_a + p_b), from its [`Departure::arrival_density`] p_b (which does
+    /// not depend on the target, so an arrival on several targets computes it once) and
+    /// the density p_a with which a connection from `from` draws y, by solid angle when
+    /// `solid` is [`Targets::solid_angles`]'s total, else by area; 1 for a target with
+    /// nothing to connect to.
+    #[inline]
+    pub fn arrival_weight(
+        &self,
+        t: usize,
+        (from, y, n_y): (&Departure, Vec3, Vec3),
+        density: f32,
+        solid: Option<f32>,
+    ) -> f32 {
+        let shape = &self.shapes[t];
+        if shape.area <= 0.0 || density.is_infinite() {
             return 1.0;
         }
-        let q = area * density;
+        let p_a = shape.connection_density(from.point, y, n_y, solid);
+        if !(p_a > 0.0 && p_a.is_finite()) {
+            return 1.0;
+        }
+        let q = density / p_a;
         if q.is_infinite() { 1.0 } else { q / (1.0 + q) }
     }
 
-    /// Connects `from` to a point drawn on target `t`: the point and the luminous power,
-    /// lm, this connection counts toward the target's total (zero when the point is
-    /// hidden), or `None` when no ray was needed (the point is in a hole or outside the
-    /// lobe). Draws three numbers from `sampler` whatever happens, so the photons of a
-    /// stratified group stay aligned.
+    /// Connects `from` to a point drawn on target `t`, by solid angle when `solid` is
+    /// [`Targets::solid_angles`]'s for this departure, else by area: the point and the
+    /// luminous power, lm, this connection counts toward the target's total (zero when
+    /// the point is hidden), or `None` when no ray was needed (the point is in a hole or
+    /// outside the lobe). Draws one stratified 2-D number from `sampler` whatever
+    /// happens, so the photons of a stratified group stay aligned.
     #[inline]
     pub fn connect(
         &self,
         t: usize,
         from: &Departure,
+        solid: Option<&SolidAngles>,
         accel: &Accel,
         sampler: &mut Sampler<'_>,
     ) -> Option<Connection> {
-        let pick = sampler.uniform();
         let (u1, u2) = sampler.uniform2();
         let shape = &self.shapes[t];
         if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
             return None;
         }
-        let (p0, e1, e2, n_y) = shape.tris[shape.by_area.sample(pick)];
-        let (b1, b2) = sampling::triangle(u1, u2);
-        let y = p0 + e1 * b1 + e2 * b2;
-        // q = A·p_b; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
+        let (y, n_y) = match solid {
+            Some(&SolidAngles { ref angles, total }) => {
+                let (i, u1) = pick(angles, total, u1);
+                let (p0, e1, e2, n_y) = shape.tris[i];
+                let (b1, b2) =
+                    sampling::spherical_triangle(from.point, [p0, e1, e2], angles[i], u1, u2)?;
+                (p0 + e1 * b1 + e2 * b2, n_y)
+            }
+            None => {
+                let (i, u1) = shape.by_area.sample_continuous(u1 as f64);
+                let (p0, e1, e2, n_y) = shape.tris[i];
+                let (b1, b2) = sampling::triangle(u1 as f32, u2);
+                (p0 + e1 * b1 + e2 * b2, n_y)
+            }
+        };
+        // q = p_b/p_a; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
         // is lumens·r/s · q/(1 + q) (r the lobe's weight toward y, 1 but for tables).
         let (density, weight) = from.density_and_weight(y, n_y);
-        let q = shape.area * density;
+        let p_a = shape.connection_density(from.point, y, n_y, solid.map(|s| s.total));
+        let q = density / p_a;
         if !(q > 0.0 && q.is_finite()) || accel.in_hole(y) {
             return None;
         }
@@ -351,6 +473,23 @@ impl Targets {
             front: d.dot(n_y) < 0.0,
         })
     }
+}
+
+/// The entry of `angles` (summing to `total`) that `u` falls in, in proportion to its
+/// angle, and where in it, rescaled to [0, 1) ([`Distribution1D::sample_continuous`]).
+#[inline]
+fn pick(angles: &[f32], total: f32, u: f32) -> (usize, f32) {
+    let mut below = 0.0;
+    let target = u * total;
+    let last = angles.iter().rposition(|&a| a > 0.0).unwrap_or(0);
+    for (i, &a) in angles.iter().enumerate() {
+        if target < below + a || i == last {
+            let r = if a > 0.0 { (target - below) / a } else { 0.0 };
+            return (i, r.clamp(0.0, 1.0 - f32::EPSILON / 2.0));
+        }
+        below += a;
+    }
+    (last, 0.0)
 }
 
 #[cfg(test)]

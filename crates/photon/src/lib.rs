@@ -61,6 +61,7 @@ mod estimator;
 mod grid;
 mod measure;
 mod path;
+mod roulette;
 mod sampler;
 mod sampling;
 
@@ -68,7 +69,7 @@ pub use cells::{GridMeasurement, Uniformity};
 pub use channels::{Components, Side};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shared};
-pub use connect::{Connection, Departure, Lobe, Targets};
+pub use connect::{Connection, Departure, Lobe, SOLID_ANGLE_TRIANGLES, SolidAngles, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
 pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
@@ -77,5 +78,9 @@ pub use measure::{
     behind_warning, measure, measure_across, measure_more, measure_with, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
+pub use roulette::{
+    MIN_PILOT_PHOTONS, PILOT_PHOTONS, ROULETTE_SHARES, RouletteChoice, RouletteTrial,
+    tune_roulette, tune_roulette_for,
+};
 pub use sampler::{GroupKeys, Sampler};
 pub use sampling::{basis, cosine_hemisphere};

@@ -7,6 +7,7 @@
 //! the same bits on one thread or many, and memory stays constant however many photons
 //! are traced.
 
+use crate::RouletteChoice;
 use crate::cells::{CellTallies, GridMeasurement};
 use crate::channels::{Components, Side, SurfaceTallies, channel, side_weights};
 use crate::chunks::{CHUNK, TraceSettings};
@@ -364,6 +365,11 @@ struct ChunkTally<'a> {
     cells: Vec<CellTallies>,
     escaped: f64,
     connection_rays: u64,
+    /// The point of the last departure connected, and the solid angles its connections
+    /// drew by, per target ([`Targets::solid_angles`]): the photon's next arrival comes
+    /// from it and weighs itself by them.
+    departed: Vec3,
+    solid: Vec<Option<f32>>,
 }
 
 impl ChunkTally<'_> {
@@ -388,8 +394,11 @@ impl PathVisitor for ChunkTally<'_> {
     fn depart(&mut self, from: &Departure, sampler: &mut Sampler<'_>) {
         if let Some((targets, accel)) = self.connect {
             let k = self.plan.component_of[from.source as usize];
+            self.departed = from.point;
             for t in 0..targets.len() {
-                if let Some(c) = targets.connect(t, from, accel, sampler) {
+                let solid = targets.solid_angles(t, from);
+                self.solid[t] = solid.map(|s| s.total);
+                if let Some(c) = targets.connect(t, from, solid.as_ref(), accel, sampler) {
                     self.connection_rays += 1;
                     self.add(t as u32, k, c.front, c.point, c.lumens, false);
                 }
@@ -412,7 +421,15 @@ impl PathVisitor for ChunkTally<'_> {
         let front = dir.dot(at.normal) < 0.0;
         for &t in on {
             let w = match weighing {
-                Some((targets, density)) => targets.arrival_weight(t as usize, density),
+                Some((targets, density)) => {
+                    let t = t as usize;
+                    let solid = if from.point == self.departed {
+                        self.solid[t]
+                    } else {
+                        targets.solid_angles(t, from).map(|s| s.total)
+                    };
+                    targets.arrival_weight(t, (from, at.point, at.normal), density, solid)
+                }
                 None => 1.0,
             };
             self.surfaces.hit(t);
@@ -660,6 +677,8 @@ fn trace_into(
                 .collect(),
             escaped: 0.0,
             connection_rays: 0,
+            departed: Vec3::NAN,
+            solid: vec![None; targets.len()],
         },
         |part| {
             if partial == Some(chunk) {
@@ -794,6 +813,17 @@ pub struct MeasureReport {
     pub seed: u64,
     /// Bounce cap.
     pub max_bounces: u32,
+    /// [`TraceSettings::roulette`]: where the Russian roulette started, as a share of a
+    /// photon's emitted power.
+    #[serde(default = "classic_roulette")]
+    pub roulette: f32,
+    /// Photons of the pilot that chose `roulette` ([`crate::tune_roulette`]), beside
+    /// `photons`; 0 when it was given.
+    #[serde(default)]
+    pub pilot_photons: u64,
+    /// Rays of that pilot, beside `rays` and `connection_rays`.
+    #[serde(default)]
+    pub pilot_rays: u64,
     /// Seconds from the start of the build to the end of the trace.
     pub seconds: f64,
     /// Seconds building the acceleration structure.
@@ -802,6 +832,11 @@ pub struct MeasureReport {
     /// measured under, lx; absent when the surfaces' factors are not asked for.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unobstructed_lux: Option<f64>,
+}
+
+/// The roulette of a report written before it was a setting.
+fn classic_roulette() -> f32 {
+    1.0
 }
 
 impl MeasureReport {
@@ -881,6 +916,12 @@ impl MeasureReport {
             self.photons as f64 / self.seconds / 1e6,
             significant(self.flux_lm)
         );
+        if self.pilot_photons > 0 {
+            out += &format!(
+                "Russian roulette from {} of a photon's power, chosen by a pilot of {} photons and {} rays (--roulette)\n",
+                self.roulette, self.pilot_photons, self.pilot_rays
+            );
+        }
         out
     }
 }
@@ -888,13 +929,13 @@ impl MeasureReport {
 impl Measurement {
     /// The report of this measurement of surfaces named `names` (in target order), each
     /// counted on `side`, with intervals at `confidence`, traced with `settings` and
-    /// `estimator`.
+    /// `estimator` after the pilot `roulette` chose its roulette.
     pub fn report(
         &self,
         names: &[String],
         side: Side,
         confidence: Confidence,
-        (settings, estimator): (&TraceSettings, Estimator),
+        (settings, estimator, roulette): (&TraceSettings, Estimator, &RouletteChoice),
         (seconds, build_seconds): (f64, f64),
     ) -> MeasureReport {
         let z = confidence.z();
@@ -929,6 +970,9 @@ impl Measurement {
             confidence: confidence.level(),
             seed: settings.seed,
             max_bounces: settings.max_bounces,
+            roulette: settings.roulette,
+            pilot_photons: roulette.photons,
+            pilot_rays: roulette.rays,
             seconds,
             build_seconds,
             unobstructed_lux: None,

@@ -50,13 +50,16 @@ enum Event {
 }
 
 /// Traces one photon drawn from `emitters` with `sampler`, reporting to `visitor`; at most
-/// `max_bounces` surface interactions follow the first hit. Returns the rays cast.
+/// `max_bounces` surface interactions follow the first hit, and the Russian roulette
+/// starts once the photon's expected reflected power falls below `roulette` times what
+/// it left its light with ([`crate::TraceSettings::roulette`]). Returns the rays cast.
 pub fn trace_photon(
     scene: &Scene,
     accel: &Accel,
     emitters: &Emitters,
     sampler: &mut Sampler<'_>,
     max_bounces: u32,
+    roulette: f32,
     visitor: &mut impl PathVisitor,
 ) -> u64 {
     let EmitSample {
@@ -76,6 +79,7 @@ pub fn trace_photon(
         source,
     };
     visitor.depart(&from, sampler);
+    let floor = roulette * lumens;
     let mut ray = match surface_normal {
         Some(n) => Ray::new(offset_point(origin, n), dir),
         None => Ray::new(origin, dir),
@@ -98,7 +102,7 @@ pub fn trace_photon(
         } else {
             -at.normal
         };
-        let Some(roulette) = Roulette::new(scene, &at, power) else {
+        let Some(roulette) = Roulette::new(scene, &at, power, floor) else {
             break;
         };
         let diffuse = Departure {
@@ -147,14 +151,21 @@ pub fn trace_photon(
 /// dielectric or absorbed, each surviving power scaled by (part / probability) so that
 /// its expectation is the physical one.
 ///
-/// The thesis takes ρ_d = mean(K_d). We take the probabilities from the photon's own
-/// luminance instead, ρ_d = Y(P·K_d)/Y(P) and ρ_s = Y(P·K_s)/Y(P) (pbrt-v4's SPPM photon
-/// pass does the same): a photon then keeps its luminance through every bounce, so each
-/// arrival tallies exactly the scene's flux, as the thesis' binomial formula (eq. 3.4)
-/// assumes. With mean(K_d) a saturated colour such as (0.9, 0.05, 0.05) multiplies the
+/// The thesis takes ρ_d = mean(K_d). We take the parts from the photon's own luminance
+/// instead, ρ_d = Y(P·K_d)/Y(P) and ρ_s = Y(P·K_s)/Y(P) (pbrt-v4's SPPM photon pass does
+/// the same): with mean(K_d) a saturated colour such as (0.9, 0.05, 0.05) multiplies the
 /// second moment of the red channel by K_r²/mean(K_d) = 2.7 per bounce, and in a closed
 /// red room the variance is infinite: reported intervals would be far too narrow.
-/// Probabilities are normalised when the parts add up to more than one.
+///
+/// The photon survives with probability s = min(1, ρ·Y(P)/floor), ρ = ρ_d + ρ_s + ρ_t,
+/// its parts in proportion: a photon whose expected surviving power ρ·Y(P) is at least
+/// `floor` always goes on, at that reduced power, and one below it goes on at exactly
+/// `floor` or not at all, so no photon ever carries more than its light gave it nor
+/// less than `floor` (pbrt-v4's path tracer plays its roulette on the throughput in the
+/// same way). With `floor` the photon's emitted power this is the classic roulette,
+/// s = ρ, where every photon keeps its power; a lower floor spends more rays on each
+/// photon's first reflections, whose light then no longer hangs on one survival draw
+/// ([`crate::tune_roulette`] chooses it).
 struct Roulette {
     kd: Rgb,
     specular: Rgb,
@@ -166,10 +177,10 @@ struct Roulette {
 }
 
 impl Roulette {
-    /// The parts at `at` for a photon carrying `power`; `None` when it carries no
-    /// luminance (nothing left to reflect).
+    /// The parts at `at` for a photon carrying `power`, surviving as if `floor` lumens
+    /// were the least power worth tracing; `None` when nothing is left to reflect.
     #[inline]
-    fn new(scene: &Scene, at: &Interaction, power: Rgb) -> Option<Roulette> {
+    fn new(scene: &Scene, at: &Interaction, power: Rgb, floor: f32) -> Option<Roulette> {
         let m = &scene.materials[at.material];
         let mut kd = m.diffuse;
         if let Some(t) = m.texture {
@@ -182,7 +193,12 @@ impl Roulette {
         let rho_d = luminance(power * kd) / y;
         let rho_s = luminance(power * m.specular) / y;
         let rho_t = m.transmission;
-        let norm = (rho_d + rho_s + rho_t).max(1.0);
+        let total = rho_d + rho_s + rho_t;
+        if total <= 0.0 {
+            return None;
+        }
+        let survive = (total * y / floor).min(1.0);
+        let norm = total / survive;
         Some(Roulette {
             kd,
             specular: m.specular,

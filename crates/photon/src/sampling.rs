@@ -50,6 +50,73 @@ pub fn triangle(u1: f32, u2: f32) -> (f32, f32) {
     (1.0 - s, u2 * s)
 }
 
+/// The solid angle, sr, of the triangle whose corners lie at `a`, `b` and `c` from the
+/// viewpoint (Van Oosterom and Strackee 1983, "The Solid Angle of a Plane Triangle",
+/// IEEE Trans. Biomed. Eng. 30(2)).
+#[inline]
+pub fn solid_angle(a: Vec3, b: Vec3, c: Vec3) -> f32 {
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    let numerator = a.dot(b.cross(c)).abs();
+    let denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+    2.0 * numerator.atan2(denominator)
+}
+
+/// Barycentric coordinates (b1, b2) on the triangle `v0 + b1·e1 + b2·e2` of the point
+/// seen from `x` along a direction uniform in the solid angle `omega` the triangle
+/// subtends ([`solid_angle`]) (Arvo 1995, "Stratified Sampling of Spherical Triangles",
+/// SIGGRAPH; pbrt-v4 `SampleSphericalTriangle`, which recomputes `omega` from the
+/// triangle's angles); `None` when the triangle is seen edge on. (u1, u2) map
+/// continuously onto the triangle, so stratified numbers stay stratified.
+#[inline]
+pub fn spherical_triangle(
+    x: Vec3,
+    [v0, e1, e2]: [Vec3; 3],
+    omega: f32,
+    u1: f32,
+    u2: f32,
+) -> Option<(f32, f32)> {
+    let a = (v0 - x).normalize();
+    let b = (v0 + e1 - x).normalize();
+    let c = (v0 + e2 - x).normalize();
+    let n_ab = a.cross(b).try_normalize()?;
+    let n_ca = c.cross(a).try_normalize()?;
+    // The spherical angle at a, between the great circles ab and ac.
+    let cos_alpha = (-n_ab.dot(n_ca)).clamp(-1.0, 1.0);
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    // The sub-triangle at a of area u1·Ω, and the point c' its third side ends at on arc
+    // ac; sin and cos of (π + u1·Ω) are −sin and −cos of u1·Ω.
+    let (sin_u, cos_u) = (u1 * omega).sin_cos();
+    let (sin_sub, cos_sub) = (-sin_u, -cos_u);
+    let sin_phi = sin_sub * cos_alpha - cos_sub * sin_alpha;
+    let cos_phi = cos_sub * cos_alpha + sin_sub * sin_alpha;
+    let k1 = cos_phi + cos_alpha;
+    let k2 = sin_phi - sin_alpha * a.dot(b);
+    let cos_bp = ((k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha)
+        / ((k2 * sin_phi + k1 * cos_phi) * sin_alpha))
+        .clamp(-1.0, 1.0);
+    let sin_bp = (1.0 - cos_bp * cos_bp).max(0.0).sqrt();
+    let cp = cos_bp * a + sin_bp * (c - c.dot(a) * a).try_normalize()?;
+    // A point on arc b c' with cos θ uniform: uniform in the sub-triangle's extension.
+    let cos_theta = 1.0 - u2 * (1.0 - cp.dot(b));
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let w = cos_theta * b + sin_theta * (cp - cp.dot(b) * b).try_normalize()?;
+    // Where x + t·w meets the triangle's plane (Möller–Trumbore).
+    let s1 = w.cross(e2);
+    let divisor = s1.dot(e1);
+    if divisor == 0.0 {
+        return None;
+    }
+    let d = x - v0;
+    let mut b1 = (d.dot(s1) / divisor).clamp(0.0, 1.0);
+    let mut b2 = (w.dot(d.cross(e1)) / divisor).clamp(0.0, 1.0);
+    if b1 + b2 > 1.0 {
+        let sum = b1 + b2;
+        b1 /= sum;
+        b2 /= sum;
+    }
+    Some((b1, b2))
+}
+
 /// A uniform point on the unit disk (polar).
 #[inline]
 pub fn disk(u1: f32, u2: f32) -> (f32, f32) {
@@ -85,5 +152,96 @@ mod tests {
             .sum::<f64>()
             / n as f64;
         assert!((mean - 2.0 / 3.0).abs() < 5.0 * (1.0f64 / 18.0 / n as f64).sqrt());
+    }
+
+    /// The solid angle of the square [−1, 1]² seen from height h on its axis:
+    /// 4·arcsin(1/(1 + h²)) (the rectangle's closed form, two triangles summed).
+    #[test]
+    fn solid_angle_of_a_square() {
+        for h in [0.01f32, 0.5, 1.5, 20.0] {
+            let x = Vec3::new(0.0, 0.0, h);
+            let c = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .map(|(a, b)| Vec3::new(a, b, 0.0) - x);
+            let omega = solid_angle(c[0], c[1], c[2]) + solid_angle(c[0], c[2], c[3]);
+            let exact = 4.0 * (1.0 / (1.0 + h as f64 * h as f64)).asin();
+            assert!(
+                (omega as f64 - exact).abs() < 1e-5 * exact.max(1e-3),
+                "h {h}: {omega} vs {exact}"
+            );
+        }
+    }
+
+    /// Points drawn by [`spherical_triangle`] are uniform in solid angle: over a grid of
+    /// (u1, u2), the share falling in each of the four triangles the edges' midpoints cut
+    /// the triangle into is that part's share of the solid angle. Seen from near a
+    /// corner, far off axis and 5 cm under the triangle (nearly a hemisphere), where area
+    /// sampling's shares would be far from these. From afar, where the density
+    /// |cos θ_y|/(r² Ω) is smooth, the mean of its inverse is the triangle's area.
+    #[test]
+    fn spherical_triangle_is_uniform_in_solid_angle() {
+        let corners = [
+            Vec3::ZERO,
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(1.0, 2.0, 0.0),
+        ];
+        let [v0, v1, v2] = corners;
+        let (e1, e2) = (v1 - v0, v2 - v0);
+        let n = e1.cross(e2).normalize();
+        let area = e1.cross(e2).length() as f64 / 2.0;
+        let [m01, m12, m20] = [(v0 + v1) / 2.0, (v1 + v2) / 2.0, (v2 + v0) / 2.0];
+        let parts = [
+            [v0, m01, m20],
+            [m01, v1, m12],
+            [m20, m12, v2],
+            [m01, m12, m20],
+        ];
+        // The part holding barycentrics (b1, b2): corners where one coordinate exceeds ½.
+        let part_of = |b1: f32, b2: f32| {
+            let b0 = 1.0 - b1 - b2;
+            if b0 > 0.5 {
+                0
+            } else if b1 > 0.5 {
+                1
+            } else if b2 > 0.5 {
+                2
+            } else {
+                3
+            }
+        };
+        for x in [
+            Vec3::new(-0.2, -0.1, 0.3),
+            Vec3::new(-4.0, 5.0, 2.0),
+            Vec3::new(1.0, 0.5, -0.05),
+        ] {
+            let angle = |[a, b, c]: [Vec3; 3]| solid_angle(a - x, b - x, c - x) as f64;
+            let omega = angle(corners);
+            let k = 1000;
+            let (mut counts, mut inverse) = ([0usize; 4], 0.0f64);
+            for i in 0..k {
+                for j in 0..k {
+                    let u = ((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                    let (b1, b2) =
+                        spherical_triangle(x, [v0, e1, e2], omega as f32, u.0, u.1).unwrap();
+                    counts[part_of(b1, b2)] += 1;
+                    let d = v0 + e1 * b1 + e2 * b2 - x;
+                    let r2 = d.length_squared() as f64;
+                    inverse += r2 * r2.sqrt() * omega / n.dot(d).abs() as f64;
+                }
+            }
+            for (part, count) in parts.iter().zip(counts) {
+                let (share, exact) = (count as f64 / (k * k) as f64, angle(*part) / omega);
+                assert!(
+                    (share - exact).abs() < 3e-3,
+                    "from {x}: share {share}, solid angle's {exact}"
+                );
+            }
+            if x.z > 1.0 {
+                let mean = inverse / (k * k) as f64;
+                assert!(
+                    (mean - area).abs() < 1e-3 * area,
+                    "from {x}: mean 1/p {mean}, area {area}"
+                );
+            }
+        }
     }
 }

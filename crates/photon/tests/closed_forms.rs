@@ -7,7 +7,7 @@
 mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle, roof_with_hole};
-use invlight_photon::{Estimator, TraceSettings, measure};
+use invlight_photon::{Estimator, PILOT_PHOTONS, TraceSettings, measure, tune_roulette_for};
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Scene, SurfaceId, Vec3};
 use invlight_stats::{Confidence, Estimate};
 use invlight_trace::Accel;
@@ -134,6 +134,80 @@ fn closed_room_interreflection() {
     let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
     assert_close(&e[0], exact, "closed room");
+}
+
+#[test]
+fn a_lower_roulette_share_changes_no_mean() {
+    // Reflections traced without roulette at reduced power, then a roulette that keeps
+    // the power at the share: more rays per photon, the same E = Φ/(A(1 − ρ)).
+    let rho = 0.8f32;
+    let scene = closed_room(Vec3::splat(rho));
+    let accel = Accel::new(&scene);
+    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
+    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    for estimator in ESTIMATORS {
+        let mut rays = Vec::new();
+        for roulette in [1.0, 0.5, 0.125] {
+            let s = TraceSettings {
+                roulette,
+                ..settings(200_000)
+            };
+            let m = measure(&scene, &accel, &[FIRST], &s, estimator, None);
+            assert_one(
+                &m.estimate(0),
+                exact,
+                &format!("roulette {roulette} ({})", estimator.name()),
+            );
+            rays.push(m.rays);
+        }
+        // With ρ = 0.8 a share of ½ keeps three reflections from the roulette, ⅛ nine.
+        assert!(rays[0] < rays[1] && rays[1] < rays[2], "rays {rays:?}");
+    }
+}
+
+#[test]
+fn intervals_cover_with_a_lower_roulette_share() {
+    // Photons of unequal powers after their first reflections: the groups' spread still
+    // gives honest intervals.
+    let rho = 0.6f32;
+    let scene = closed_room(Vec3::splat(rho));
+    let area = scene.surface_area(FIRST) as f64;
+    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    for estimator in ESTIMATORS {
+        assert_intervals_cover(&scene, exact, 4096, estimator, 0.25);
+    }
+}
+
+#[test]
+fn the_pilot_lowers_the_roulette_where_reflections_carry_the_variance() {
+    // In a closed room of ρ = 0.8 four fifths of the walls' light is reflected, and
+    // tracing the first reflections without roulette pays; over a lone grey floor every
+    // reflection escapes, so the longer paths cost rays and bring nothing: the classic
+    // roulette stays, after the pilot has tried ½ and found it dearer.
+    // Pilots of PILOT_PHOTONS per share, for a trace of 64 times that or more.
+    let s = settings(64 * PILOT_PHOTONS);
+    let target = (&[FIRST][..], Estimator::Connected);
+    let room = closed_room(Vec3::splat(0.8));
+    let room_accel = Accel::new(&room);
+    let choice = tune_roulette_for(&room, &room_accel, target, &s, None);
+    assert!(choice.share < 1.0, "{choice:?}");
+    let best = choice
+        .trials
+        .iter()
+        .map(|t| t.cost)
+        .fold(f64::INFINITY, f64::min);
+    assert!(best < 0.9 * choice.trials[0].cost, "{choice:?}");
+    assert_eq!(choice.photons, PILOT_PHOTONS * choice.trials.len() as u64);
+    let (floor, _) = lamp_over_square();
+    let accel = Accel::new(&floor);
+    let choice = tune_roulette_for(&floor, &accel, target, &s, None);
+    assert_eq!(choice.share, 1.0, "{choice:?}");
+    assert_eq!(choice.trials.len(), 2, "{choice:?}");
+    // Too few photons for a pilot, or a share given: no pilot.
+    let short = tune_roulette_for(&room, &room_accel, target, &settings(100_000), None);
+    assert_eq!((short.share, short.photons), (1.0, 0), "{short:?}");
+    let given = tune_roulette_for(&room, &room_accel, target, &s, Some(0.3));
+    assert_eq!((given.share, given.photons), (0.3, 0), "{given:?}");
 }
 
 #[test]
@@ -362,14 +436,20 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     let area = scene.surface_area(FIRST) as f64;
     let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
     for estimator in ESTIMATORS {
-        assert_intervals_cover(&scene, exact, 4096, estimator);
+        assert_intervals_cover(&scene, exact, 4096, estimator, 1.0);
     }
 }
 
-/// Traces surface 0 of `scene` with 400 seeds of `photons` photons each
-/// and checks that the 95 % intervals contain `exact` as often as they claim: the count
+/// Traces surface 0 of `scene` with 400 seeds of `photons` photons each, the Russian
+/// roulette starting at `roulette` ([`TraceSettings::roulette`]), and checks that the 95 % intervals contain `exact` as often as they claim: the count
 /// of covering runs is Binomial(400, 0.95) (mean 380, σ 4.36), accepted within 4 σ.
-fn assert_intervals_cover(scene: &Scene, exact: f64, photons: u64, estimator: Estimator) {
+fn assert_intervals_cover(
+    scene: &Scene,
+    exact: f64,
+    photons: u64,
+    estimator: Estimator,
+    roulette: f32,
+) {
     let accel = Accel::new(scene);
     let z = Confidence::new(0.95).unwrap().z();
     let runs = 400;
@@ -377,6 +457,7 @@ fn assert_intervals_cover(scene: &Scene, exact: f64, photons: u64, estimator: Es
         .filter(|&seed| {
             let s = TraceSettings {
                 seed,
+                roulette,
                 ..settings(photons)
             };
             measure(scene, &accel, &[FIRST], &s, estimator, None)
@@ -413,7 +494,7 @@ fn stratified_intervals_cover_direct_light() {
     // be far too wide, or, from too few groups, too narrow. 4096 photons: 64 groups.
     let (scene, exact) = lamp_over_square();
     for estimator in ESTIMATORS {
-        assert_intervals_cover(&scene, exact, 4096, estimator);
+        assert_intervals_cover(&scene, exact, 4096, estimator, 1.0);
     }
 }
 
@@ -482,7 +563,7 @@ fn lamp_touching_its_target() {
         "touching panel",
     );
     for estimator in ESTIMATORS {
-        assert_intervals_cover(&scene, exact, 4096, estimator);
+        assert_intervals_cover(&scene, exact, 4096, estimator, 1.0);
     }
 }
 

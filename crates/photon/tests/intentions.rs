@@ -82,6 +82,7 @@ fn uniformity_intervals_cover_the_truth() {
             photons: 16_384,
             seed: 1000 + seed,
             max_bounces: 4,
+            roulette: 1.0,
         };
         let m = measure_with(&scene, &accel, &request, &settings, None);
         let u = m.grids[0].uniformity(&[1.0]);
@@ -157,6 +158,7 @@ fn components_give_every_dimming_from_one_trace() {
         photons: 200_000,
         seed: 5,
         max_bounces: 4,
+        roulette: 1.0,
     };
     let m = measure_with(&scene, &accel, &request, &settings, None);
     let whole = (0.0, 1.0);
@@ -197,6 +199,7 @@ fn sides_are_kept_apart() {
             photons: 400_000,
             seed: 6,
             max_bounces: 4,
+            roulette: 1.0,
         };
         let m = measure_with(&scene, &accel, &request, &settings, None);
         let whole = (0.0, 1.0);
@@ -239,6 +242,7 @@ fn group_means_are_the_samples_of_the_estimate() {
             photons,
             seed: 9,
             max_bounces: 4,
+            roulette: 1.0,
         };
         measure_with(&scene, &accel, &request, &settings, None)
     };
@@ -264,6 +268,7 @@ fn group_means_are_the_samples_of_the_estimate() {
         photons: 40_960,
         seed: 9,
         max_bounces: 4,
+        roulette: 1.0,
     };
     let flat = measure_with(&scene, &accel, &request, &settings, None);
     assert!(flat.group_means(0, Side::Front, &w).is_empty());
@@ -303,6 +308,7 @@ fn a_continued_measurement_is_the_measurement_at_once() {
         photons,
         seed: 5,
         max_bounces: 4,
+        roulette: 1.0,
     };
     let at_once = |photons| measure_with(&scene, &accel, &request, &settings(photons), None);
     let more = |photons, previous: &Measurement| {

@@ -200,6 +200,7 @@ impl PhotonMap {
             photons: settings.photons,
             seed: settings.seed,
             max_bounces: settings.max_bounces,
+            ..TraceSettings::default()
         };
         let mut photons = Vec::new();
         trace_chunks(

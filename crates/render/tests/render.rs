@@ -469,6 +469,7 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
                 photons: 400_000,
                 seed: 11,
                 max_bounces: 4,
+                ..TraceSettings::default()
             },
             estimator,
         };
@@ -553,6 +554,7 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
             photons: 20_000,
             seed: 11,
             max_bounces: 4,
+            ..TraceSettings::default()
         },
         estimator: Estimator::Connected,
     };
@@ -577,6 +579,7 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
             photons: 1000,
             seed: 1,
             max_bounces: 4,
+            ..TraceSettings::default()
         },
         estimator: Estimator::Connected,
     };

@@ -34,6 +34,13 @@ impl Progress {
         }
     }
 
+    /// A bar over the photons a trace of `requested` traces, whole groups
+    /// ([`invlight_photon::photons_traced`]), for `what`.
+    pub fn photons(requested: u64, what: &str) -> Progress {
+        let total = invlight_photon::photons_traced(requested).unwrap_or(requested);
+        Progress::new(total, "photons", what)
+    }
+
     /// `done` units are done (callable from worker threads).
     pub fn set(&self, done: u64) {
         self.bar.set_position(done);

@@ -70,6 +70,7 @@ impl GridOptions {
                 photons,
                 seed,
                 max_bounces,
+                ..TraceSettings::default()
             },
             spacing: GridSpacing::Auto,
         }
