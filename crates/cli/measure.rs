@@ -26,8 +26,8 @@ pub struct MeasureArgs {
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Share of a photon's power below which Russian roulette starts (1: the thesis'; lower
-    /// traces more reflections; the mean is the same) [default: tries 1, ½, ¼, … on a
-    /// pilot of up to 16 384 photons and keeps the most efficient].
+    /// traces more reflections; same mean) [default: from 262 144 photons a pilot of ≤ 16
+    /// 384 per share tries 1, ½, ¼, … and keeps the most efficient; fewer keep 1].
     #[arg(long, value_name = "SHARE", value_parser = positive::<f32>)]
     pub roulette: Option<f32>,
     /// Count only the photons' arrivals on the surfaces, as the thesis does (eq. 3.2),

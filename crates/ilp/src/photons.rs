@@ -22,7 +22,7 @@ use crate::vns::{Evaluate, Evaluation};
 use invlight_photon::CHUNK;
 use invlight_photon::{
     Alone, Cluster, Components, Estimator, GridError, GridRequest, Measurement, Request,
-    TraceSettings, cluster, measure_across, measure_more, photons_traced,
+    TraceSettings, cluster, measure_across, measure_more, photons_traced, tune_roulette,
 };
 use invlight_scene::Scene;
 use invlight_stats::Estimate;
@@ -86,8 +86,10 @@ pub struct PhotonEvaluator<'b> {
     components: Components,
     seed: u64,
     max_bounces: u32,
-    /// [`TraceSettings::roulette`] of every trace.
-    roulette: f32,
+    /// [`TraceSettings::roulette`] of every trace: given, or chosen by a pilot
+    /// ([`tune_roulette`]) at the first trace, on the scene as bound (before any
+    /// configuration is arranged), so that it depends on the problem and seed alone.
+    roulette: Option<f32>,
     /// N: what a problem of dimming levels alone traces, once.
     full: u64,
     rays: u64,
@@ -135,7 +137,7 @@ impl<'b> PhotonEvaluator<'b> {
             helpers: Vec::new(),
             seed,
             max_bounces,
-            roulette: 1.0,
+            roulette: None,
             full,
             rays: 0,
             photons: 0,
@@ -163,6 +165,41 @@ impl<'b> PhotonEvaluator<'b> {
         })
     }
 
+    /// Every trace with the roulette share `share` instead of one a pilot chooses.
+    pub fn with_roulette(mut self, share: f32) -> Self {
+        self.roulette = Some(share);
+        self
+    }
+
+    /// The roulette share of every trace, chosen by a pilot on the scene as bound when
+    /// first asked for ([`tune_roulette`] for N photons of every measured surface,
+    /// shared by a cluster job's processes, which all ask at the same first trace); the
+    /// pilot's photons and rays count as work.
+    fn roulette(&mut self) -> f32 {
+        if let Some(share) = self.roulette {
+            return share;
+        }
+        let request = Request {
+            surfaces: &self.binding.reading.surfaces,
+            grids: Vec::new(),
+            components: &self.components,
+            estimator: Estimator::Connected,
+            keep_groups: false,
+        };
+        let settings = TraceSettings {
+            photons: self.full,
+            seed: self.seed,
+            max_bounces: self.max_bounces,
+            roulette: 1.0,
+        };
+        let (scene, accel) = (&self.stage.scene, &self.stage.accel);
+        let choice = tune_roulette(scene, accel, &request, &settings, cluster());
+        self.rays += choice.rays;
+        self.photons += choice.photons;
+        self.roulette = Some(choice.share);
+        choice.share
+    }
+
     /// Rays cast and photons traced so far.
     pub fn work(&self) -> (u64, u64) {
         (self.rays, self.photons)
@@ -186,6 +223,7 @@ impl<'b> PhotonEvaluator<'b> {
     ) -> Result<&Measurement, EvaluationError> {
         let key = (self.binding.arrangement(config), photons);
         if !self.kept.contains_key(&key) {
+            let roulette = self.roulette();
             let previous = previous(&self.kept, &key);
             let from = previous.map(|p| p.photons);
             // A trace readied ahead is the one this would make if it continued the same
@@ -199,7 +237,7 @@ impl<'b> PhotonEvaluator<'b> {
                 components: &self.components,
                 seed: self.seed,
                 max_bounces: self.max_bounces,
-                roulette: self.roulette,
+                roulette,
             };
             let m = job.trace(&mut self.stage, config, photons, previous, cluster())?;
             self.keep(key.clone(), m, previous.map(|p| p.photons));
@@ -261,12 +299,13 @@ impl PhotonEvaluator<'_> {
             };
             self.helpers.push(copy);
         }
+        let roulette = self.roulette();
         let job = Job {
             binding: self.binding,
             components: &self.components,
             seed: self.seed,
             max_bounces: self.max_bounces,
-            roulette: self.roulette,
+            roulette,
         };
         let previous: Vec<Option<&Measurement>> = todo
             .iter()
