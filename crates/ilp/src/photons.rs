@@ -179,13 +179,8 @@ impl<'b> PhotonEvaluator<'b> {
         if let Some(share) = self.roulette {
             return share;
         }
-        let request = Request {
-            surfaces: &self.binding.reading.surfaces,
-            grids: Vec::new(),
-            components: &self.components,
-            estimator: Estimator::Connected,
-            keep_groups: false,
-        };
+        let surfaces = &self.binding.reading.surfaces;
+        let request = Request::means(surfaces, &self.components, Estimator::Connected);
         let settings = TraceSettings {
             photons: self.full,
             seed: self.seed,

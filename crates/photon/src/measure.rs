@@ -77,6 +77,24 @@ pub struct Request<'a> {
     pub keep_groups: bool,
 }
 
+impl<'a> Request<'a> {
+    /// The mean illuminances of `surfaces`, lights kept apart by `components`, counted
+    /// by `estimator`: no grids, no groups kept.
+    pub fn means(
+        surfaces: &'a [SurfaceId],
+        components: &'a Components,
+        estimator: Estimator,
+    ) -> Request<'a> {
+        Request {
+            surfaces,
+            grids: Vec::new(),
+            components,
+            estimator,
+            keep_groups: false,
+        }
+    }
+}
+
 /// A grid to read on one of a [`Request`]'s surfaces.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GridRequest {
@@ -495,13 +513,7 @@ pub fn measure(
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Measurement {
     let components = Components::one(scene);
-    let request = Request {
-        surfaces: targets,
-        grids: Vec::new(),
-        components: &components,
-        estimator,
-        keep_groups: false,
-    };
+    let request = Request::means(targets, &components, estimator);
     measure_with(scene, accel, &request, settings, progress)
 }
 

@@ -101,13 +101,7 @@ pub fn tune_roulette(
     if pilot < MIN_PILOT_PHOTONS {
         return choice;
     }
-    let request = Request {
-        surfaces: request.surfaces,
-        grids: Vec::new(),
-        components: request.components,
-        estimator: request.estimator,
-        keep_groups: false,
-    };
+    let request = Request::means(request.surfaces, request.components, request.estimator);
     let weights = vec![1.0; request.components.count()];
     let mut best = f64::INFINITY;
     for share in ROULETTE_SHARES {
@@ -153,12 +147,6 @@ pub fn tune_roulette_for(
         return RouletteChoice::given(share);
     }
     let components = Components::one(scene);
-    let request = Request {
-        surfaces: targets,
-        grids: Vec::new(),
-        components: &components,
-        estimator,
-        keep_groups: false,
-    };
+    let request = Request::means(targets, &components, estimator);
     tune_roulette(scene, accel, &request, settings, cluster())
 }
