@@ -51,6 +51,12 @@
 //! ```
 #![deny(missing_docs)]
 
+/// The version of the numbers a seed gives: raised whenever a change to the tracer or
+/// its estimators changes them (a search's `run.json` records it, and `--resume`
+/// refuses to mix rows of two versions, whose common random numbers no longer pair).
+/// 2: the roulette's share and connections by solid angle.
+pub const ESTIMATOR_VERSION: u32 = 2;
+
 mod cells;
 mod channels;
 mod chunks;

@@ -34,10 +34,19 @@ pub struct RunFile {
     pub cap: Option<f64>,
     /// Bounce cap of the photon paths.
     pub max_bounces: u32,
+    /// [`invlight_photon::ESTIMATOR_VERSION`] of the program that traced the rows; 1 in
+    /// folders written before it was recorded.
+    #[serde(default = "first_estimator")]
+    pub estimator: u32,
     /// The lights that emit a photometric file (none in folders written before they
     /// were recorded, and in scenes without one).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub luminaires: Vec<LuminaireUse>,
+}
+
+/// The estimator of a folder written before it was recorded.
+fn first_estimator() -> u32 {
+    1
 }
 
 impl RunFile {
@@ -52,6 +61,7 @@ impl RunFile {
             confidence: settings.confidence.level(),
             cap: settings.cap,
             max_bounces,
+            estimator: invlight_photon::ESTIMATOR_VERSION,
             luminaires: luminaires.to_vec(),
         }
     }
@@ -84,6 +94,11 @@ impl RunFile {
             self.max_bounces.to_string(),
             old.max_bounces.to_string(),
         );
+        check(
+            "the photon estimator's version",
+            self.estimator.to_string(),
+            old.estimator.to_string(),
+        );
         let files = |l: &[LuminaireUse]| {
             let named: Vec<String> = l
                 .iter()
@@ -113,7 +128,7 @@ impl RunFile {
                     differ.join(", ")
                 ),
             )
-            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, --luminaire, the problem file's quality, strategy and <luminaire> elements) or choose a new --output"))
+            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, --luminaire, the problem file's quality, strategy and <luminaire> elements) or choose a new --output; a folder of another estimator's version was traced by another invlight and can only be continued by it"))
         }
     }
 

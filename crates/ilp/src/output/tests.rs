@@ -201,6 +201,26 @@ fn resume_checks_the_luminaire_files() {
     );
 }
 
+/// A folder traced by an invlight whose estimator gave other numbers for the same seed
+/// (one written before the version was recorded counts as version 1) is refused, naming
+/// both versions: its rows and new ones would not pair.
+#[test]
+fn resume_refuses_another_estimator() {
+    let dir = Path::new("/out");
+    let now = RunFile::new(&settings(), 7, &[]);
+    let mut text = serde_json::to_value(&now).unwrap();
+    text.as_object_mut().unwrap().remove("estimator");
+    let before: RunFile = serde_json::from_value(text).unwrap();
+    assert_eq!(before.estimator, 1);
+    let e = now.check_resume(&before, dir).unwrap_err().to_string();
+    let expected = format!(
+        "the photon estimator's version {} (the folder has 1)",
+        invlight_photon::ESTIMATOR_VERSION
+    );
+    assert!(e.contains(&expected), "{e}");
+    assert!(now.check_resume(&now.clone(), dir).is_ok());
+}
+
 /// Rows that do not hold what a run writes are errors naming the line; only a last row
 /// without its newline is taken for a hard stop and ignored.
 #[test]
