@@ -35,7 +35,8 @@ pub struct TraceSettings {
     /// that keeps its power there (`path::Roulette`). 1 is the classic roulette (thesis
     /// Algorithm 2.2), where every photon keeps its power; lower values trace more of each
     /// photon's reflections, which pays where reflected light carries the variance
-    /// ([`crate::tune_roulette`]). Any positive value gives the same mean.
+    /// ([`crate::tune_roulette`]). Any positive value gives the same mean; one that is
+    /// not a positive number plays the classic roulette.
     pub roulette: f32,
 }
 

@@ -246,19 +246,21 @@ struct Shape {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolidAngles {
     /// Each triangle's, sr (0 past the target's triangles).
-    angles: [f32; SOLID_ANGLE_TRIANGLES],
+    angles: [f64; SOLID_ANGLE_TRIANGLES],
     /// Their sum, Ω: a connection draws y with density |cos θ_y| / (r² Ω).
-    pub total: f32,
+    pub total: f64,
 }
 
 /// The most triangles a target may have for its connections to be drawn by solid angle:
 /// each connection and each arrival on it computes every triangle's solid angle.
 pub const SOLID_ANGLE_TRIANGLES: usize = 4;
 
-/// The solid angles, sr, outside which a departure's connection draws by area instead:
-/// below, the spherical triangle is too thin to sample accurately; above, it nearly
-/// covers the hemisphere (pbrt-v4 `MinSphericalSampleArea`, `MaxSphericalSampleArea`).
-const SOLID_ANGLE_RANGE: (f32, f32) = (3e-4, 6.22);
+/// The solid angles, sr, outside which a departure's connection draws by area instead
+/// (of each triangle that is seen, and of their sum): below, the spherical triangle is
+/// too thin to sample accurately; above, it nearly covers the hemisphere (pbrt-v4
+/// `MinSphericalSampleArea`, `MaxSphericalSampleArea`). A triangle seen nearly edge on
+/// ([`sampling::solid_angle`]) also sends its target to area.
+const SOLID_ANGLE_RANGE: (f64, f64) = (3e-4, 6.22);
 
 impl Shape {
     /// Each triangle's solid angle seen from `x` and their sum, when the sum lies in
@@ -271,9 +273,15 @@ impl Shape {
         }
         let mut angles = [0.0; SOLID_ANGLE_TRIANGLES];
         for (a, &(p0, e1, e2, _)) in angles.iter_mut().zip(&self.tris) {
-            *a = sampling::solid_angle(p0 - x, p0 + e1 - x, p0 + e2 - x);
+            let (angle, thin) = sampling::solid_angle(p0 - x, p0 + e1 - x, p0 + e2 - x);
+            // A triangle seen from x at all must be seen well enough to sample: every
+            // one, not only their sum (pbrt-v4 checks its one triangle).
+            if angle > 0.0 && (thin || angle < SOLID_ANGLE_RANGE.0) {
+                return None;
+            }
+            *a = angle;
         }
-        let total: f32 = angles.iter().sum();
+        let total: f64 = angles.iter().sum();
         (total > SOLID_ANGLE_RANGE.0 && total < SOLID_ANGLE_RANGE.1)
             .then_some(SolidAngles { angles, total })
     }
@@ -282,12 +290,12 @@ impl Shape {
     /// connection's point from `x` given [`Shape::solid_angles`]'s `total`:
     /// |cos θ_y| / (r² Ω), or 1/A when it draws by area.
     #[inline]
-    fn connection_density(&self, x: Vec3, y: Vec3, n_y: Vec3, total: Option<f32>) -> f32 {
+    fn connection_density(&self, x: Vec3, y: Vec3, n_y: Vec3, total: Option<f64>) -> f32 {
         match total {
             Some(total) => {
-                let d = y - x;
+                let d = (y - x).as_dvec3();
                 let r2 = d.length_squared();
-                n_y.dot(d).abs() / (r2.sqrt() * r2 * total)
+                (n_y.as_dvec3().dot(d).abs() / (r2.sqrt() * r2 * total)) as f32
             }
             None => 1.0 / self.area,
         }
@@ -374,7 +382,7 @@ impl Targets {
         t: usize,
         (from, y, n_y): (&Departure, Vec3, Vec3),
         density: f32,
-        solid: Option<f32>,
+        solid: Option<f64>,
     ) -> f32 {
         let shape = &self.shapes[t];
         if shape.area <= 0.0 || density.is_infinite() {
@@ -410,7 +418,7 @@ impl Targets {
         }
         let (y, n_y) = match solid {
             Some(&SolidAngles { ref angles, total }) => {
-                let (i, u1) = pick(angles, total, u1);
+                let (i, u1) = pick(angles, total, u1 as f64);
                 let (p0, e1, e2, n_y) = shape.tris[i];
                 let (b1, b2) =
                     sampling::spherical_triangle(from.point, [p0, e1, e2], angles[i], u1, u2)?;
@@ -478,14 +486,14 @@ impl Targets {
 /// The entry of `angles` (summing to `total`) that `u` falls in, in proportion to its
 /// angle, and where in it, rescaled to [0, 1) ([`Distribution1D::sample_continuous`]).
 #[inline]
-fn pick(angles: &[f32], total: f32, u: f32) -> (usize, f32) {
+fn pick(angles: &[f64], total: f64, u: f64) -> (usize, f64) {
     let mut below = 0.0;
     let target = u * total;
     let last = angles.iter().rposition(|&a| a > 0.0).unwrap_or(0);
     for (i, &a) in angles.iter().enumerate() {
         if target < below + a || i == last {
             let r = if a > 0.0 { (target - below) / a } else { 0.0 };
-            return (i, r.clamp(0.0, 1.0 - f32::EPSILON / 2.0));
+            return (i, r.clamp(0.0, 1.0 - f64::EPSILON / 2.0));
         }
         below += a;
     }

@@ -387,7 +387,7 @@ struct ChunkTally<'a> {
     /// drew by, per target ([`Targets::solid_angles`]): the photon's next arrival comes
     /// from it and weighs itself by them.
     departed: Vec3,
-    solid: Vec<Option<f32>>,
+    solid: Vec<Option<f64>>,
 }
 
 impl ChunkTally<'_> {

@@ -79,7 +79,12 @@ pub fn trace_photon(
         source,
     };
     visitor.depart(&from, sampler);
-    let floor = roulette * lumens;
+    // A share that is not a positive number plays the classic roulette.
+    let floor = if roulette > 0.0 && roulette.is_finite() {
+        roulette * lumens
+    } else {
+        lumens
+    };
     let mut ray = match surface_normal {
         Some(n) => Ray::new(offset_point(origin, n), dir),
         None => Ray::new(origin, dir),
@@ -160,12 +165,13 @@ pub fn trace_photon(
 /// The photon survives with probability s = min(1, ρ·Y(P)/floor), ρ = ρ_d + ρ_s + ρ_t,
 /// its parts in proportion: a photon whose expected surviving power ρ·Y(P) is at least
 /// `floor` always goes on, at that reduced power, and one below it goes on at exactly
-/// `floor` or not at all, so no photon ever carries more than its light gave it nor
-/// less than `floor` (pbrt-v4's path tracer plays its roulette on the throughput in the
-/// same way). With `floor` the photon's emitted power this is the classic roulette,
-/// s = ρ, where every photon keeps its power; a lower floor spends more rays on each
-/// photon's first reflections, whose light then no longer hangs on one survival draw
-/// ([`crate::tune_roulette`] chooses it).
+/// `floor` or not at all (pbrt-v4's path tracer plays its roulette on the throughput in
+/// the same way). With ρ ≤ 1 a photon's power thus stays between `floor` and the larger
+/// of `floor` and what it left its light with. With `floor` the emitted power of a
+/// photon of weight 1 (every light but a photometric table's) this is the classic
+/// roulette, s = ρ, where every photon keeps its power; a lower floor spends more rays
+/// on each photon's first reflections, whose light then no longer hangs on one survival
+/// draw ([`crate::tune_roulette`] chooses it).
 struct Roulette {
     kd: Rgb,
     specular: Rgb,
