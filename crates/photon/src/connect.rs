@@ -272,8 +272,8 @@ impl Shape {
             return None;
         }
         let mut angles = [0.0; SOLID_ANGLE_TRIANGLES];
-        for (a, &(p0, e1, e2, _)) in angles.iter_mut().zip(&self.tris) {
-            let (angle, thin) = sampling::solid_angle(p0 - x, p0 + e1 - x, p0 + e2 - x);
+        for (a, &(p0, e1, e2, n)) in angles.iter_mut().zip(&self.tris) {
+            let (angle, thin) = sampling::solid_angle(p0 - x, p0 + e1 - x, p0 + e2 - x, n);
             // A triangle seen from x at all must be seen well enough to sample: every
             // one, not only their sum (pbrt-v4 checks its one triangle).
             if angle > 0.0 && (thin || angle < SOLID_ANGLE_RANGE.0) {
