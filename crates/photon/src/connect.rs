@@ -236,9 +236,6 @@ struct Shape {
     /// The instances the target covers, sorted: a connection counts when its ray's first
     /// hit is one of them.
     instances: Vec<InstanceId>,
-    /// Whether connections draw their points by solid angle ([`Shape::solid_angles`]):
-    /// targets of at most [`SOLID_ANGLE_TRIANGLES`] triangles.
-    solid: bool,
 }
 
 /// The solid angles a target's triangles subtend from a departure, when its connections
@@ -263,12 +260,12 @@ pub const SOLID_ANGLE_TRIANGLES: usize = 4;
 const SOLID_ANGLE_RANGE: (f64, f64) = (3e-4, 6.22);
 
 impl Shape {
-    /// Each triangle's solid angle seen from `x` and their sum, when the sum lies in
-    /// [`SOLID_ANGLE_RANGE`] and the target draws by solid angle; `None` when the
-    /// connection from `x` draws by area.
+    /// Each triangle's solid angle seen from `x` and their sum, when the target has at
+    /// most [`SOLID_ANGLE_TRIANGLES`] triangles and the sum lies in
+    /// [`SOLID_ANGLE_RANGE`]; `None` when the connection from `x` draws by area.
     #[inline]
     fn solid_angles(&self, x: Vec3) -> Option<SolidAngles> {
-        if !self.solid {
+        if self.tris.len() > SOLID_ANGLE_TRIANGLES {
             return None;
         }
         let mut angles = [0.0; SOLID_ANGLE_TRIANGLES];
@@ -334,7 +331,6 @@ impl Targets {
                 }
                 shape.by_area = Distribution1D::new(areas);
                 shape.area = shape.by_area.total() as f32;
-                shape.solid = shape.tris.len() <= SOLID_ANGLE_TRIANGLES;
                 shape
             })
             .collect();
@@ -487,17 +483,20 @@ impl Targets {
 /// angle, and where in it, rescaled to [0, 1) ([`Distribution1D::sample_continuous`]).
 #[inline]
 fn pick(angles: &[f64], total: f64, u: f64) -> (usize, f64) {
-    let mut below = 0.0;
     let target = u * total;
+    // The last entry of positive angle takes what rounding leaves past the others.
     let last = angles.iter().rposition(|&a| a > 0.0).unwrap_or(0);
-    for (i, &a) in angles.iter().enumerate() {
-        if target < below + a || i == last {
-            let r = if a > 0.0 { (target - below) / a } else { 0.0 };
-            return (i, r.clamp(0.0, 1.0 - f64::EPSILON / 2.0));
-        }
-        below += a;
+    let (mut i, mut below) = (0, 0.0);
+    while i < last && target >= below + angles[i] {
+        below += angles[i];
+        i += 1;
     }
-    (last, 0.0)
+    let r = if angles[i] > 0.0 {
+        (target - below) / angles[i]
+    } else {
+        0.0
+    };
+    (i, r.clamp(0.0, 1.0 - f64::EPSILON / 2.0))
 }
 
 #[cfg(test)]

@@ -112,8 +112,9 @@ pub fn tune_roulette(
             ..*settings
         };
         let m = measure_across(scene, accel, &request, &trial, None, cluster);
+        let rays = m.rays + m.connection_rays;
         choice.photons += m.photons;
-        choice.rays += m.rays + m.connection_rays;
+        choice.rays += rays;
         let variance: f64 = (0..request.surfaces.len())
             .map(|t| m.estimate_of(t, Side::Both, &weights))
             .filter(|e| e.mean > 0.0 && e.std_error.is_finite())
@@ -122,7 +123,7 @@ pub fn tune_roulette(
         if variance <= 0.0 {
             break;
         }
-        let cost = variance * (m.rays + m.connection_rays) as f64;
+        let cost = variance * rays as f64;
         choice.trials.push(RouletteTrial { share, cost });
         if cost >= best {
             break;
