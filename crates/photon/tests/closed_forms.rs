@@ -63,6 +63,13 @@ fn closed_room(kd: Vec3) -> Scene {
     scene
 }
 
+/// The exact mean illuminance of [`closed_room`]'s walls of reflectance `rho`: every
+/// photon arrives on them 1/(1 − ρ) times on average, E = Φ/(A(1 − ρ)).
+fn closed_room_lux(rho: f32) -> f64 {
+    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
+    4.0 * PI * 100.0 / (area * (1.0 - rho as f64))
+}
+
 #[test]
 fn point_source_over_a_square() {
     // E_mean = I·Ω/A: the flux a point source of I cd sends into the solid angle Ω.
@@ -131,8 +138,7 @@ fn closed_room_interreflection() {
     let rho = 0.8f32;
     let scene = closed_room(Vec3::splat(rho));
     let e = measure_both(&scene, &["Room"], 200_000);
-    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
-    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    let exact = closed_room_lux(rho);
     assert_close(&e[0], exact, "closed room");
 }
 
@@ -143,8 +149,7 @@ fn a_lower_roulette_share_changes_no_mean() {
     let rho = 0.8f32;
     let scene = closed_room(Vec3::splat(rho));
     let accel = Accel::new(&scene);
-    let area = 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5);
-    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    let exact = closed_room_lux(rho);
     for estimator in ESTIMATORS {
         let mut rays = Vec::new();
         for roulette in [1.0, 0.5, 0.125] {
@@ -183,7 +188,9 @@ fn the_pilot_lowers_the_roulette_where_reflections_carry_the_variance() {
         .iter()
         .map(|t| t.cost)
         .fold(f64::INFINITY, f64::min);
-    assert!(best < 0.9 * choice.trials[0].cost, "{choice:?}");
+    // Measured: 0.11 of the classic roulette's cost at ⅟16, each cost known to about
+    // 13 % from the pilot's 256 groups: a half is far outside their spread.
+    assert!(best < 0.5 * choice.trials[0].cost, "{choice:?}");
     assert_eq!(choice.photons, PILOT_PHOTONS * choice.trials.len() as u64);
     let (floor, _) = lamp_over_square();
     let accel = Accel::new(&floor);
@@ -440,8 +447,7 @@ fn intervals_cover_the_exact_value_at_their_confidence() {
     // of unequal powers after their first reflections.
     let rho = 0.6f32;
     let scene = closed_room(Vec3::splat(rho));
-    let area = scene.surface_area(FIRST) as f64;
-    let exact = 4.0 * PI * 100.0 / (area * (1.0 - rho as f64));
+    let exact = closed_room_lux(rho);
     for roulette in [1.0, 0.25] {
         for estimator in ESTIMATORS {
             assert_intervals_cover(&scene, exact, 4096, estimator, roulette);
