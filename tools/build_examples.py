@@ -640,13 +640,70 @@ def office_daylight(scenes_dir, out):
     office(scenes_dir, out, "office-daylight", skylight=True)
 
 
+# --------------------------------------------------------------------------- open office
+
+# A 7.2 m x 4.8 m x 2.8 m open-plan office (Y up, x along its length, z across), ceiling,
+# walls and floor of reflectance 0.7, 0.5 and 0.2, six downlights to place anywhere on
+# the ceiling (0.3 m from the walls) and dim: "Em >= 500 lx and U0 >= 0.6 over the task
+# area (0.85 m above the floor, less a 0.5 m border), the least electrical power".
+# Built from nothing: no source geometry.
+OPEN_OFFICE = (7.2, 2.8, 4.8)
+OPEN_OFFICE_LAMPS = 6
+OPEN_OFFICE_ZONE_MARGIN = 0.3  # m, the lamps' centres from the walls
+OPEN_OFFICE_TASK = (0.85, 0.5)  # height and border, m
+
+
+def open_office(_scenes_dir, out):
+    """The open-plan office of examples/open-office: the room, the task area as a thin
+    horizontal quad (a calculation surface in problem.xml, so it shades nothing), the
+    ceiling zone the lamps may take and six lamps authored in a row along the room's
+    axis (not where a designer would put them), each emitting downlight.ldt."""
+    w, h, d = OPEN_OFFICE
+    gl = Gltf("invlight tools/build_examples.py: open-office")
+    room = gl.node("Room")
+    faces = {
+        "Floor": [quad((0, 0, 0), (0, 0, d), (w, 0, d), (w, 0, 0))],
+        "Ceiling": [quad((0, h, 0), (w, h, 0), (w, h, d), (0, h, d))],
+        "Walls": [
+            quad((0, 0, 0), (w, 0, 0), (w, h, 0), (0, h, 0)),
+            quad((0, 0, d), (0, h, d), (w, h, d), (w, 0, d)),
+            quad((0, 0, 0), (0, h, 0), (0, h, d), (0, 0, d)),
+            quad((w, 0, 0), (w, 0, d), (w, h, d), (w, h, 0)),
+        ],
+    }
+    for name, quads in faces.items():
+        pos, tris = [], []
+        for qp, qt in quads:
+            tris += [tuple(i + len(pos) for i in t) for t in qt]
+            pos += qp
+        kd = OFFICE_REFLECTANCE[name]
+        gl.node(name, room, mesh=gl.mesh(name, pos, tris, gl.material(name, (kd, kd, kd))))
+    y, b = OPEN_OFFICE_TASK
+    task = quad((b, y, b), (b, y, d - b), (w - b, y, d - b), (w - b, y, b))
+    gl.node("TaskArea", mesh=gl.mesh("TaskArea", *task, gl.material("Task", (0.5, 0.5, 0.5))))
+    m = OPEN_OFFICE_ZONE_MARGIN
+    ly = h - 0.01
+    zone = quad((m, ly, m), (w - m, ly, m), (w - m, ly, d - m), (m, ly, d - m))
+    gl.node("LampZone__Geometry", mesh=gl.mesh("LampZone__Geometry", *zone,
+                                                  gl.material("Zone", (0.7, 0.7, 0.7))))
+    for k in range(OPEN_OFFICE_LAMPS):
+        x = m + (k + 0.5) * (w - 2 * m) / OPEN_OFFICE_LAMPS
+        gl.point_light("Lamp%d" % (k + 1), (x, ly, d / 2), 100.0)
+    gl.camera("Camera", (0.5, 1.6, 0.5), (4.0, 0.8, 3.0), 70.0)
+    gl.write(out)
+    src = os.path.join(REPO, "tests", "data", "photometry", "downlight.ldt")
+    with open(src, "rb") as f, open(os.path.join(out, "downlight.ldt"), "wb") as g:
+        g.write(f.read())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=os.path.join(os.path.dirname(REPO), "shared", "scenes"),
                     help="folder holding sponza/sponza.zip and conference/conference.zip")
     ap.add_argument("--out", default=os.path.join(REPO, "examples"), help="examples folder")
     ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun",
-                                       "office-target", "office-ies", "office-daylight"])
+                                       "office-target", "office-ies", "office-daylight",
+                                       "open-office"])
     ap.add_argument("--wall-value", type=float,
                     help="write only atrium-colour, with this inner-wall HSV value, into --out")
     args = ap.parse_args()
@@ -655,7 +712,8 @@ def main():
         return
     builders = {"atrium-skylight": atrium_skylight, "atrium-colour": atrium_colour,
                 "conference-sun": conference, "office-target": office,
-                "office-ies": office_ies, "office-daylight": office_daylight}
+                "office-ies": office_ies, "office-daylight": office_daylight,
+                "open-office": open_office}
     for name, build in builders.items():
         if args.only in (None, name):
             build(args.scenes, os.path.join(args.out, name))

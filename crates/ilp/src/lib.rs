@@ -63,6 +63,7 @@
 
 mod binding;
 mod cache;
+mod dimming;
 mod history;
 mod intention;
 mod isoc;

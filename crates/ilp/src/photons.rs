@@ -17,6 +17,8 @@
 //! variables are dimming levels traces once, with N photons, whatever the search asks.
 
 use crate::binding::Binding;
+use crate::dimming::LevelSolver;
+use crate::intention::Bound;
 use crate::space::Configuration;
 use crate::vns::{Evaluate, Evaluation};
 use invlight_photon::CHUNK;
@@ -336,6 +338,39 @@ impl PhotonEvaluator<'_> {
     }
 }
 
+/// The evaluation of `config`'s arrangement, traced in `m`, at the least-power levels
+/// that meet its constraints with the margins of a full evaluation of `full` photons
+/// ([`LevelSolver::solve`]); the configuration with those levels goes with it. The
+/// power of those levels is exact, but which levels the arrangement needs is
+/// estimated: the goal's standard error is the binding constraint's relative error
+/// times the power, so that two arrangements whose least powers the noise cannot tell
+/// apart are not ranked as if it could.
+fn solved(
+    binding: &Binding,
+    variables: &[usize],
+    solver: &LevelSolver,
+    config: &Configuration,
+    m: &Measurement,
+    full: u64,
+) -> Evaluation {
+    let bounds: Vec<Bound> = binding.constraints.iter().map(|c| c.bound).collect();
+    let found = solver.solve(&binding.reading, &bounds, m, full);
+    let mut config = config.clone();
+    for ((&v, &y), d) in variables.iter().zip(&found.levels).zip(&solver.dimmers) {
+        let range = d.max - d.min;
+        binding.space.slice_mut(&mut config, v)[0] = if range > 0.0 {
+            ((y - d.min) / range).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+    }
+    let power = binding.power(&config);
+    let mut evaluation = binding.reading.read(m, &binding.levels(&config), power);
+    evaluation.goal.std_error = power * found.relative_error;
+    evaluation.solved = Some(config);
+    evaluation
+}
+
 /// The kept trace that a trace of `key` continues: its arrangement's largest of fewer
 /// photons (issue 15: a candidate looked at with n, 4n, … then N photons traces N in
 /// all).
@@ -487,8 +522,12 @@ impl Evaluate for PhotonEvaluator<'_> {
         let power = self.binding.power(config);
         let binding = self.binding;
         let first = self.first_sides.is_none();
+        let full = self.full;
         let m = self.trace(config, photons)?;
-        let evaluation = binding.reading.read(m, &levels, power);
+        let evaluation = match binding.level_solver() {
+            Some((variables, solver)) => solved(binding, variables, solver, config, m, full),
+            None => binding.reading.read(m, &levels, power),
+        };
         if first {
             let reading = &binding.reading;
             let sides = (0..reading.surfaces.len())

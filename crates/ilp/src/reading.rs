@@ -321,6 +321,7 @@ impl Reading {
             goal: quantity(&self.goal),
             constraints: self.constraints.iter().map(quantity).collect(),
             groups,
+            solved: None,
         }
     }
 }

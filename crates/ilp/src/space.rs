@@ -323,6 +323,9 @@ pub struct Space {
     /// Per variable, whether changing it alone costs the evaluator next to nothing
     /// ([`Space::with_cheap`]).
     cheap: Vec<bool>,
+    /// Per variable, whether the evaluator chooses its value itself
+    /// ([`Space::with_solved`]).
+    solved: Vec<bool>,
 }
 
 impl Space {
@@ -345,6 +348,7 @@ impl Space {
             offsets,
             exchangeable: Vec::new(),
             cheap: Vec::new(),
+            solved: Vec::new(),
         }
     }
 
@@ -356,6 +360,35 @@ impl Space {
             .map(|i| cheap.contains(&i))
             .collect();
         self
+    }
+
+    /// This space with the variables `solved` chosen by the evaluator rather than
+    /// searched: the least-power dimming levels of an arrangement are the optimum of a
+    /// small linear program over its trace's tallies, solved exactly for every
+    /// arrangement instead of sampled. Their dimensions are one cell each (the cell
+    /// is the arrangement's), neighbourhoods leave them where they are, and
+    /// [`Space::snap`] keeps their values, which the evaluation returns
+    /// ([`crate::vns::Evaluation::solved`]).
+    pub fn with_solved(mut self, solved: &[usize]) -> Space {
+        self.solved = (0..self.variables.len())
+            .map(|i| solved.contains(&i))
+            .collect();
+        for &v in solved {
+            let o = self.offsets[v];
+            for c in &mut self.cells[o..o + self.variables[v].domain.dimensions()] {
+                *c = 1;
+            }
+        }
+        self.cheap
+            .iter_mut()
+            .zip(&self.solved)
+            .for_each(|(c, s)| *c &= !s);
+        self
+    }
+
+    /// Whether the evaluator chooses variable `i` ([`Space::with_solved`]).
+    pub fn is_solved(&self, i: usize) -> bool {
+        self.solved.get(i).copied().unwrap_or(false)
     }
 
     /// This space with variable `v`'s first dimension cut into `cells` cells instead of
@@ -460,6 +493,12 @@ impl Space {
         &config.coords[o..o + self.variables[i].domain.dimensions()]
     }
 
+    /// The coordinates of variable `i` within a configuration, to change.
+    pub fn slice_mut<'c>(&self, config: &'c mut Configuration, i: usize) -> &'c mut [f64] {
+        let o = self.offsets[i];
+        &mut config.coords[o..o + self.variables[i].domain.dimensions()]
+    }
+
     /// The cell a configuration lies in, interchangeable members in canonical order.
     pub fn cell(&self, config: &Configuration) -> Cell {
         let mut cell: Vec<u32> = config
@@ -496,9 +535,58 @@ impl Space {
         }
     }
 
-    /// The configuration a candidate is evaluated as: its cell's reference point.
+    /// The configuration a candidate is evaluated as: its cell's reference point, with
+    /// the solved variables' values as they are ([`Space::with_solved`]).
     pub fn snap(&self, config: &Configuration) -> Configuration {
-        self.cell_centre(&self.cell(config))
+        let mut out = self.cell_centre(&self.cell(config));
+        for i in (0..self.variables.len()).filter(|&i| self.is_solved(i)) {
+            let o = self.offsets[i];
+            let n = self.variables[i].domain.dimensions();
+            out.coords[o..o + n].copy_from_slice(&config.coords[o..o + n]);
+        }
+        out
+    }
+
+    /// Regular arrays of each group of interchangeable placements on one parallelogram
+    /// ([`Space::with_exchangeable`]), as a designer lays luminaires out first: for a
+    /// group of m members, every r × c = m, members in rows along the parallelogram's
+    /// second edge and columns along its first, each row and column spaced evenly with
+    /// the outer ones `f` of a spacing from the edges, for f in `WALL_FRACTIONS`
+    /// (½ is the usual "half a spacing from the walls"). Every other coordinate is
+    /// `x`'s. The configurations are snapped to their cells and distinct; the search
+    /// starts from them as well as from `x`, so a regular layout is always among what
+    /// it compares.
+    pub fn regular_arrays(&self, x: &Configuration) -> Vec<Configuration> {
+        const WALL_FRACTIONS: [f64; 3] = [0.5, 0.75, 1.0];
+        let mut out: Vec<Configuration> = Vec::new();
+        for group in &self.exchangeable {
+            let m = group.len();
+            let placed = group.iter().all(|member| {
+                member
+                    .first()
+                    .is_some_and(|&v| matches!(self.variables[v].domain, Domain::Parallelogram(_)))
+            });
+            if !placed {
+                continue;
+            }
+            for columns in (1..=m).filter(|c| m % c == 0) {
+                let rows = m / columns;
+                for f in WALL_FRACTIONS {
+                    let at = |i: usize, n: usize| (i as f64 + f) / (n as f64 - 1.0 + 2.0 * f);
+                    let mut config = x.clone();
+                    for (k, member) in group.iter().enumerate() {
+                        let c = self.slice_mut(&mut config, member[0]);
+                        c[0] = at(k % columns, columns);
+                        c[1] = at(k / columns, rows);
+                    }
+                    let config = self.snap(&config);
+                    if out.iter().all(|o| self.cell(o) != self.cell(&config)) {
+                        out.push(config);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// A random neighbour in N(x, r) = N₁(x₁, r) × … × Nₙ(xₙ, r) (thesis §3.2): every
@@ -527,7 +615,7 @@ impl Space {
     ) -> Configuration {
         let mut out = x.clone();
         for (i, v) in self.variables.iter().enumerate() {
-            if !moves(i) {
+            if !moves(i) || self.is_solved(i) {
                 continue;
             }
             let o = self.offsets[i];
@@ -659,5 +747,78 @@ mod tests {
         assert_eq!(c.coords, vec![0.025, 11.0 / 12.0, 0.525, 0.975, 1.5 / 6.0]);
         assert_eq!(space.cell(&c), space.cell(&x));
         assert_eq!(space.cell_count(), 20.0 * 6.0 * 20.0 * 20.0 * 6.0);
+    }
+
+    #[test]
+    fn regular_arrays_lay_every_factorisation_evenly() {
+        let lamps: Vec<Variable> = (0..6)
+            .map(|k| Variable {
+                id: format!("L{k}"),
+                domain: Domain::Parallelogram(square(6.0)),
+            })
+            .collect();
+        let space =
+            Space::new(lamps, &[60]).with_exchangeable(vec![(0..6).map(|k| vec![k]).collect()]);
+        let x = Configuration {
+            coords: vec![0.5; 12],
+        };
+        let arrays = space.regular_arrays(&x);
+        // 1 × 6, 2 × 3, 3 × 2 and 6 × 1, each at three distances from the edges.
+        assert_eq!(arrays.len(), 12);
+        // Two rows of three, half a spacing from the edges: columns at 1, 3 and 5 m
+        // and rows at 1.5 and 4.5 m, each snapped to its cell (0.1 m).
+        let mut points: Vec<(f64, f64)> = arrays[6]
+            .coords
+            .chunks(2)
+            .map(|c| (6.0 * c[0], 6.0 * c[1]))
+            .collect();
+        points.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let expect = [
+            (1.0, 1.5),
+            (1.0, 4.5),
+            (3.0, 1.5),
+            (3.0, 4.5),
+            (5.0, 1.5),
+            (5.0, 4.5),
+        ];
+        for (p, e) in points.iter().zip(expect) {
+            let near = (p.0 - e.0).abs() <= 0.05 + 1e-9 && (p.1 - e.1).abs() <= 0.05 + 1e-9;
+            assert!(near, "{points:?}");
+        }
+        // Every array is a distinct cell.
+        for (i, a) in arrays.iter().enumerate() {
+            for b in &arrays[i + 1..] {
+                assert_ne!(space.cell(a), space.cell(b));
+            }
+        }
+    }
+
+    #[test]
+    fn solved_variables_are_one_cell_and_keep_their_values() {
+        let space = Space::new(
+            vec![
+                Variable {
+                    id: "lamp".into(),
+                    domain: Domain::Parallelogram(square(1.0)),
+                },
+                Variable {
+                    id: "level".into(),
+                    domain: Domain::Segment { min: 0.1, max: 1.0 },
+                },
+            ],
+            &[10],
+        )
+        .with_cheap(&[1])
+        .with_solved(&[1]);
+        assert_eq!(space.cells_per_dimension(), &[10, 10, 1]);
+        assert!(!space.has_cheap_part(), "a solved level is not searched");
+        let x = Configuration {
+            coords: vec![0.33, 0.71, 0.4321],
+        };
+        assert_eq!(space.snap(&x).coords, vec![0.35, 0.75, 0.4321]);
+        let mut rng = SplitMix64::new(9);
+        for _ in 0..100 {
+            assert_eq!(space.neighbour(&x, 0.5, &mut rng).coords[2], 0.4321);
+        }
     }
 }

@@ -262,6 +262,11 @@ pub struct Evaluation {
     /// ([`Strategy::Paired`]). Empty when the goal is no mean of groups (a uniformity
     /// ratio, a power) or the evaluator does not keep them: eq. 3.7 decides then.
     pub groups: Vec<f64>,
+    /// The configuration evaluated, when the evaluator chose the values of the space's
+    /// solved variables itself ([`Space::with_solved`]: the least-power levels of the
+    /// candidate's arrangement): the search records and keeps this one in place of
+    /// the candidate it asked for.
+    pub solved: Option<Configuration>,
 }
 
 impl Evaluation {
@@ -271,6 +276,7 @@ impl Evaluation {
             goal,
             constraints: Vec::new(),
             groups: Vec::new(),
+            solved: None,
         }
     }
 }
@@ -564,6 +570,9 @@ pub struct Search<'s> {
     lit: bool,
     /// The screening's current round and its permutations, one per coordinate.
     round: Option<(u64, Vec<Vec<u32>>)>,
+    /// Structured starts evaluated as candidates right after the initial
+    /// configuration, iterations 1, 2, … ([`Space::regular_arrays`]).
+    starts: Vec<Configuration>,
 }
 
 /// How many of the least-violating configurations a search keeps.
@@ -596,6 +605,11 @@ impl<'s> Search<'s> {
             best_screen: None,
             lit: false,
             round: None,
+            starts: if settings.strategy.paired() {
+                space.regular_arrays(&space.snap(initial))
+            } else {
+                Vec::new()
+            },
             settings,
         }
     }
@@ -667,7 +681,7 @@ impl<'s> Search<'s> {
         let mut rebuilt: Option<Isoc> = None;
         for rec in records {
             let cell = self.space.cell(&rec.config);
-            let config = self.space.cell_centre(&cell);
+            let config = self.space.snap(&rec.config);
             let member = self.member(config.clone(), cell.clone(), &rec.evaluation);
             if rec.verdict == Verdict::Final {
                 let fresh = rebuilt.get_or_insert_with(|| self.isoc.emptied());
@@ -736,6 +750,9 @@ impl<'s> Search<'s> {
     ) -> Result<Outcome, SearchError<E::Error>> {
         if !self.started {
             self.initial(eval, observer)?;
+        }
+        if !self.structured_starts(eval, observer)? {
+            return Ok(Outcome::Interrupted);
         }
         if self.settings.strategy.paired() {
             if !self.screen(eval, observer)? {
@@ -859,12 +876,13 @@ impl<'s> Search<'s> {
     /// A member of the ISOC (or of the closest) for an evaluation.
     fn member(&self, config: Configuration, cell: Cell, e: &Evaluation) -> Member {
         Member {
-            config,
+            config: e.solved.clone().unwrap_or(config),
             cell,
             estimate: self.settings.sense.score(&e.goal),
             groups: self.settings.sense.score_groups(&e.groups),
             evaluation: Evaluation {
                 groups: Vec::new(),
+                solved: None,
                 ..e.clone()
             },
         }
@@ -993,6 +1011,39 @@ impl<'s> Search<'s> {
             verdict,
         };
         self.report(observer, cell, record)
+    }
+
+    /// The structured starts not evaluated yet, each as a candidate of its own
+    /// iteration (a regular array of the interchangeable lamps, [`Space::regular_arrays`]):
+    /// a designer's first layout is among the configurations the walk compares, and it
+    /// starts from the best of them. `false` when the observer asked to stop.
+    fn structured_starts<E: Evaluate, O: Observer>(
+        &mut self,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<bool, SearchError<E::Error>> {
+        while let Some(config) = self.starts.get(self.iteration as usize - 1).cloned() {
+            if observer.should_stop() {
+                return Ok(false);
+            }
+            if self.iteration >= self.settings.max_iterations {
+                break;
+            }
+            let cell = self.space.cell(&config);
+            let iteration = self.iteration;
+            self.iteration += 1;
+            observer.iteration(self.iteration);
+            if self.cache.get(&cell).is_some() {
+                continue;
+            }
+            if let Some(why) = eval.refuses(&config) {
+                self.cache.insert(cell, Entry::Refused);
+                observer.refused(iteration, &why);
+                continue;
+            }
+            self.candidate((iteration, config, cell), 0.0, eval, observer)?;
+        }
+        Ok(true)
     }
 
     /// The sample counts of a candidate's looks before its decisive evaluation, and
@@ -1184,6 +1235,9 @@ impl<'s> Search<'s> {
         mut record: Record,
     ) -> Result<(), SearchError<X>> {
         record.evaluation.groups = Vec::new();
+        if let Some(config) = record.evaluation.solved.take() {
+            record.config = config;
+        }
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
         self.lit |= self.lights(&record.evaluation);
         if verdict != Verdict::Screened {

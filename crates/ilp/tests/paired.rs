@@ -270,9 +270,8 @@ fn evaluation(groups: Vec<f64>) -> Evaluation {
         g * GROUP,
     );
     Evaluation {
-        goal,
-        constraints: Vec::new(),
         groups,
+        ..Evaluation::of(goal)
     }
 }
 

@@ -92,6 +92,7 @@ impl<F: Fn(&[f64]) -> f64> Noisy<F> {
                 .map(|(k, (g, s))| noisy(g(&c.coords), *s, k as u64 + 1))
                 .collect(),
             groups: Vec::new(),
+            solved: None,
         }
     }
 }

@@ -7,6 +7,7 @@ mod colour;
 mod hole;
 mod placement;
 mod power;
+mod solved;
 
 pub use colour::hsv_to_rgb;
 pub use placement::Bounds;
@@ -154,6 +155,9 @@ pub struct Binding {
     /// `EXT_lights_ies`), in the scene's order: a run's numbers depend on them, so
     /// `run.json` records them and `--resume` checks them.
     pub luminaires: Vec<LuminaireUse>,
+    /// The least-power levels' program and the variables it chooses, when the
+    /// evaluator solves the dimming instead of the search ([`Binding::level_solver`]).
+    level_solver: Option<(Vec<usize>, crate::dimming::LevelSolver)>,
 }
 
 /// A light that emits a photometric file's candela table, as a run used it.
@@ -490,8 +494,10 @@ impl Binding {
                     _ => None,
                 })
                 .collect(),
+            level_solver: None,
         };
         (binding.electric_power, binding.power_unit) = binding.component_power(scene);
+        binding.solve_levels(problem.confidence);
         Ok(binding)
     }
 

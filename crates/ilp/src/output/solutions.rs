@@ -328,6 +328,7 @@ impl Solutions {
                     },
                     constraints,
                     groups: Vec::new(),
+                    solved: None,
                 },
                 seconds,
                 elapsed,

@@ -373,6 +373,7 @@ fn constraints_and_levels_round_trip() {
                     samples: photons,
                 }],
                 groups: Vec::new(),
+                solved: None,
             })
         }
     }

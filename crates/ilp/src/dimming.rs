@@ -1,0 +1,320 @@
+//! The least-power dimming of lamps where they stand, solved exactly.
+//!
+//! Illuminance is linear in each lamp's output (DESIGN.md §3), and a trace keeps every
+//! dimmed lamp's light apart, so for one arrangement every quantity a constraint reads is
+//! linear in the levels y: a surface's mean E(y) = c₀ + Σ_j a_j y_j, each grid cell's
+//! mean E_i(y) likewise, and the grid's average Eavg(y). The constraints a designer
+//! states become linear inequalities:
+//! - `minLux` b: E(y) ≥ b; `maxLux` b: E(y) ≤ b;
+//! - `minPointLux` b: E_i(y) ≥ b for every cell i that counts for Emin;
+//! - `minUniformity` u: U0 = min_i E_i / Eavg ≥ u ⇔ E_i(y) − u·Eavg(y) ≥ 0 for every
+//!   such cell (EN 12464-1:2021's U0 over the grid's cells, as
+//!   [`invlight_photon::GridMeasurement::uniformity`] reads it);
+//!
+//! and `minimizePower`'s goal Σ_j P_j y_j is linear too. The least-power levels of an
+//! arrangement are thus the optimum of a small linear program (a few variables, a row
+//! per constraint and grid cell), which the simplex method solves exactly
+//! (Dantzig 1963; here `microlp`'s bounded-variable simplex) in microseconds, where a
+//! search samples levels one cell of a 20-step mesh at a time.
+//!
+//! The estimates are noisy and a constraint holds only at the run's confidence
+//! (mean − z·σ above its bound), so each bound is moved by a margin z·σ before the
+//! program is solved, σ that of the quantity at the levels found before (three rounds
+//! from full output settle it to a fraction of a per cent). The margin is the one an
+//! evaluation with the search's full photon count N would need (σ scaled by
+//! √(photons/N)), so that the levels, and the power, that a look with fewer photons
+//! finds estimate the same thing as a full evaluation's: a look is not made to look
+//! worse for its noise, and its constraints are decided when it is traced to N.
+
+use crate::intention::Bound;
+use crate::reading::{Quantity, Reading};
+use invlight_photon::Measurement;
+use invlight_stats::Estimate;
+
+/// One level the program chooses: the components it dims and its range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dimmer {
+    /// The components (lights kept apart in a trace) that take this level.
+    pub components: Vec<usize>,
+    /// The least level.
+    pub min: f64,
+    /// The greatest level.
+    pub max: f64,
+    /// The power of its components at level 1, in the goal's unit.
+    pub power: f64,
+}
+
+/// The least-power levels of an arrangement from its trace ([`LevelSolver::solve`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelSolver {
+    /// The levels chosen, in the order the search's variables give them.
+    pub dimmers: Vec<Dimmer>,
+    /// Components in a trace.
+    pub components: usize,
+    /// The one-sided z of the run's confidence, at which the constraints are decided.
+    pub z: f64,
+}
+
+/// The levels found, and the first-order standard error of the power they draw.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Levels {
+    /// One per dimmer.
+    pub levels: Vec<f64>,
+    /// Whether the constraints can be met at all, at the means: when not, `levels` are
+    /// the greatest (the most light there is) and the configuration is infeasible.
+    pub feasible: bool,
+    /// The relative standard error of the least power that the arrangement needs: that
+    /// of the constraint that binds (the one with the least slack at `levels`). To
+    /// first order, the least power scales with the binding quantity's inverse.
+    pub relative_error: f64,
+}
+
+/// Rounds of margins, each from the σ at the levels of the round before.
+const ROUNDS: usize = 3;
+
+/// How much more than z·σ each margin is: the σ at the new levels differs a little
+/// from the one the margin came from, and a constraint left exactly at its bound is
+/// undecided.
+const MARGIN_FACTOR: f64 = 1.02;
+
+impl LevelSolver {
+    /// The component weights of `levels` (1 for the components no dimmer holds).
+    pub fn weights(&self, levels: &[f64]) -> Vec<f64> {
+        let mut w = vec![1.0; self.components];
+        for (d, &y) in self.dimmers.iter().zip(levels) {
+            for &k in &d.components {
+                w[k] = y;
+            }
+        }
+        w
+    }
+
+    /// The least-power levels for the arrangement traced in `m`, under `bounds` (the
+    /// problem's constraints, read as `reading` reads them), with the margins of an
+    /// evaluation of `full` photons.
+    pub fn solve(&self, reading: &Reading, bounds: &[Bound], m: &Measurement, full: u64) -> Levels {
+        let most: Vec<f64> = self.dimmers.iter().map(|d| d.max).collect();
+        let scale = if m.photons >= full || full == 0 {
+            1.0
+        } else {
+            (m.photons as f64 / full as f64).sqrt()
+        };
+        let rows = Rows::new(self, reading, bounds, m);
+        let mut levels = most.clone();
+        let mut found = false;
+        for _ in 0..ROUNDS {
+            let e = reading.read(m, &self.weights(&levels), 0.0);
+            let margins: Vec<f64> = e
+                .constraints
+                .iter()
+                .map(|c| MARGIN_FACTOR * self.z * c.std_error * scale)
+                .collect();
+            match self.program(&rows, &margins) {
+                Some(y) => {
+                    levels = y;
+                    found = true;
+                }
+                None if found => break,
+                None => match self.program(&rows, &vec![0.0; margins.len()]) {
+                    Some(y) => {
+                        levels = y;
+                        break;
+                    }
+                    None => {
+                        return Levels {
+                            levels: most,
+                            feasible: false,
+                            relative_error: 0.0,
+                        };
+                    }
+                },
+            }
+        }
+        let e = reading.read(m, &self.weights(&levels), 0.0);
+        Levels {
+            relative_error: binding_error(bounds, &e.constraints),
+            levels,
+            feasible: true,
+        }
+    }
+
+    /// The least-power levels with each constraint's bound moved inward by its margin,
+    /// or `None` when no levels in range meet them.
+    fn program(&self, rows: &Rows, margins: &[f64]) -> Option<Vec<f64>> {
+        use microlp::{ComparisonOp, OptimizationDirection, Problem};
+        let mut lp = Problem::new(OptimizationDirection::Minimize);
+        let vars: Vec<_> = self
+            .dimmers
+            .iter()
+            .map(|d| lp.add_var(d.power, (d.min, d.max)))
+            .collect();
+        for row in &rows.0 {
+            let margin = margins[row.constraint];
+            let (a, rhs): (Vec<f64>, f64) = match &row.ratio {
+                // E_i − (u + δ)·Eavg ≥ 0.
+                Some((avg, avg_c)) => (
+                    row.a.iter().zip(avg).map(|(a, v)| a - margin * v).collect(),
+                    row.rhs + margin * avg_c,
+                ),
+                None if row.lower => (row.a.clone(), row.rhs + margin),
+                None => (row.a.clone(), row.rhs - margin),
+            };
+            let terms: Vec<_> = vars.iter().copied().zip(a).collect();
+            let op = if row.lower {
+                ComparisonOp::Ge
+            } else {
+                ComparisonOp::Le
+            };
+            lp.add_constraint(&terms, op, rhs);
+        }
+        // No time or node limit is set, so the simplex runs to its answer: the same
+        // levels for the same trace on every machine.
+        let solution = match lp.solve().ok()? {
+            microlp::SolveOutcome::Solution(s) => s,
+            microlp::SolveOutcome::Interrupted(_) => return None,
+        };
+        Some(
+            vars.iter()
+                .zip(&self.dimmers)
+                .map(|(&v, d)| solution[v].clamp(d.min, d.max))
+                .collect(),
+        )
+    }
+}
+
+/// The relative standard error of the constraint with the least relative slack.
+fn binding_error(bounds: &[Bound], estimates: &[Estimate]) -> f64 {
+    bounds
+        .iter()
+        .zip(estimates)
+        .filter(|(_, e)| e.mean > 0.0)
+        .map(|(b, e)| {
+            let limit = b.limit().abs().max(f64::MIN_POSITIVE);
+            let slack = if b.is_lower() {
+                e.mean - b.limit()
+            } else {
+                b.limit() - e.mean
+            };
+            (slack / limit, e.std_error / e.mean)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map_or(0.0, |(_, r)| r)
+}
+
+/// One linear inequality over the levels, Σ a_j y_j ≥ rhs (or ≤), from constraint
+/// `constraint`, whose margin δ moves rhs by δ; a uniformity row E_i − u·Eavg ≥ 0
+/// keeps Eavg's coefficients and constant part in `ratio` instead, for δ to raise u.
+struct Row {
+    constraint: usize,
+    a: Vec<f64>,
+    rhs: f64,
+    lower: bool,
+    ratio: Option<(Vec<f64>, f64)>,
+}
+
+/// The program's rows for one trace.
+struct Rows(Vec<Row>);
+
+impl Rows {
+    fn new(solver: &LevelSolver, reading: &Reading, bounds: &[Bound], m: &Measurement) -> Rows {
+        let unit = |k: usize| {
+            let mut w = vec![0.0; solver.components];
+            w[k] = 1.0;
+            w
+        };
+        // A linear quantity's coefficient on each dimmer and its constant part, from
+        // its value at each component's unit weight.
+        let linear = |value: &dyn Fn(&[f64]) -> f64| -> (Vec<f64>, f64) {
+            let per: Vec<f64> = (0..solver.components).map(|k| value(&unit(k))).collect();
+            let mut held = vec![false; solver.components];
+            let a = solver
+                .dimmers
+                .iter()
+                .map(|d| {
+                    d.components
+                        .iter()
+                        .map(|&k| {
+                            held[k] = true;
+                            per[k]
+                        })
+                        .sum()
+                })
+                .collect();
+            let c = (0..solver.components)
+                .filter(|&k| !held[k])
+                .map(|k| per[k])
+                .sum();
+            (a, c)
+        };
+        let mut rows = Vec::new();
+        for (i, (bound, q)) in bounds.iter().zip(&reading.constraints).enumerate() {
+            match (*bound, *q) {
+                (Bound::MinLux(b) | Bound::MaxLux(b), Quantity::Mean { target, side }) => {
+                    let (a, c) = linear(&|w| m.estimate_of(target, side, w).mean);
+                    rows.push(Row {
+                        constraint: i,
+                        a,
+                        rhs: b - c,
+                        lower: bound.is_lower(),
+                        ratio: None,
+                    });
+                }
+                (Bound::MinPointLux(b, _), Quantity::MinPoint { grid }) => {
+                    let g = &m.grids[grid];
+                    for cell in counted_cells(g) {
+                        let (a, c) = linear(&|w| g.cell(cell, w).map_or(0.0, |e| e.mean));
+                        rows.push(Row {
+                            constraint: i,
+                            a,
+                            rhs: b - c,
+                            lower: true,
+                            ratio: None,
+                        });
+                    }
+                }
+                (Bound::MinUniformity(u, _), Quantity::Uniformity { grid }) => {
+                    let g = &m.grids[grid];
+                    let (avg, avg_c) = linear(&|w| g.average(w).mean);
+                    for cell in counted_cells(g) {
+                        let (a, c) = linear(&|w| g.cell(cell, w).map_or(0.0, |e| e.mean));
+                        rows.push(Row {
+                            constraint: i,
+                            a: a.iter().zip(&avg).map(|(a, v)| a - u * v).collect(),
+                            rhs: u * avg_c - c,
+                            lower: true,
+                            ratio: Some((avg.clone(), avg_c)),
+                        });
+                    }
+                }
+                _ => {}
+            }
+        }
+        Rows(rows)
+    }
+}
+
+/// The cells whose least mean is Emin: those the surface covers at least half of, or
+/// every covered cell when none is ([`invlight_photon::GridMeasurement::uniformity`]).
+fn counted_cells(g: &invlight_photon::GridMeasurement) -> Vec<usize> {
+    let covered: Vec<usize> = (0..g.grid.cells())
+        .filter(|&i| g.grid.is_covered(i))
+        .collect();
+    let full: Vec<usize> = covered
+        .iter()
+        .copied()
+        .filter(|&i| g.grid.is_full(i))
+        .collect();
+    if full.is_empty() { covered } else { full }
+}
+
+/// Whether every constraint of a problem is one the program can hold: the lamps'
+/// light is linear in their levels for these, and not for a daylight factor (lamps are
+/// off under its sky).
+pub fn solvable(bounds: &[Bound]) -> bool {
+    bounds.iter().all(|b| {
+        matches!(
+            b,
+            Bound::MinLux(_) | Bound::MaxLux(_) | Bound::MinPointLux(..) | Bound::MinUniformity(..)
+        )
+    })
+}
