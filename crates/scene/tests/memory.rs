@@ -99,10 +99,7 @@ fn within_limit<T>(case: &str, f: impl FnOnce() -> T) -> T {
     let out = f();
     let seconds = start.elapsed().as_secs_f64();
     let peak = PEAK.load(Ordering::Relaxed).saturating_sub(base);
-    eprintln!(
-        "{case}: peak {:.2} MB, {seconds:.4} s",
-        peak as f64 / 1e6
-    );
+    eprintln!("{case}: peak {:.2} MB, {seconds:.4} s", peak as f64 / 1e6);
     assert!(
         peak < PEAK_LIMIT,
         "{case}: {peak} bytes at the peak, past {PEAK_LIMIT}"
@@ -238,7 +235,10 @@ fn bufferless_positions_follow_their_indices() {
             &buffer,
         ),
     );
-    for (case, path) in [("bufferless quad (.gltf)", &gltf), ("bufferless quad (.glb)", &bin)] {
+    for (case, path) in [
+        ("bufferless quad (.gltf)", &gltf),
+        ("bufferless quad (.glb)", &bin),
+    ] {
         let scene = load_within(case, path, &LoadOptions::default()).unwrap();
         assert_quad(&scene);
         // Within a budget of 1 MB too: nothing is charged for the claimed count.
@@ -331,7 +331,11 @@ fn crc32(bytes: &[u8]) -> u32 {
     for &b in bytes {
         c ^= b as u32;
         for _ in 0..8 {
-            c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
         }
     }
     !c
@@ -357,7 +361,10 @@ fn png_claiming(width: u32, height: u32) -> Vec<u8> {
 fn jpeg_claiming(width: u16, height: u16) -> Vec<u8> {
     let mut jpeg = Vec::new();
     image::RgbImage::new(8, 8)
-        .write_to(&mut std::io::Cursor::new(&mut jpeg), image::ImageFormat::Jpeg)
+        .write_to(
+            &mut std::io::Cursor::new(&mut jpeg),
+            image::ImageFormat::Jpeg,
+        )
         .unwrap();
     let sof = jpeg.windows(2).position(|w| w == [0xFF, 0xC0]).unwrap();
     // Marker (2), length (2), precision (1), then height and width.
@@ -460,19 +467,29 @@ fn collada_counts_are_held_to_the_numbers_present() {
         )
     };
     let path = write(dir.path(), "ok.dae", dae("9", "3").as_bytes());
-    assert_eq!(load(&path, &LoadOptions::default()).unwrap().meshes.len(), 1);
+    assert_eq!(
+        load(&path, &LoadOptions::default()).unwrap().meshes.len(),
+        1
+    );
 
     let path = write(dir.path(), "array.dae", dae("4000000000", "3").as_bytes());
-    let e = load_within("COLLADA float_array count 4e9", &path, &LoadOptions::default())
-        .unwrap_err();
+    let e = load_within(
+        "COLLADA float_array count 4e9",
+        &path,
+        &LoadOptions::default(),
+    )
+    .unwrap_err();
     says(
         &e,
         "line 7: <float_array id=\"Tri-array\">",
         &["count=\"4000000000\" but the array holds 9 numbers"],
     );
-    let path = write(dir.path(), "accessor.dae", dae("9", "1000000000").as_bytes());
-    let e = load_within("COLLADA accessor count 1e9", &path, &LoadOptions::default())
-        .unwrap_err();
+    let path = write(
+        dir.path(),
+        "accessor.dae",
+        dae("9", "1000000000").as_bytes(),
+    );
+    let e = load_within("COLLADA accessor count 1e9", &path, &LoadOptions::default()).unwrap_err();
     says(
         &e,
         "line 9: <accessor> in <source id=\"Tri-positions\">",
@@ -505,12 +522,45 @@ fn photometric_counts_are_held_to_the_numbers_present() {
         parse_ies(ies.as_bytes(), Path::new("huge.ies"))
     })
     .unwrap_err();
-    says(&e, "line 8", &["the file ends where a vertical angle was expected"]);
+    says(
+        &e,
+        "line 8",
+        &["the file ends where a vertical angle was expected"],
+    );
 
     let mut ldt: Vec<String> = [
-        "huge counts", "1", "0", "100000", "0.0036", "100000", "0.0018", "R", "L", "N", "huge.ldt",
-        "d", "0", "0", "0", "0", "0", "0", "0", "0", "0", "100", "100", "1", "0", "1", "1",
-        "lamp", "1000", "3000", "80", "10",
+        "huge counts",
+        "1",
+        "0",
+        "100000",
+        "0.0036",
+        "100000",
+        "0.0018",
+        "R",
+        "L",
+        "N",
+        "huge.ldt",
+        "d",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "100",
+        "100",
+        "1",
+        "0",
+        "1",
+        "1",
+        "lamp",
+        "1000",
+        "3000",
+        "80",
+        "10",
     ]
     .iter()
     .map(|s| s.to_string())
@@ -522,5 +572,9 @@ fn photometric_counts_are_held_to_the_numbers_present() {
         parse_ldt(ldt.as_bytes(), Path::new("huge.ldt"))
     })
     .unwrap_err();
-    says(&e, "line 46", &["the file ends where a C angle was expected"]);
+    says(
+        &e,
+        "line 46",
+        &["the file ends where a C angle was expected"],
+    );
 }

@@ -175,7 +175,10 @@ impl Builder<'_> {
         let what = if copied == count {
             format!("its {count} {} elements", type_name(ty))
         } else {
-            format!("the {copied} of its {count} {} elements that indices reach", type_name(ty))
+            format!(
+                "the {copied} of its {count} {} elements that indices reach",
+                type_name(ty)
+            )
         };
         self.files.charge(self.path, &here, total, &what)?;
         // The strided source, checked whole before anything is allocated.
