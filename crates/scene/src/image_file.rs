@@ -36,7 +36,7 @@ pub(crate) enum TextureError {
 /// in errors; `from` and `loc` name where it is referenced, for a refusal for memory.
 ///
 /// The header is read first. A PNG or JPEG whose header declares more pixels than its
-/// bytes can code (a 1 kB PNG claiming 16 000 × 16 000, for which the decoder allocated
+/// bytes can code (a PNG of under 1 kB claiming 16 000 × 16 000, for which the decoder allocated
 /// its 768 MB canvas before finding the data short) is unreadable, with both figures;
 /// otherwise a PNG that declares 13 000 × 13 000 pixels needs 3.9 GB while it is
 /// decoded, and is charged to the budget (refused with that figure past it) before the

@@ -193,7 +193,7 @@ fn trusting() -> LoadOptions {
 
 /// Item 4: a 4 KB glTF whose bufferless accessor claims 178 956 970 VEC3 (it aborted
 /// allocating 2 GB) is refused with the figure before anything is allocated, past the
-/// budget; a PNG whose header declares 13 000² pixels (2.5 GB decoded) in 1 kB is left
+/// budget; a PNG whose header declares 13 000² pixels (2.5 GB decoded) in 118 bytes is left
 /// out as unreadable before the decoder allocates (tests/memory.rs has the rest).
 #[test]
 fn r19_memory_bombs_are_refused_with_the_figure() {
