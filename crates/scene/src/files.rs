@@ -262,9 +262,12 @@ fn looks_like_drive(p: &Path) -> bool {
 }
 
 /// Half of this machine's memory, the default of [`LoadOptions::max_memory`]: on Linux
-/// the smaller of `MemTotal` (`/proc/meminfo`) and the control group's `memory.max`,
-/// elsewhere (or when neither can be read) 4 GiB. Half, because the scene is not all
-/// that runs: the photon tracer, the renderer and the rest of the machine need room.
+/// the smallest of `MemTotal` (`/proc/meminfo`), the control group's `memory.max` and
+/// the process's soft address-space and data limits (`ulimit -v`, `ulimit -d`, from
+/// `/proc/self/limits`), elsewhere (or when none can be read) 4 GiB. Half, because the
+/// scene is not all that runs: the photon tracer, the renderer and the rest of the
+/// machine need room. The limits count because past them an allocation aborts the
+/// process rather than failing the load with the figure.
 pub(crate) fn default_max_memory() -> u64 {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
         s.lines()
@@ -275,12 +278,27 @@ pub(crate) fn default_max_memory() -> u64 {
     let cgroup = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
         .ok()
         .and_then(|s| s.trim().parse::<u64>().ok());
-    match (meminfo, cgroup) {
-        (Some(m), Some(c)) => m.min(c) / 2,
-        (Some(m), None) => m / 2,
-        (None, Some(c)) => c / 2,
-        (None, None) => 4 << 30,
-    }
+    let limits = std::fs::read_to_string("/proc/self/limits")
+        .ok()
+        .and_then(|s| process_limit(&s));
+    [meminfo, cgroup, limits]
+        .into_iter()
+        .flatten()
+        .min()
+        .map_or(4 << 30, |m| m / 2)
+}
+
+/// The smaller soft limit of "Max address space" and "Max data size" in the text of
+/// `/proc/self/limits` (bytes; `None` when both are unlimited).
+fn process_limit(limits: &str) -> Option<u64> {
+    limits
+        .lines()
+        .filter_map(|l| {
+            l.strip_prefix("Max address space")
+                .or_else(|| l.strip_prefix("Max data size"))
+        })
+        .filter_map(|rest| rest.split_whitespace().next()?.parse::<u64>().ok())
+        .min()
 }
 
 #[cfg(test)]
@@ -357,6 +375,26 @@ mod tests {
             e.message.contains("600 bytes") && e.message.contains("1.2 kB"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn process_limits_are_read() {
+        let unlimited = "Limit                     Soft Limit           Hard Limit           Units
+Max data size             unlimited            unlimited            bytes
+Max stack size            8388608              unlimited            bytes
+Max address space         unlimited            unlimited            bytes
+";
+        assert_eq!(process_limit(unlimited), None);
+        let limited = unlimited.replace(
+            "Max address space         unlimited",
+            "Max address space         4294967296",
+        );
+        assert_eq!(process_limit(&limited), Some(4 << 30));
+        let both = limited.replace(
+            "Max data size             unlimited",
+            "Max data size             1073741824",
+        );
+        assert_eq!(process_limit(&both), Some(1 << 30));
     }
 
     #[test]

@@ -5,6 +5,12 @@
 //! against the view, so a bad offset, stride, count or sparse index is a [`LoadError`]
 //! naming the accessor, never a panic (the `gltf` crate's reader `debug_assert`s and
 //! computes `count - 1` unchecked, hence this reader).
+//!
+//! Only the elements a primitive's indices reach are copied: an accessor without a
+//! buffer view is zeros (§3.6.2.3, for sparse accessors), so its `count` is a claim no
+//! byte of the file backs, and a 4 KB file claiming 178 956 970 VEC3 whose indices use
+//! four vertices took 4.2 GB. The claimed count is still what indices and sparse
+//! indices are checked against.
 
 use super::Builder;
 use crate::error::LoadError;
@@ -14,9 +20,12 @@ use json::validation::Checked;
 
 /// An accessor's elements packed without stride, and how to read their components.
 struct Dense {
+    /// The first `reach` elements (all of them when the accessor was read whole).
     bytes: Vec<u8>,
     component: ComponentType,
     normalized: bool,
+    /// The accessor's `count`, which may exceed the elements copied.
+    count: u64,
 }
 
 fn component_size(c: ComponentType) -> usize {
@@ -66,16 +75,19 @@ fn to_u32(c: &[u8], component: ComponentType) -> u32 {
 }
 
 impl Builder<'_> {
-    /// The accessor `index`, which must be of type `want`, as floats (`count × n`
-    /// components, element-major). `loc` names the referrer, e.g.
+    /// The accessor `index`, which must be of type `want`, as floats (`n` components
+    /// per element, element-major) with its claimed `count`. Only the first `reach`
+    /// elements are read when given (a primitive's largest index + 1), all `count`
+    /// otherwise. `loc` names the referrer, e.g.
     /// `meshes[0].primitives[1].attributes.POSITION`.
     pub(super) fn read_floats(
         &self,
         index: json::Index<json::Accessor>,
         want: Type,
         loc: &str,
-    ) -> Result<Vec<f32>, LoadError> {
-        let dense = self.dense(index, want, loc)?;
+        reach: Option<u64>,
+    ) -> Result<(Vec<f32>, u64), LoadError> {
+        let dense = self.dense(index, want, loc, reach)?;
         let size = component_size(dense.component);
         let floats = (dense.bytes.len() / size * size_of::<f32>()) as u64;
         self.files.charge(
@@ -84,11 +96,12 @@ impl Builder<'_> {
             floats,
             "its components as floats",
         )?;
-        Ok(dense
+        let floats = dense
             .bytes
             .chunks_exact(size)
             .map(|c| to_f32(c, dense.component, dense.normalized))
-            .collect())
+            .collect();
+        Ok((floats, dense.count))
     }
 
     /// The index accessor `index`: SCALAR of unsigned byte, short or int.
@@ -97,7 +110,7 @@ impl Builder<'_> {
         index: json::Index<json::Accessor>,
         loc: &str,
     ) -> Result<Vec<u32>, LoadError> {
-        let dense = self.dense(index, Type::Scalar, loc)?;
+        let dense = self.dense(index, Type::Scalar, loc, None)?;
         if !matches!(
             dense.component,
             ComponentType::U8 | ComponentType::U16 | ComponentType::U32
@@ -115,12 +128,14 @@ impl Builder<'_> {
             .collect())
     }
 
-    /// Copies the accessor's elements densely, applying its sparse substitution.
+    /// Copies the accessor's first `reach` elements (all when `None`) densely, applying
+    /// its sparse substitution; the whole claimed range is checked against the view.
     fn dense(
         &self,
         index: json::Index<json::Accessor>,
         want: Type,
         loc: &str,
+        reach: Option<u64>,
     ) -> Result<Dense, LoadError> {
         let i = index.value();
         let here = format!("accessors[{i}] (from {loc})");
@@ -151,17 +166,21 @@ impl Builder<'_> {
         }
         let element = (ty.multiplicity() * component_size(component)) as u64;
         let count = acc.count.0;
-        // Charged before anything is allocated: an accessor without a buffer view is
-        // zeros, so a 4 KB file can claim 178 956 970 VEC3 (2.1 GB, which aborted).
-        let total = count
+        let copied = reach.map_or(count, |r| r.min(count));
+        // Charged before anything is allocated: without indices to bound it, a
+        // bufferless accessor's claim is refused past the budget with its figure.
+        let total = copied
             .checked_mul(element)
             .ok_or_else(|| self.err(&here, format!("count {count} is too large")))?;
-        self.files.charge(
-            self.path,
-            &here,
-            total,
-            &format!("its {count} {} elements", type_name(ty)),
-        )?;
+        let what = if copied == count {
+            format!("its {count} {} elements", type_name(ty))
+        } else {
+            format!(
+                "the {copied} of its {count} {} elements that indices reach",
+                type_name(ty)
+            )
+        };
+        self.files.charge(self.path, &here, total, &what)?;
         // The strided source, checked whole before anything is allocated.
         let source = match acc.buffer_view {
             Some(view) => {
@@ -210,10 +229,12 @@ impl Builder<'_> {
             bytes,
             component,
             normalized: acc.normalized,
+            count,
         })
     }
 
-    /// Replaces the elements a sparse accessor lists (spec §3.6.2.3).
+    /// Replaces the elements a sparse accessor lists (spec §3.6.2.3), each index
+    /// checked against the claimed `count`; those past the copied `bytes` are not read.
     fn substitute(
         &self,
         sparse: &json::accessor::sparse::Sparse,
@@ -265,7 +286,9 @@ impl Builder<'_> {
                 ));
             }
             let at = target as usize * element;
-            bytes[at..at + element].copy_from_slice(value);
+            if let Some(out) = bytes.get_mut(at..at + element) {
+                out.copy_from_slice(value);
+            }
         }
         Ok(())
     }

@@ -72,21 +72,29 @@ impl Builder<'_> {
             let Checked::Valid(mode) = prim.mode else {
                 return Err(self.err(&here, "mode is not a glTF primitive mode (0–6)"));
             };
-            let positions = self.positions(prim, &here)?;
+            // Indices first: the vertices are read only as far as they reach.
+            let indices = match prim.indices {
+                Some(acc) => Some(self.read_indices(acc, &format!("{here}.indices"))?),
+                None => None,
+            };
+            let reach = indices
+                .as_ref()
+                .map(|i| i.iter().max().map_or(0, |&m| m as u64 + 1));
+            let (positions, claimed) = self.positions(prim, &here, reach)?;
             let base = mesh.positions.len() as u32;
             let count = positions.len();
-            let indices = match prim.indices {
-                Some(acc) => self.read_indices(acc, &format!("{here}.indices"))?,
+            let indices = match indices {
+                Some(indices) => indices,
                 None => (0..count as u32).collect(),
             };
             if let Some((k, &bad)) = indices
                 .iter()
                 .enumerate()
-                .find(|(_, i)| **i as usize >= count)
+                .find(|(_, i)| **i as u64 >= claimed)
             {
                 return Err(self.err(
                     &format!("{here}.indices"),
-                    format!("index {k} is {bad}, but the primitive has {count} vertices"),
+                    format!("index {k} is {bad}, but the primitive has {claimed} vertices"),
                 ));
             }
             let Some(triangles) = triangulate(mode, &indices) else {
@@ -104,11 +112,11 @@ impl Builder<'_> {
             {
                 Some(&acc) => {
                     let at = format!("{here}.attributes.TEXCOORD_{set}");
-                    let uvs = self.read_floats(acc, Type::Vec2, &at)?;
-                    if uvs.len() != count * 2 {
+                    let (uvs, uv_count) = self.read_floats(acc, Type::Vec2, &at, reach)?;
+                    if uv_count != claimed {
                         return Err(self.err(
                             &at,
-                            format!("{} texture coordinates for {count} vertices", uvs.len() / 2),
+                            format!("{uv_count} texture coordinates for {claimed} vertices"),
                         ));
                     }
                     Some(uvs)
@@ -127,7 +135,11 @@ impl Builder<'_> {
             } else if has_uvs {
                 mesh.uvs.extend(std::iter::repeat_n(Vec2::ZERO, count));
             }
-            mesh.positions.extend(positions);
+            if mesh.positions.is_empty() {
+                mesh.positions = positions;
+            } else {
+                mesh.positions.extend(positions);
+            }
             mesh.materials
                 .extend(std::iter::repeat_n(material, triangles.len()));
             mesh.triangles
@@ -141,24 +153,27 @@ impl Builder<'_> {
         Ok(id)
     }
 
-    /// The POSITION attribute of a primitive, finite numbers required.
+    /// The POSITION attribute of a primitive, finite numbers required: the first
+    /// `reach` vertices (all when `None`) and the count the accessor claims.
     pub(super) fn positions(
         &self,
         prim: &json::mesh::Primitive,
         here: &str,
-    ) -> Result<Vec<Vec3>, LoadError> {
+        reach: Option<u64>,
+    ) -> Result<(Vec<Vec3>, u64), LoadError> {
         let loc = format!("{here}.attributes.POSITION");
         let Some(&acc) = prim.attributes.get(&Checked::Valid(Semantic::Positions)) else {
             return Err(self.err(here, "the primitive has no POSITION attribute"));
         };
-        let floats = self.read_floats(acc, Type::Vec3, &loc)?;
+        let (floats, claimed) = self.read_floats(acc, Type::Vec3, &loc, reach)?;
         if floats.iter().any(|f| !f.is_finite()) {
             return Err(self.err(&loc, "a position is not a finite number"));
         }
-        Ok(floats
+        let positions = floats
             .chunks_exact(3)
             .map(|c| Vec3::new(c[0], c[1], c[2]))
-            .collect())
+            .collect();
+        Ok((positions, claimed))
     }
 }
 

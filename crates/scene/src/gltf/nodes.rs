@@ -208,7 +208,7 @@ impl Builder<'_> {
         })?;
         let mut vertices: Vec<Vec3> = Vec::new();
         for (p, prim) in mesh.primitives.iter().enumerate() {
-            let local = self.positions(prim, &format!("meshes[{m}].primitives[{p}]"))?;
+            let (local, _) = self.positions(prim, &format!("meshes[{m}].primitives[{p}]"), None)?;
             push_distinct(
                 &mut vertices,
                 local.into_iter().map(|v| world.transform_point3(v)),
