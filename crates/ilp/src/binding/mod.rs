@@ -12,14 +12,12 @@ pub use colour::hsv_to_rgb;
 pub use placement::Bounds;
 
 use crate::intention::{Constraint, Goal};
-use crate::problem::{Anchor, PlacementSpec, Problem, VariableKind, VariableSpec};
+use crate::problem::{Anchor, PlacementSpec, Problem, SunClock, VariableKind, VariableSpec};
 use crate::reading::Reading;
 use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
 use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
-use invlight_scene::daylight::{
-    Compass, Date, Site, SunOptions, SunPosition, TimeOfDay, daylight_factor_scene,
-};
+use invlight_scene::daylight::daylight_factor_scene;
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
@@ -104,15 +102,8 @@ enum Target {
         instances: Vec<(InstanceId, Mat4)>,
         centre: Vec3,
     },
-    /// A directional light set where the sun stands at a time of `date` at `site`
-    /// (SPA), with `lux` or else the clear-sky beam of IES RP-21 then.
-    SunTime {
-        light: LightId,
-        site: Site,
-        date: Date,
-        compass: Compass,
-        lux: Option<f64>,
-    },
+    /// A directional light set where the sun stands at a time.
+    SunTime(SunClock),
     /// An object's instances, or a light as authored, turned about `axis` (unit)
     /// through `centre` (the box's centre, the light's position).
     Rotate {
@@ -280,7 +271,8 @@ impl Binding {
                         return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
                             .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
                     }
-                    let target = sun_time_target(problem, spec, scene).map_err(err)?;
+                    let target =
+                        Target::SunTime(SunClock::place(problem, spec, scene).map_err(err)?);
                     let half = step / 2.0;
                     let domain = Domain::Segment {
                         min: from - half,
@@ -660,9 +652,9 @@ impl Binding {
                         Domain::Segment { min, max } | Domain::Turn { min, max },
                         Target::Rotate { .. },
                     ) => VariableValue::Angle(min + x[0] * (max - min)),
-                    (Domain::Segment { min, max }, target @ Target::SunTime { .. }) => {
+                    (Domain::Segment { min, max }, Target::SunTime(clock)) => {
                         let minutes = min + x[0] * (max - min);
-                        let direction = sun_at(target, minutes).map_or(DVec3::ZERO, |(d, _)| d);
+                        let direction = clock.at(minutes).map_or(DVec3::ZERO, |(d, _)| d);
                         VariableValue::Time { minutes, direction }
                     }
                     (Domain::Segment { min, max } | Domain::Turn { min, max }, target) => {
@@ -921,14 +913,14 @@ impl Binding {
                         }
                     }
                 }
-                (VariableValue::Time { minutes, .. }, target @ Target::SunTime { light, .. }) => {
+                (VariableValue::Time { minutes, .. }, Target::SunTime(clock)) => {
                     if let (
                         Ok((d, lux)),
                         LightKind::Directional {
                             direction,
                             illuminance,
                         },
-                    ) = (sun_at(target, minutes), &mut scene.lights[*light].kind)
+                    ) = (clock.at(minutes), &mut scene.lights[clock.light].kind)
                     {
                         *direction = d.as_vec3();
                         *illuminance = Vec3::splat(lux as f32);
@@ -1130,107 +1122,6 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         }
     }
     out
-}
-
-/// Puts the sun of `sunTime` `spec` where it stands at the middle of its range (the
-/// directional light `spec.id`, added to a scene without any): what the problem's scene
-/// shows before a configuration sets the time.
-pub(crate) fn place_sun_time(
-    problem: &Problem,
-    spec: &VariableSpec,
-    scene: &mut Scene,
-) -> Result<(), String> {
-    sun_time_target(problem, spec, scene).map(|_| ())
-}
-
-/// [`place_sun_time`], returning the variable's target.
-fn sun_time_target(
-    problem: &Problem,
-    spec: &VariableSpec,
-    scene: &mut Scene,
-) -> Result<Target, String> {
-    let VariableKind::SunTime { date, from, to, .. } = &spec.kind else {
-        return Err(format!("'{}' is not a sunTime", spec.id));
-    };
-    let site = problem
-        .daylight
-        .site
-        .ok_or("<sunTime> needs the problem's <site>")?;
-    let compass = site.compass(scene.up).map_err(|e| e.to_string())?;
-    let light = sun_time_light(scene, &spec.id)?;
-    let target = Target::SunTime {
-        light,
-        site,
-        date: *date,
-        compass,
-        lux: problem.daylight.sun.and_then(|s| s.illuminance),
-    };
-    let (d, lux) = sun_at(&target, (from + to) / 2.0)?;
-    scene.lights[light].kind = LightKind::Directional {
-        direction: d.as_vec3(),
-        illuminance: Vec3::splat(lux as f32),
-    };
-    Ok(target)
-}
-
-/// The directional light a `sunTime` of id `id` sets: the one of that name, else one of
-/// that name added to a scene without any.
-fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, String> {
-    let directional = |k: &LightKind| matches!(k, LightKind::Directional { .. });
-    if let Some(l) = scene.light(id) {
-        return match directional(&scene.lights[l].kind) {
-            true => Ok(l),
-            false => Err(format!(
-                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
-            )),
-        };
-    }
-    let suns: Vec<&str> = scene
-        .lights
-        .iter()
-        .filter(|l| directional(&l.kind))
-        .map(|l| l.name.as_str())
-        .collect();
-    if !suns.is_empty() {
-        return Err(format!(
-            "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
-            suns.join(", ")
-        ));
-    }
-    scene.lights.push(invlight_scene::Light {
-        name: id.into(),
-        kind: LightKind::Directional {
-            direction: -scene.up,
-            illuminance: Vec3::ZERO,
-        },
-    });
-    Ok(LightId::from_index(scene.lights.len() - 1))
-}
-
-/// Where a `sunTime` target's sun stands `minutes` after local midnight (to the second,
-/// held within the day): the direction its light travels and its direct normal
-/// illuminance, lx (the problem's `<sun illuminance>`, else IES RP-21's clear-sky beam;
-/// 0 below the horizon).
-fn sun_at(target: &Target, minutes: f64) -> Result<(DVec3, f64), String> {
-    let Target::SunTime {
-        site,
-        date,
-        compass,
-        lux,
-        ..
-    } = target
-    else {
-        return Err("not a sunTime".into());
-    };
-    let time = TimeOfDay::from_minutes(minutes);
-    let sun =
-        SunPosition::new(site, date, &time, &SunOptions::default()).map_err(|e| e.to_string())?;
-    let beam = match (sun.is_up(), lux) {
-        (false, _) => 0.0,
-        (true, Some(l)) => *l,
-        (true, None) => sun.clear_sky_direct_normal(),
-    };
-    Ok((sun.travel(compass).as_dvec3(), beam))
 }
 
 /// The normalised coordinates of the scene as authored.
