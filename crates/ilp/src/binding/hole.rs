@@ -3,8 +3,10 @@
 //! is of a hole material (the tracer makes the object's box a volume where every
 //! surface is transparent).
 
-use super::placement::Bounds;
-use crate::space::Parallelogram;
+use super::placement::{Bounds, authored, placed};
+use super::{Target, find_surface};
+use crate::problem::{PlacementSpec, VariableSpec};
+use crate::space::{Domain, Parallelogram};
 use invlight_scene::{Diagnostic, Material, Scene, SurfaceId};
 
 /// Refuses a hole that covers its whole placement rectangle wherever it goes: it would
@@ -63,4 +65,40 @@ pub fn make_hole(scene: &mut Scene, s: SurfaceId, id: &str) {
         copy.materials.iter_mut().for_each(|m| *m = h);
         scene.instances[i].mesh = scene.add_mesh(copy);
     }
+}
+
+/// A `holeInSurface`: the object `spec.id` placed on `p` as for an `objectInSurface`,
+/// made a hole, and refused if it would cover its whole rectangle.
+pub(super) fn placement(
+    scene: &mut Scene,
+    spec: &VariableSpec,
+    p: &PlacementSpec,
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    let s = find_surface(scene, &spec.id, spec, err)?;
+    let bound = placed(scene, spec, p, Some(s), None, err, warnings)?;
+    if let (Domain::Parallelogram(rect), Target::Move(m)) = &bound {
+        check_size(rect, &m.bounds, &spec.id, &p.surface, err)?;
+    }
+    make_hole(scene, s, &spec.id);
+    Ok(bound)
+}
+
+/// A `holeSize`: the object `spec.id`, made a hole, scaled about its authored centre
+/// from `min` to `max` times its authored size.
+pub(super) fn size(
+    scene: &mut Scene,
+    spec: &VariableSpec,
+    min: f64,
+    max: f64,
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<(Domain, Target), Diagnostic> {
+    let s = find_surface(scene, &spec.id, spec, err)?;
+    make_hole(scene, s, &spec.id);
+    let (instances, centre) = authored(scene, s);
+    Ok((
+        Domain::Segment { min, max },
+        Target::Scale { instances, centre },
+    ))
 }

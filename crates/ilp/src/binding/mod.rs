@@ -2,67 +2,39 @@
 //! §4.5). Applying changes only what moved, as OptiX transform nodes did for ILPSolver:
 //! instance transforms (so the acceleration structure rebuilds only its top level),
 //! light positions and directions, material K_d.
+//!
+//! One binder per variable kind finds what a variable changes and its domain:
+//! `placement.rs` (`objectInSurface`, `lightInSurface`), `hole.rs` (`holeInSurface`,
+//! `holeSize`), `sun.rs` (`directionalLight`, `sunTime`), `aim.rs`, `rotation.rs`,
+//! `power.rs` and `colour.rs`; `value.rs` turns a configuration into world values and
+//! back.
 
+mod aim;
 mod colour;
 mod hole;
 mod placement;
 mod power;
+mod rotation;
 mod solved;
+mod sun;
+mod value;
 
 pub use colour::hsv_to_rgb;
 pub use placement::Bounds;
+pub use value::VariableValue;
 
 use crate::intention::{Constraint, Goal};
-use crate::problem::{Anchor, PlacementSpec, Problem, VariableKind, VariableSpec};
+use crate::problem::{Problem, SunClock, VariableKind, VariableSpec};
 use crate::reading::Reading;
-use crate::space::{Configuration, Domain, Hemisphere, Space, Variable};
-use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
+use crate::space::{Configuration, Domain, Space, Variable};
+use glam::{DVec3, Mat3, Mat4, Vec3};
 use invlight_photon::{Components, Emitters, SourceOrigin};
-use invlight_scene::daylight::{
-    Compass, Date, Site, SunOptions, SunPosition, TimeOfDay, daylight_factor_scene,
-};
+use invlight_scene::daylight::daylight_factor_scene;
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Scene, SurfaceId, known_names,
 };
-use placement::{authored, find_parallelogram, instance_bounds, onto_plane};
+use placement::instance_bounds;
 use power::Dimmed;
-
-/// A variable's value in world terms, for the outputs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum VariableValue {
-    /// A placement: the placement point P (where the rule of the variable's anchor puts
-    /// it) and the anchor, the object's or light's own place.
-    Position {
-        /// P, m.
-        point: DVec3,
-        /// The light's position or the object's bounding-box centre on the placement
-        /// plane, m.
-        anchor: DVec3,
-    },
-    /// The unit vector the light travels along.
-    Direction(DVec3),
-    /// HSV value V and the resulting linear K_d.
-    Colour {
-        /// V.
-        value: f64,
-        /// K_d, linear RGB.
-        rgb: [f64; 3],
-    },
-    /// A dimming level: the light's output is its authored output times it.
-    Power(f64),
-    /// A hole's scale: its size over its authored size.
-    Scale(f64),
-    /// A turn about the placement's normal, degrees.
-    Angle(f64),
-    /// A `sunTime`: minutes after local midnight, and the unit vector the sunlight
-    /// travels along then (zero when it is not known, as in a row read back).
-    Time {
-        /// Minutes after local midnight.
-        minutes: f64,
-        /// The sunlight's travel direction.
-        direction: DVec3,
-    },
-}
 
 /// What a placement moves, and how P turns into a translation.
 #[derive(Debug, Clone)]
@@ -105,15 +77,8 @@ enum Target {
         instances: Vec<(InstanceId, Mat4)>,
         centre: Vec3,
     },
-    /// A directional light set where the sun stands at a time of `date` at `site`
-    /// (SPA), with `lux` or else the clear-sky beam of IES RP-21 then.
-    SunTime {
-        light: LightId,
-        site: Site,
-        date: Date,
-        compass: Compass,
-        lux: Option<f64>,
-    },
+    /// A directional light set where the sun stands at a time.
+    SunTime(SunClock),
     /// An object's instances, or a light as authored, turned about `axis` (unit)
     /// through `centre` (the box's centre, the light's position).
     Rotate {
@@ -216,228 +181,10 @@ impl Binding {
         let mut steps = Vec::new();
         for spec in &problem.variables {
             let err = |msg: String| Diagnostic::at_line(path, spec.line, msg);
-            let (domain, target) = match &spec.kind {
-                VariableKind::ObjectInSurface(p) | VariableKind::HoleInSurface(p) => {
-                    let s = find_surface(scene, &spec.id, spec, &err)?;
-                    let bound = placed(scene, spec, p, Some(s), None, &err, &mut warnings)?;
-                    if matches!(spec.kind, VariableKind::HoleInSurface(_)) {
-                        if let (Domain::Parallelogram(rect), Target::Move(m)) = &bound {
-                            hole::check_size(rect, &m.bounds, &spec.id, &p.surface, &err)?;
-                        }
-                        hole::make_hole(scene, s, &spec.id);
-                    }
-                    bound
-                }
-                VariableKind::LightInSurface(p) => match scene.light(&spec.id) {
-                    Some(l) => {
-                        if matches!(scene.lights[l].kind, LightKind::Directional { .. }) {
-                            return Err(err(format!(
-                                "'{}' is a directional light, expected a point, spot or goniometric light or an emissive object (use <directionalLight> for a sun)",
-                                spec.id
-                            )));
-                        }
-                        placed(scene, spec, p, None, Some(l), &err, &mut warnings)?
-                    }
-                    None => {
-                        let s = scene.surface(&spec.id).ok_or_else(|| {
-                            err(format!(
-                                "no light or surface named '{}' in the scene, expected a point, spot or goniometric light or an emissive object",
-                                spec.id
-                            ))
-                            .with_hint(known_names(scene.lights.iter().map(|l| l.name.as_str()), "lights"))
-                        })?;
-                        if !surface_materials(scene, s)
-                            .iter()
-                            .any(|&m| scene.materials[m].is_emissive())
-                        {
-                            warnings.push(err(format!(
-                                "'{}' emits no light; moving it only moves its shadow",
-                                spec.id
-                            )));
-                        }
-                        placed(scene, spec, p, Some(s), None, &err, &mut warnings)?
-                    }
-                },
-                VariableKind::DirectionalLight => {
-                    let light = scene
-                        .light(&spec.id)
-                        .filter(|&l| matches!(scene.lights[l].kind, LightKind::Directional { .. }))
-                        .ok_or_else(|| {
-                            err(format!(
-                                "no directional light named '{}' in the scene",
-                                spec.id
-                            ))
-                            .with_hint(known_names(
-                                scene
-                                    .lights
-                                    .iter()
-                                    .filter(|l| matches!(l.kind, LightKind::Directional { .. }))
-                                    .map(|l| l.name.as_str()),
-                                "directional lights",
-                            ))
-                        })?;
-                    let hemi = Hemisphere::new(scene.up.as_dvec3());
-                    (Domain::Hemisphere(hemi), Target::Sun { light })
-                }
-                VariableKind::SunTime { from, to, step, .. } => {
-                    if problem.daylight_factor_line().is_some() {
-                        return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
-                            .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
-                    }
-                    let target = sun_time_target(problem, spec, scene).map_err(err)?;
-                    let half = step / 2.0;
-                    let domain = Domain::Segment {
-                        min: from - half,
-                        max: to + half,
-                    };
-                    steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
-                    (domain, target)
-                }
-                VariableKind::HoleSize { min, max } => {
-                    let s = find_surface(scene, &spec.id, spec, &err)?;
-                    hole::make_hole(scene, s, &spec.id);
-                    let (instances, centre) = authored(scene, s);
-                    (
-                        Domain::Segment {
-                            min: *min,
-                            max: *max,
-                        },
-                        Target::Scale { instances, centre },
-                    )
-                }
-                VariableKind::ObjectRotation { min, max } => {
-                    // The normal of the rectangle another variable places it on, else up.
-                    let placement = problem
-                        .variables
-                        .iter()
-                        .filter(|w| w.id == spec.id)
-                        .find_map(|w| w.kind.placement());
-                    let axis = match placement {
-                        Some(p) => {
-                            let r = find_parallelogram(scene, &p.surface, p.vertices, &err)?;
-                            r.e1.cross(r.e2).normalize().as_vec3()
-                        }
-                        None => scene.up.normalize(),
-                    };
-                    let light = scene.light(&spec.id).filter(|&l| {
-                        !matches!(scene.lights[l].kind, LightKind::Directional { .. })
-                    });
-                    let (instances, light, centre) = match light {
-                        Some(l) => {
-                            let kind = scene.lights[l].kind.clone();
-                            let centre = kind.position().unwrap_or(Vec3::ZERO);
-                            (Vec::new(), Some((l, kind)), centre)
-                        }
-                        None => {
-                            let s = find_surface(scene, &spec.id, spec, &err)?;
-                            let (instances, centre) = authored(scene, s);
-                            (instances, None, centre)
-                        }
-                    };
-                    // A whole turn's ends are one orientation: its neighbourhoods wrap.
-                    let domain = if (max - min - 360.0).abs() < 1e-9 {
-                        Domain::Turn {
-                            min: *min,
-                            max: *max,
-                        }
-                    } else {
-                        Domain::Segment {
-                            min: *min,
-                            max: *max,
-                        }
-                    };
-                    (
-                        domain,
-                        Target::Rotate {
-                            instances,
-                            light,
-                            axis,
-                            centre,
-                        },
-                    )
-                }
-                VariableKind::LightAim { max_tilt } => {
-                    let aimed = |k: &LightKind| {
-                        matches!(k, LightKind::Spot { .. } | LightKind::Goniometric { .. })
-                    };
-                    let light = scene
-                        .light(&spec.id)
-                        .filter(|&l| aimed(&scene.lights[l].kind))
-                        .ok_or_else(|| {
-                            err(format!(
-                                "no spot or luminaire named '{}' in the scene, expected a light with an aim (a point light sends the same light every way; give it a file with --luminaire or <luminaire> first)",
-                                spec.id
-                            ))
-                            .with_hint(known_names(
-                                scene
-                                    .lights
-                                    .iter()
-                                    .filter(|l| aimed(&l.kind))
-                                    .map(|l| l.name.as_str()),
-                                "spots and luminaires",
-                            ))
-                        })?;
-                    let kind = &scene.lights[light].kind;
-                    let axis = kind.direction().unwrap_or(-scene.up);
-                    let frame = match kind {
-                        LightKind::Goniometric { frame, .. } => *frame,
-                        _ => Mat3::IDENTITY,
-                    };
-                    let cone = Hemisphere::cone(axis.as_dvec3(), max_tilt.to_radians());
-                    (Domain::Hemisphere(cone), Target::Aim { light, axis, frame })
-                }
-                VariableKind::LightPower { min, max } => {
-                    let dimmed = power::bind(scene, &spec.id, &err)?;
-                    let component = 1 + targets
-                        .iter()
-                        .filter(|t| matches!(t, Target::Power { .. }))
-                        .count();
-                    (
-                        Domain::Segment {
-                            min: *min,
-                            max: *max,
-                        },
-                        Target::Power { dimmed, component },
-                    )
-                }
-                VariableKind::Color {
-                    hue,
-                    saturation,
-                    min,
-                    max,
-                } => {
-                    let materials = colour_materials(scene, &spec.id).ok_or_else(|| {
-                        err(format!(
-                            "no material or surface named '{}' in the scene, expected the material (or the surface) whose colour varies",
-                            spec.id
-                        ))
-                        .with_hint(known_names(scene.materials.iter().map(|m| m.name.as_str()), "materials"))
-                    })?;
-                    // The problem states the colour (hue, saturation, free value); a
-                    // base-colour texture would multiply it into another one, and the
-                    // variable would no longer be the colour the file names.
-                    for &m in &materials {
-                        let material = &mut scene.materials[m];
-                        if material.texture.take().is_some() {
-                            warnings.push(err(format!(
-                                "material '{}' has a base-colour texture; the colour variable '{}' replaces it by the uniform colour HSV({hue}°, {saturation}, V)",
-                                material.name, spec.id
-                            )));
-                        }
-                    }
-                    (
-                        Domain::Segment {
-                            min: *min,
-                            max: *max,
-                        },
-                        Target::Colour {
-                            materials,
-                            hue: *hue,
-                            saturation: *saturation,
-                        },
-                    )
-                }
-            };
+            let (domain, target) = bind(problem, spec, scene, &targets, &err, &mut warnings)?;
+            if let VariableKind::SunTime { from, to, step, .. } = spec.kind {
+                steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
+            }
             initial.extend(initial_coords(scene, &domain, &target));
             if let Target::Power { dimmed, .. } = &target
                 && let Some(first) = targets
@@ -639,126 +386,6 @@ impl Binding {
         out
     }
 
-    /// The world value of every variable at `config`.
-    pub fn values(&self, config: &Configuration) -> Vec<VariableValue> {
-        self.space
-            .variables()
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                let x = self.space.slice(config, i);
-                match (&v.domain, &self.targets[i]) {
-                    (Domain::Parallelogram(r), Target::Move(m)) => {
-                        let point = r.point(x[0], x[1]);
-                        VariableValue::Position {
-                            point,
-                            anchor: m.anchor + (point - m.reference),
-                        }
-                    }
-                    (Domain::Hemisphere(h), _) => VariableValue::Direction(h.direction(x[0], x[1])),
-                    (Domain::Segment { min, max }, Target::Power { .. }) => {
-                        VariableValue::Power(min + x[0] * (max - min))
-                    }
-                    (Domain::Segment { min, max }, Target::Scale { .. }) => {
-                        VariableValue::Scale(min + x[0] * (max - min))
-                    }
-                    (
-                        Domain::Segment { min, max } | Domain::Turn { min, max },
-                        Target::Rotate { .. },
-                    ) => VariableValue::Angle(min + x[0] * (max - min)),
-                    (Domain::Segment { min, max }, target @ Target::SunTime { .. }) => {
-                        let minutes = min + x[0] * (max - min);
-                        let direction = sun_at(target, minutes).map_or(DVec3::ZERO, |(d, _)| d);
-                        VariableValue::Time { minutes, direction }
-                    }
-                    (Domain::Segment { min, max } | Domain::Turn { min, max }, target) => {
-                        let value = min + x[0] * (max - min);
-                        let rgb = match target {
-                            Target::Colour {
-                                hue, saturation, ..
-                            } => hsv_to_rgb(*hue, *saturation, value),
-                            _ => [value; 3],
-                        };
-                        VariableValue::Colour { value, rgb }
-                    }
-                    (Domain::Parallelogram(r), _) => {
-                        let point = r.point(x[0], x[1]);
-                        VariableValue::Position {
-                            point,
-                            anchor: point,
-                        }
-                    }
-                }
-            })
-            .collect()
-    }
-
-    /// The configuration whose variables have the world values `values` (as
-    /// [`Binding::values`] gives them and the outputs write them: the placement point,
-    /// the travel direction, the colour value) — the one way back from a result to the
-    /// scene, for `--resume` and `--config`. The configuration is that of the values'
-    /// cell (its reference point, where every evaluated configuration lies), so the
-    /// rounding of world values written as decimals is undone. Values may stray from
-    /// their domain by rounding (they are clamped); a value farther than 10⁻⁶ of the
-    /// domain outside it is an error naming the variable.
-    pub fn configuration(&self, values: &[VariableValue]) -> Result<Configuration, String> {
-        const SLACK: f64 = 1e-6;
-        if values.len() != self.space.variables().len() {
-            return Err(format!(
-                "{} values for {} variables",
-                values.len(),
-                self.space.variables().len()
-            ));
-        }
-        let mut coords = Vec::with_capacity(self.space.dimensions());
-        for (var, value) in self.space.variables().iter().zip(values) {
-            let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
-            let outside = || format!("the value of '{}' lies outside its domain", var.id);
-            match (&var.domain, value) {
-                (Domain::Parallelogram(r), VariableValue::Position { point, .. }) => {
-                    let (s, t) = r.coords(*point);
-                    if !(inside(s) && inside(t)) {
-                        return Err(outside());
-                    }
-                    coords.extend([s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]);
-                }
-                (Domain::Hemisphere(h), VariableValue::Direction(d)) => {
-                    let (phi, theta) = h.coords(*d);
-                    coords.extend([phi, theta]);
-                }
-                (
-                    Domain::Segment { min, max } | Domain::Turn { min, max },
-                    VariableValue::Colour { value, .. }
-                    | VariableValue::Power(value)
-                    | VariableValue::Scale(value)
-                    | VariableValue::Angle(value)
-                    | VariableValue::Time { minutes: value, .. },
-                ) => {
-                    let x = if max > min {
-                        (value - min) / (max - min)
-                    } else {
-                        0.0
-                    };
-                    let x = match var.domain {
-                        Domain::Turn { .. } => x.rem_euclid(1.0),
-                        _ => x,
-                    };
-                    if !inside(x) {
-                        return Err(outside());
-                    }
-                    coords.push(x.clamp(0.0, 1.0));
-                }
-                _ => {
-                    return Err(format!(
-                        "the value of '{}' is not of its variable's kind",
-                        var.id
-                    ));
-                }
-            }
-        }
-        Ok(self.space.snap(&Configuration { coords }))
-    }
-
     /// Why `config` is not worth tracing, if it is not: it puts an object or light
     /// outside the scene ([`Binding::leaves_scene`]), or two interchangeable lamps in
     /// one cell of their rectangle, which no design means (two fixtures in one spot)
@@ -827,9 +454,105 @@ impl Binding {
     fn apply_parts(&self, scene: &mut Scene, config: &Configuration, dim: bool) -> bool {
         let mut moved = false;
         let values = self.values(config);
-        // An object sized or turned is scaled and turned about its authored centre
-        // (the two commute: the scale is uniform and both are about the box's centre),
-        // then moved.
+        let local = self.local_transforms(&values);
+        let scale_of = |i: InstanceId| {
+            local
+                .iter()
+                .find(|(j, _)| *j == i)
+                .map_or(Mat4::IDENTITY, |&(_, s)| s)
+        };
+        let placed = |i: InstanceId| {
+            self.targets
+                .iter()
+                .any(|t| matches!(t, Target::Move(m) if m.instances.iter().any(|&(j, _)| j == i)))
+        };
+        for (value, target) in values.into_iter().zip(&self.targets) {
+            match (value, target) {
+                (
+                    VariableValue::Angle(a),
+                    Target::Rotate {
+                        light: Some((light, authored)),
+                        axis,
+                        ..
+                    },
+                ) => rotation::turn_light(scene, *light, authored, *axis, a),
+                (
+                    VariableValue::Scale(_) | VariableValue::Angle(_),
+                    Target::Scale { instances, .. } | Target::Rotate { instances, .. },
+                ) => {
+                    for &(inst, original) in instances.iter().filter(|&&(i, _)| !placed(i)) {
+                        let t = scale_of(inst) * original;
+                        let slot = &mut scene.instances[inst].transform;
+                        if *slot != t {
+                            *slot = t;
+                            moved = true;
+                        }
+                    }
+                }
+                (VariableValue::Position { point, .. }, Target::Move(m)) => {
+                    let delta = (point - m.reference).as_vec3();
+                    let shift = Mat4::from_translation(delta);
+                    for &(inst, original) in &m.instances {
+                        let t = shift * scale_of(inst) * original;
+                        let slot = &mut scene.instances[inst].transform;
+                        if *slot != t {
+                            *slot = t;
+                            moved = true;
+                        }
+                    }
+                    for &(light, original) in &m.lights {
+                        if let Some(position) = scene.lights[light].kind.position_mut() {
+                            *position = original + delta;
+                        }
+                    }
+                }
+                (VariableValue::Time { minutes, .. }, Target::SunTime(clock)) => {
+                    if let (
+                        Ok((d, lux)),
+                        LightKind::Directional {
+                            direction,
+                            illuminance,
+                        },
+                    ) = (clock.at(minutes), &mut scene.lights[clock.light].kind)
+                    {
+                        *direction = d.as_vec3();
+                        *illuminance = Vec3::splat(lux as f32);
+                    }
+                }
+                (VariableValue::Direction(d), Target::Sun { light }) => {
+                    if let LightKind::Directional { direction, .. } = &mut scene.lights[*light].kind
+                    {
+                        *direction = d.as_vec3().normalize();
+                    }
+                }
+                (
+                    VariableValue::Direction(d),
+                    Target::Aim {
+                        light,
+                        axis,
+                        frame: authored,
+                    },
+                ) => aim::apply(scene, *light, *axis, authored, d),
+                (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
+                    for &m in materials {
+                        scene.materials[m].diffuse =
+                            Vec3::new(rgb[0] as f32, rgb[1] as f32, rgb[2] as f32);
+                    }
+                }
+                (VariableValue::Power(level), Target::Power { dimmed, .. }) => {
+                    power::apply(scene, dimmed, if dim { level } else { 1.0 });
+                }
+                _ => {}
+            }
+        }
+        moved
+    }
+
+    /// The transform each sized or turned instance gets at `values` before a placement
+    /// moves it: an object sized or turned is scaled and turned about its authored
+    /// centre (the two commute: the scale is uniform and both are about the box's
+    /// centre), then moved.
+    fn local_transforms(&self, values: &[VariableValue]) -> Vec<(InstanceId, Mat4)> {
         let mut local: Vec<(InstanceId, Mat4)> = Vec::new();
         for (value, target) in values.iter().zip(&self.targets) {
             let (about, instances) = match (value, target) {
@@ -862,122 +585,53 @@ impl Binding {
                 }
             }
         }
-        let scale_of = |i: InstanceId| {
-            local
-                .iter()
-                .find(|(j, _)| *j == i)
-                .map_or(Mat4::IDENTITY, |&(_, s)| s)
-        };
-        let placed = |i: InstanceId| {
-            self.targets
-                .iter()
-                .any(|t| matches!(t, Target::Move(m) if m.instances.iter().any(|&(j, _)| j == i)))
-        };
-        for (value, target) in values.into_iter().zip(&self.targets) {
-            match (value, target) {
-                (
-                    VariableValue::Angle(a),
-                    Target::Rotate {
-                        light: Some((light, authored)),
-                        axis,
-                        ..
-                    },
-                ) => {
-                    // A light turns about an axis through itself: its aim and frame turn.
-                    let turn = Mat3::from_axis_angle(*axis, a.to_radians() as f32);
-                    let up = scene.up;
-                    match (&mut scene.lights[*light].kind, authored) {
-                        (
-                            LightKind::Spot { direction, .. },
-                            LightKind::Spot { direction: d0, .. },
-                        ) => *direction = turn * *d0,
-                        (kind, LightKind::Goniometric { frame: f0, .. }) => {
-                            kind.set_frame(turn * *f0, up);
-                        }
-                        _ => {}
-                    }
-                }
-                (
-                    VariableValue::Scale(_) | VariableValue::Angle(_),
-                    Target::Scale { instances, .. } | Target::Rotate { instances, .. },
-                ) => {
-                    for &(inst, original) in instances.iter().filter(|&&(i, _)| !placed(i)) {
-                        let t = scale_of(inst) * original;
-                        let slot = &mut scene.instances[inst].transform;
-                        if *slot != t {
-                            *slot = t;
-                            moved = true;
-                        }
-                    }
-                }
-                (VariableValue::Position { point, .. }, Target::Move(m)) => {
-                    let delta = (point - m.reference).as_vec3();
-                    let shift = Mat4::from_translation(delta);
-                    for &(inst, original) in &m.instances {
-                        let t = shift * scale_of(inst) * original;
-                        let slot = &mut scene.instances[inst].transform;
-                        if *slot != t {
-                            *slot = t;
-                            moved = true;
-                        }
-                    }
-                    for &(light, original) in &m.lights {
-                        if let Some(position) = scene.lights[light].kind.position_mut() {
-                            *position = original + delta;
-                        }
-                    }
-                }
-                (VariableValue::Time { minutes, .. }, target @ Target::SunTime { light, .. }) => {
-                    if let (
-                        Ok((d, lux)),
-                        LightKind::Directional {
-                            direction,
-                            illuminance,
-                        },
-                    ) = (sun_at(target, minutes), &mut scene.lights[*light].kind)
-                    {
-                        *direction = d.as_vec3();
-                        *illuminance = Vec3::splat(lux as f32);
-                    }
-                }
-                (VariableValue::Direction(d), Target::Sun { light }) => {
-                    if let LightKind::Directional { direction, .. } = &mut scene.lights[*light].kind
-                    {
-                        *direction = d.as_vec3().normalize();
-                    }
-                }
-                (
-                    VariableValue::Direction(d),
-                    Target::Aim {
-                        light,
-                        axis,
-                        frame: authored,
-                    },
-                ) => {
-                    // From the authored aim and frame each time, so turns never add up.
-                    let turn = Quat::from_rotation_arc(*axis, d.as_vec3().normalize());
-                    let up = scene.up;
-                    match &mut scene.lights[*light].kind {
-                        LightKind::Spot { direction, .. } => *direction = turn * *axis,
-                        kind => kind.set_frame(Mat3::from_quat(turn) * *authored, up),
-                    }
-                }
-                (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
-                    for &m in materials {
-                        scene.materials[m].diffuse =
-                            Vec3::new(rgb[0] as f32, rgb[1] as f32, rgb[2] as f32);
-                    }
-                }
-                (VariableValue::Power(level), Target::Power { dimmed, .. }) => {
-                    power::apply(scene, dimmed, if dim { level } else { 1.0 });
-                }
-                _ => {}
-            }
-        }
-        moved
+        local
     }
 }
 
+/// The domain and target of variable `spec`, from the binder of its kind; `targets`
+/// are the earlier variables'.
+fn bind(
+    problem: &Problem,
+    spec: &VariableSpec,
+    scene: &mut Scene,
+    targets: &[Target],
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    match &spec.kind {
+        VariableKind::ObjectInSurface(p) => placement::object(scene, spec, p, err, warnings),
+        VariableKind::HoleInSurface(p) => hole::placement(scene, spec, p, err, warnings),
+        VariableKind::LightInSurface(p) => placement::light(scene, spec, p, err, warnings),
+        VariableKind::DirectionalLight => sun::direction(scene, spec, err),
+        VariableKind::SunTime { from, to, step, .. } => {
+            sun::time(problem, spec, scene, *from, *to, *step, err)
+        }
+        VariableKind::HoleSize { min, max } => hole::size(scene, spec, *min, *max, err),
+        VariableKind::ObjectRotation { min, max } => {
+            rotation::variable(problem, scene, spec, *min, *max, err)
+        }
+        VariableKind::LightAim { max_tilt } => aim::variable(scene, spec, *max_tilt, err),
+        VariableKind::LightPower { min, max } => {
+            power::variable(scene, spec, *min, *max, targets, err)
+        }
+        VariableKind::Color {
+            hue,
+            saturation,
+            min,
+            max,
+        } => colour::variable(
+            scene,
+            spec,
+            (*hue, *saturation),
+            (*min, *max),
+            err,
+            warnings,
+        ),
+    }
+}
+
+/// The surface `name` a variable changes, or an error listing the scene's surfaces.
 fn find_surface(
     scene: &Scene,
     name: &str,
@@ -1007,102 +661,6 @@ fn surface_materials(scene: &Scene, s: SurfaceId) -> Vec<MaterialId> {
         }
     }
     out
-}
-
-/// The materials a colour variable named `id` changes: those named `id`, else those of
-/// the surface `id`; `None` when there are none.
-fn colour_materials(scene: &Scene, id: &str) -> Option<Vec<MaterialId>> {
-    let mut materials: Vec<MaterialId> = scene
-        .materials
-        .iter()
-        .enumerate()
-        .filter(|(_, m)| m.name == id)
-        .map(|(i, _)| MaterialId::from_index(i))
-        .collect();
-    if materials.is_empty() {
-        materials = scene
-            .surface(id)
-            .map(|s| surface_materials(scene, s))
-            .unwrap_or_default();
-    }
-    (!materials.is_empty()).then_some(materials)
-}
-
-/// The domain and target of a placement variable moving the instances of `surface` or
-/// the light `light`, with a warning when ILPSolver's rule would search it away from
-/// where it was authored.
-fn placed(
-    scene: &Scene,
-    spec: &VariableSpec,
-    p: &PlacementSpec,
-    surface: Option<SurfaceId>,
-    light: Option<LightId>,
-    err: &dyn Fn(String) -> Diagnostic,
-    warnings: &mut Vec<Diagnostic>,
-) -> Result<(Domain, Target), Diagnostic> {
-    let rect = find_parallelogram(scene, &p.surface, p.vertices, err)?;
-    let instances: Vec<(InstanceId, Mat4)> = surface
-        .map(|s| {
-            scene.surfaces[s]
-                .instances
-                .iter()
-                .map(|&i| (i, scene.instances[i].transform))
-                .collect()
-        })
-        .unwrap_or_default();
-    let lights: Vec<(LightId, Vec3)> = light
-        .and_then(|l| scene.lights[l].kind.position().map(|p| (l, p)))
-        .into_iter()
-        .collect();
-    let ids: Vec<InstanceId> = instances.iter().map(|&(i, _)| i).collect();
-    let mut bounds = instance_bounds(scene, &ids);
-    for &(_, pos) in &lights {
-        let b = Bounds::point(pos.as_dvec3());
-        bounds = Some(bounds.map_or(b, |o| o.union(b)));
-    }
-    let bounds = bounds.ok_or_else(|| err(format!("'{}' has no geometry to place", spec.id)))?;
-    let anchor = match lights.first() {
-        Some(&(_, pos)) => pos.as_dvec3(),
-        None => onto_plane(&rect, bounds.centre()),
-    };
-    let reference = match p.anchor {
-        Anchor::VertexA => {
-            let offset = anchor - rect.a;
-            if offset.length() > 1e-3 * rect.diagonal().max(1.0) {
-                warnings.push(
-                    err(format!(
-                        "'{}' is authored at ({:.3}, {:.3}, {:.3}), {:.3} m from vertex A of '{}': by ILPSolver's rule it moves by P − A, so it is searched over that rectangle shifted by ({:.3}, {:.3}, {:.3}) m, and P is not where it is",
-                        spec.id,
-                        anchor.x,
-                        anchor.y,
-                        anchor.z,
-                        offset.length(),
-                        p.surface,
-                        offset.x,
-                        offset.y,
-                        offset.z
-                    ))
-                    .with_hint(format!(
-                        "add anchor=\"centre\" to <{}> to put {} itself on the rectangle; results give both P and its anchor",
-                        spec.kind.name(),
-                        if lights.is_empty() { "the object's centre" } else { "the light" }
-                    )),
-                );
-            }
-            rect.a
-        }
-        Anchor::Centre => anchor,
-    };
-    Ok((
-        Domain::Parallelogram(rect),
-        Target::Move(Moved {
-            instances,
-            lights,
-            reference,
-            anchor,
-            bounds,
-        }),
-    ))
 }
 
 /// The box everything may occupy: the scene's instances no variable moves, the lights
@@ -1136,107 +694,6 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
         }
     }
     out
-}
-
-/// Puts the sun of `sunTime` `spec` where it stands at the middle of its range (the
-/// directional light `spec.id`, added to a scene without any): what the problem's scene
-/// shows before a configuration sets the time.
-pub(crate) fn place_sun_time(
-    problem: &Problem,
-    spec: &VariableSpec,
-    scene: &mut Scene,
-) -> Result<(), String> {
-    sun_time_target(problem, spec, scene).map(|_| ())
-}
-
-/// [`place_sun_time`], returning the variable's target.
-fn sun_time_target(
-    problem: &Problem,
-    spec: &VariableSpec,
-    scene: &mut Scene,
-) -> Result<Target, String> {
-    let VariableKind::SunTime { date, from, to, .. } = &spec.kind else {
-        return Err(format!("'{}' is not a sunTime", spec.id));
-    };
-    let site = problem
-        .daylight
-        .site
-        .ok_or("<sunTime> needs the problem's <site>")?;
-    let compass = site.compass(scene.up).map_err(|e| e.to_string())?;
-    let light = sun_time_light(scene, &spec.id)?;
-    let target = Target::SunTime {
-        light,
-        site,
-        date: *date,
-        compass,
-        lux: problem.daylight.sun.and_then(|s| s.illuminance),
-    };
-    let (d, lux) = sun_at(&target, (from + to) / 2.0)?;
-    scene.lights[light].kind = LightKind::Directional {
-        direction: d.as_vec3(),
-        illuminance: Vec3::splat(lux as f32),
-    };
-    Ok(target)
-}
-
-/// The directional light a `sunTime` of id `id` sets: the one of that name, else one of
-/// that name added to a scene without any.
-fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, String> {
-    let directional = |k: &LightKind| matches!(k, LightKind::Directional { .. });
-    if let Some(l) = scene.light(id) {
-        return match directional(&scene.lights[l].kind) {
-            true => Ok(l),
-            false => Err(format!(
-                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
-            )),
-        };
-    }
-    let suns: Vec<&str> = scene
-        .lights
-        .iter()
-        .filter(|l| directional(&l.kind))
-        .map(|l| l.name.as_str())
-        .collect();
-    if !suns.is_empty() {
-        return Err(format!(
-            "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
-            suns.join(", ")
-        ));
-    }
-    scene.lights.push(invlight_scene::Light {
-        name: id.into(),
-        kind: LightKind::Directional {
-            direction: -scene.up,
-            illuminance: Vec3::ZERO,
-        },
-    });
-    Ok(LightId::from_index(scene.lights.len() - 1))
-}
-
-/// Where a `sunTime` target's sun stands `minutes` after local midnight (to the second,
-/// held within the day): the direction its light travels and its direct normal
-/// illuminance, lx (the problem's `<sun illuminance>`, else IES RP-21's clear-sky beam;
-/// 0 below the horizon).
-fn sun_at(target: &Target, minutes: f64) -> Result<(DVec3, f64), String> {
-    let Target::SunTime {
-        site,
-        date,
-        compass,
-        lux,
-        ..
-    } = target
-    else {
-        return Err("not a sunTime".into());
-    };
-    let time = TimeOfDay::from_minutes(minutes);
-    let sun =
-        SunPosition::new(site, date, &time, &SunOptions::default()).map_err(|e| e.to_string())?;
-    let beam = match (sun.is_up(), lux) {
-        (false, _) => 0.0,
-        (true, Some(l)) => *l,
-        (true, None) => sun.clear_sky_direct_normal(),
-    };
-    Ok((sun.travel(compass).as_dvec3(), beam))
 }
 
 /// The normalised coordinates of the scene as authored.

@@ -8,9 +8,11 @@
 //! projected on the rectangle's plane) is what results report as the object's place,
 //! beside P, and with `anchor="centre"` what P stands for.
 
-use crate::space::Parallelogram;
+use super::{Moved, Target, find_surface, surface_materials};
+use crate::problem::{Anchor, PlacementSpec, VariableSpec};
+use crate::space::{Domain, Parallelogram};
 use glam::{DVec3, Mat4, Vec3};
-use invlight_scene::{Diagnostic, InstanceId, Scene, SurfaceId};
+use invlight_scene::{Diagnostic, InstanceId, LightId, LightKind, Scene, SurfaceId, known_names};
 
 /// An axis-aligned box in world space, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -149,4 +151,134 @@ pub fn find_parallelogram(
     let v = |k: usize| vertices[idx[k]].as_dvec3();
     Parallelogram::from_corners(v(0), [v(1), v(2), v(3)])
         .map_err(|e| err(format!("placement '{name}' is not a planar quad: {e}")))
+}
+
+/// An `objectInSurface`: the instances of the surface `spec.id` placed on `p`.
+pub(super) fn object(
+    scene: &Scene,
+    spec: &VariableSpec,
+    p: &PlacementSpec,
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    let s = find_surface(scene, &spec.id, spec, err)?;
+    placed(scene, spec, p, Some(s), None, err, warnings)
+}
+
+/// A `lightInSurface`: the point, spot or goniometric light `spec.id`, else the
+/// emissive object of that name (with a warning when it emits nothing), placed on `p`.
+pub(super) fn light(
+    scene: &Scene,
+    spec: &VariableSpec,
+    p: &PlacementSpec,
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    Ok(match scene.light(&spec.id) {
+        Some(l) => {
+            if matches!(scene.lights[l].kind, LightKind::Directional { .. }) {
+                return Err(err(format!(
+                    "'{}' is a directional light, expected a point, spot or goniometric light or an emissive object (use <directionalLight> for a sun)",
+                    spec.id
+                )));
+            }
+            placed(scene, spec, p, None, Some(l), err, warnings)?
+        }
+        None => {
+            let s = scene.surface(&spec.id).ok_or_else(|| {
+                err(format!(
+                    "no light or surface named '{}' in the scene, expected a point, spot or goniometric light or an emissive object",
+                    spec.id
+                ))
+                .with_hint(known_names(scene.lights.iter().map(|l| l.name.as_str()), "lights"))
+            })?;
+            if !surface_materials(scene, s)
+                .iter()
+                .any(|&m| scene.materials[m].is_emissive())
+            {
+                warnings.push(err(format!(
+                    "'{}' emits no light; moving it only moves its shadow",
+                    spec.id
+                )));
+            }
+            placed(scene, spec, p, Some(s), None, err, warnings)?
+        }
+    })
+}
+
+/// The domain and target of a placement variable moving the instances of `surface` or
+/// the light `light`, with a warning when ILPSolver's rule would search it away from
+/// where it was authored.
+pub(super) fn placed(
+    scene: &Scene,
+    spec: &VariableSpec,
+    p: &PlacementSpec,
+    surface: Option<SurfaceId>,
+    light: Option<LightId>,
+    err: &dyn Fn(String) -> Diagnostic,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<(Domain, Target), Diagnostic> {
+    let rect = find_parallelogram(scene, &p.surface, p.vertices, err)?;
+    let instances: Vec<(InstanceId, Mat4)> = surface
+        .map(|s| {
+            scene.surfaces[s]
+                .instances
+                .iter()
+                .map(|&i| (i, scene.instances[i].transform))
+                .collect()
+        })
+        .unwrap_or_default();
+    let lights: Vec<(LightId, Vec3)> = light
+        .and_then(|l| scene.lights[l].kind.position().map(|p| (l, p)))
+        .into_iter()
+        .collect();
+    let ids: Vec<InstanceId> = instances.iter().map(|&(i, _)| i).collect();
+    let mut bounds = instance_bounds(scene, &ids);
+    for &(_, pos) in &lights {
+        let b = Bounds::point(pos.as_dvec3());
+        bounds = Some(bounds.map_or(b, |o| o.union(b)));
+    }
+    let bounds = bounds.ok_or_else(|| err(format!("'{}' has no geometry to place", spec.id)))?;
+    let anchor = match lights.first() {
+        Some(&(_, pos)) => pos.as_dvec3(),
+        None => onto_plane(&rect, bounds.centre()),
+    };
+    let reference = match p.anchor {
+        Anchor::VertexA => {
+            let offset = anchor - rect.a;
+            if offset.length() > 1e-3 * rect.diagonal().max(1.0) {
+                warnings.push(
+                    err(format!(
+                        "'{}' is authored at ({:.3}, {:.3}, {:.3}), {:.3} m from vertex A of '{}': by ILPSolver's rule it moves by P − A, so it is searched over that rectangle shifted by ({:.3}, {:.3}, {:.3}) m, and P is not where it is",
+                        spec.id,
+                        anchor.x,
+                        anchor.y,
+                        anchor.z,
+                        offset.length(),
+                        p.surface,
+                        offset.x,
+                        offset.y,
+                        offset.z
+                    ))
+                    .with_hint(format!(
+                        "add anchor=\"centre\" to <{}> to put {} itself on the rectangle; results give both P and its anchor",
+                        spec.kind.name(),
+                        if lights.is_empty() { "the object's centre" } else { "the light" }
+                    )),
+                );
+            }
+            rect.a
+        }
+        Anchor::Centre => anchor,
+    };
+    Ok((
+        Domain::Parallelogram(rect),
+        Target::Move(Moved {
+            instances,
+            lights,
+            reference,
+            anchor,
+            bounds,
+        }),
+    ))
 }

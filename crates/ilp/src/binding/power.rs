@@ -5,6 +5,9 @@
 //! configuration (`render`, `measure` and `map --config`), which must see the lamps as
 //! dimmed.
 
+use super::Target;
+use crate::problem::VariableSpec;
+use crate::space::Domain;
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Rgb, Scene, SurfaceId, known_names,
 };
@@ -127,4 +130,26 @@ pub fn apply(scene: &mut Scene, dimmed: &Dimmed, level: f64) {
 /// the list but [`invlight_scene::Scene::sky`], daylight too).
 pub fn is_daylight(kind: &LightKind) -> bool {
     matches!(kind, LightKind::Directional { .. })
+}
+
+/// A `lightPower` of `spec.id` from level `min` to `max`: its light kept apart as the
+/// next component after those of `targets`, the earlier variables' (component 0 is the
+/// undimmed lights').
+pub(super) fn variable(
+    scene: &mut Scene,
+    spec: &VariableSpec,
+    min: f64,
+    max: f64,
+    targets: &[Target],
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<(Domain, Target), Diagnostic> {
+    let dimmed = bind(scene, &spec.id, err)?;
+    let component = 1 + targets
+        .iter()
+        .filter(|t| matches!(t, Target::Power { .. }))
+        .count();
+    Ok((
+        Domain::Segment { min, max },
+        Target::Power { dimmed, component },
+    ))
 }

@@ -1,0 +1,249 @@
+//! What a problem asks for, in `<objectives>`: one goal (thesis §4.2.1's
+//! `maximizeRadiance`, `minimizeRadiance`, `targetRadiance`; invlight's
+//! `maximizeUniformity`, `minimizePower`, `maximizeDaylightFactor`) and any number of
+//! `<constraint>`s, each a surface and one bound.
+
+use super::{Node, Reader};
+use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
+use invlight_scene::Diagnostic;
+
+const GOALS: &[&str] = &[
+    "maximizeRadiance",
+    "minimizeRadiance",
+    "targetRadiance",
+    "maximizeUniformity",
+    "minimizePower",
+    "maximizeDaylightFactor",
+];
+
+impl Reader<'_, '_> {
+    /// The goal of `objectives`, with its line, and its constraints in file order.
+    pub(super) fn intentions(
+        &self,
+        objectives: Node,
+    ) -> Result<(Goal, u32, Vec<Constraint>), Diagnostic> {
+        let mut goal: Option<(Goal, u32)> = None;
+        let mut constraints = Vec::new();
+        for o in self.elements(objectives) {
+            let name = o.tag_name().name();
+            if name == "constraint" {
+                let c = self.constraint(o)?;
+                if let Some(first) = constraints
+                    .iter()
+                    .find(|d: &&Constraint| d.label() == c.label())
+                {
+                    return Err(self
+                        .error(
+                            o,
+                            format!(
+                                "a second {} constraint on '{}', expected one (the first is on line {})",
+                                c.bound.attribute(),
+                                c.surface.name,
+                                first.line
+                            ),
+                        )
+                        .with_hint("the stricter of two bounds of one kind is the one that holds"));
+                }
+                constraints.push(c);
+                continue;
+            }
+            let Some(parsed) = self.goal(o)? else {
+                self.warn(
+                    o,
+                    format!(
+                        "unknown objective <{name}> ignored (expected one of: {}, or <constraint>)",
+                        GOALS.join(", ")
+                    ),
+                );
+                continue;
+            };
+            if let Some((first, line)) = &goal {
+                return Err(self
+                    .error(
+                        o,
+                        format!(
+                            "a second goal <{name}>, expected one (the first is <{}> on line {line})",
+                            first.element()
+                        ),
+                    )
+                    .with_hint("state other wishes as <constraint> elements"));
+            }
+            goal = Some((parsed, self.line(o)));
+        }
+        let (goal, goal_line) = goal.ok_or_else(|| {
+            self.error(
+                objectives,
+                format!(
+                    "no goal in <objectives>, expected one of: {}",
+                    GOALS.join(", ")
+                ),
+            )
+        })?;
+        Ok((goal, goal_line, constraints))
+    }
+
+    /// A surface reference: `surface` and `side`.
+    fn surface_ref(&self, node: Node) -> Result<SurfaceRef, Diagnostic> {
+        let side = match node.attribute("side").map(str::trim) {
+            None => Side::Both,
+            Some(s) => Side::parse(s).ok_or_else(|| {
+                self.error(
+                    node,
+                    format!(
+                        "'side' of <{}> is '{s}', expected front, back or both",
+                        node.tag_name().name()
+                    ),
+                )
+            })?,
+        };
+        Ok(SurfaceRef {
+            name: self.required(node, "surface")?,
+            side,
+        })
+    }
+
+    /// `grid`: `auto` (EN 12464-1) or a spacing in metres.
+    fn grid(&self, node: Node) -> Result<Grid, Diagnostic> {
+        match node.attribute("grid").map(str::trim) {
+            None | Some("auto") => Ok(Grid::Auto),
+            Some(_) => match self.real(node, "grid", "auto or a spacing in metres")? {
+                Some(m) if m > 0.0 => Ok(Grid::Spacing(m)),
+                _ => Err(self.error(
+                    node,
+                    format!(
+                        "'grid' of <{}> is not positive, expected auto or a spacing in metres",
+                        node.tag_name().name()
+                    ),
+                )),
+            },
+        }
+    }
+
+    /// A positive illuminance attribute.
+    fn lux(&self, node: Node, attr: &str) -> Result<Option<f64>, Diagnostic> {
+        match self.real(node, attr, "an illuminance (lx)")? {
+            Some(x) if x <= 0.0 => Err(self.error(
+                node,
+                format!(
+                    "'{attr}' of <{}> is {x}, expected a positive illuminance (lx)",
+                    node.tag_name().name()
+                ),
+            )),
+            x => Ok(x),
+        }
+    }
+
+    /// One of the goal elements, or `None` for another element.
+    fn goal(&self, o: Node) -> Result<Option<Goal>, Diagnostic> {
+        let name = o.tag_name().name();
+        let goal = match name {
+            "maximizeRadiance" => {
+                self.check_attributes(o, &["surface", "side", "maxRadiosity"]);
+                let cap = self.lux(o, "maxRadiosity").map_err(|e| {
+                    e.with_hint("every lit configuration would exceed a cap of zero or less; leave the attribute out for no cap")
+                })?;
+                Goal::Maximize {
+                    surface: self.surface_ref(o)?,
+                    cap,
+                }
+            }
+            "minimizeRadiance" => {
+                self.check_attributes(o, &["surface", "side"]);
+                Goal::Minimize {
+                    surface: self.surface_ref(o)?,
+                }
+            }
+            "targetRadiance" => {
+                self.check_attributes(o, &["surface", "side", "lux"]);
+                let lux = self.lux(o, "lux")?.ok_or_else(|| {
+                    self.error(o, "<targetRadiance> needs 'lux', the illuminance to reach")
+                })?;
+                Goal::Target {
+                    surface: self.surface_ref(o)?,
+                    lux,
+                }
+            }
+            "maximizeUniformity" => {
+                self.check_attributes(o, &["surface", "side", "grid"]);
+                Goal::MaximizeUniformity {
+                    surface: self.surface_ref(o)?,
+                    grid: self.grid(o)?,
+                }
+            }
+            "minimizePower" => {
+                self.check_attributes(o, &[]);
+                Goal::MinimizePower
+            }
+            "maximizeDaylightFactor" => {
+                self.check_attributes(o, &["surface", "side"]);
+                Goal::MaximizeDaylightFactor {
+                    surface: self.surface_ref(o)?,
+                }
+            }
+            _ => return Ok(None),
+        };
+        Ok(Some(goal))
+    }
+
+    /// A `<constraint>`: a surface and exactly one bound.
+    fn constraint(&self, c: Node) -> Result<Constraint, Diagnostic> {
+        const BOUNDS: [&str; 5] = [
+            "minLux",
+            "maxLux",
+            "minUniformity",
+            "minPointLux",
+            "minDaylightFactor",
+        ];
+        self.check_attributes(c, &[&["surface", "side", "grid"][..], &BOUNDS].concat());
+        let given: Vec<&str> = BOUNDS
+            .into_iter()
+            .filter(|b| c.attribute(*b).is_some())
+            .collect();
+        if given.len() != 1 {
+            return Err(self
+                .error(
+                    c,
+                    format!(
+                        "<constraint> has {}, expected exactly one of {}",
+                        if given.is_empty() {
+                            "no bound".to_string()
+                        } else {
+                            given.join(" and ")
+                        },
+                        BOUNDS.join(", ")
+                    ),
+                )
+                .with_hint("write one <constraint> element per bound"));
+        }
+        let bound = match given[0] {
+            "minLux" => Bound::MinLux(self.lux(c, "minLux")?.unwrap_or_default()),
+            "maxLux" => Bound::MaxLux(self.lux(c, "maxLux")?.unwrap_or_default()),
+            "minPointLux" => Bound::MinPointLux(
+                self.lux(c, "minPointLux")?.unwrap_or_default(),
+                self.grid(c)?,
+            ),
+            "minDaylightFactor" => Bound::MinDaylightFactor(
+                self.unit(c, "minDaylightFactor", 0.0, 100.0)?
+                    .unwrap_or_default(),
+            ),
+            _ => Bound::MinUniformity(
+                self.unit(c, "minUniformity", 0.0, 1.0)?.unwrap_or_default(),
+                self.grid(c)?,
+            ),
+        };
+        if c.attribute("grid").is_some() && bound.grid().is_none() {
+            self.warn(
+                c,
+                format!(
+                    "'grid' of a {} constraint ignored: it bounds the mean",
+                    bound.attribute()
+                ),
+            );
+        }
+        Ok(Constraint {
+            surface: self.surface_ref(c)?,
+            bound,
+            line: self.line(c),
+        })
+    }
+}

@@ -1,0 +1,324 @@
+//! The free variables of `<conditions meshSize>` (thesis §4.4, appendix D): placements
+//! on rectangles, a sun's direction, a hole's size, an object's turn, a lamp's aim and
+//! dimming, a material's colour; `<sunTime>` is read in `sun_time.rs`.
+
+use super::{Anchor, Node, PlacementSpec, Reader, VariableKind, VariableSpec};
+use invlight_scene::Diagnostic;
+use invlight_scene::daylight::SunSchedule;
+
+const VARIABLES: &[&str] = &[
+    "objectInSurface",
+    "lightInSurface",
+    "holeInSurface",
+    "holeSize",
+    "objectRotation",
+    "directionalLight",
+    "lightAim",
+    "color",
+    "lightPower",
+    "sunTime",
+];
+const VERTEX_ATTRS: [&str; 4] = [
+    "vertexAIndex",
+    "vertexBIndex",
+    "vertexCIndex",
+    "vertexDIndex",
+];
+
+/// What `<conditions>` holds: the cells per dimension, the variables in file order
+/// and the `<sunTime objective="mean">`, if any, with its line.
+pub(super) struct Conditions {
+    /// `meshSize` (default 20).
+    pub cells_per_dimension: Vec<u32>,
+    /// The free variables, in file order.
+    pub variables: Vec<VariableSpec>,
+    /// The sun's id, its instants and the element's line.
+    pub sun_schedule: Option<(String, SunSchedule, u32)>,
+}
+
+impl<'a, 'i> Reader<'a, 'i> {
+    /// `<conditions>` under `root`, exactly once, with at least one variable.
+    pub(super) fn conditions(&self, root: Node<'a, 'i>) -> Result<Conditions, Diagnostic> {
+        let conditions = self.only(root, "conditions")?.ok_or_else(|| {
+            self.error(
+                root,
+                "no <conditions>, expected one with the free variables",
+            )
+        })?;
+        self.check_attributes(conditions, &["meshSize"]);
+        let cells_per_dimension = match conditions.attribute("meshSize") {
+            None => vec![20],
+            Some(m) => parse_mesh(m).ok_or_else(|| {
+                self.error(
+                    conditions,
+                    format!(
+                        "meshSize is '{m}', expected cells per dimension: a positive integer or several joined by 'x' (\"20\", \"20x6\")"
+                    ),
+                )
+            })?,
+        };
+        let mut variables = Vec::new();
+        let mut sun_schedule = None;
+        for v in self.elements(conditions) {
+            if v.tag_name().name() == "sunTime" && v.attribute("objective").is_some() {
+                if sun_schedule.is_some() {
+                    return Err(
+                        self.error(v, "a second <sunTime objective=\"mean\">, expected one")
+                    );
+                }
+                let id = self.required(v, "id")?.to_string();
+                sun_schedule = Some((id, self.sun_schedule(v)?, self.line(v)));
+                continue;
+            }
+            if let Some(spec) = self.variable(v)? {
+                self.check_repeat(v, &variables, &spec)?;
+                variables.push(spec);
+            }
+        }
+        if variables.is_empty() {
+            return Err(self
+                .error(
+                    conditions,
+                    "no variables in <conditions>, expected at least one",
+                )
+                .with_hint(format!("variables are: {}", VARIABLES.join(", "))));
+        }
+        Ok(Conditions {
+            cells_per_dimension,
+            variables,
+            sun_schedule,
+        })
+    }
+
+    /// Refuses `spec` (of element `v`) if a variable of `variables` already has its id,
+    /// unless the two are parts of one thing. A light may be placed, dimmed and aimed:
+    /// one lightInSurface, one lightPower and one lightAim of the same id; a hole placed
+    /// and sized: one holeInSurface and one holeSize; any of them, or an
+    /// objectInSurface, turned by one objectRotation (a luminaire's turn and its aim are
+    /// one frame, so not with lightAim). Any other repeat is a mistake.
+    fn check_repeat(
+        &self,
+        v: Node,
+        variables: &[VariableSpec],
+        spec: &VariableSpec,
+    ) -> Result<(), Diagnostic> {
+        let turned = |w: &VariableSpec| matches!(w.kind, VariableKind::ObjectRotation { .. });
+        let aimed = |w: &VariableSpec| matches!(w.kind, VariableKind::LightAim { .. });
+        let light_part = |w: &VariableSpec| match w.kind {
+            VariableKind::LightInSurface(_) => Some((0, 0)),
+            VariableKind::LightPower { .. } => Some((0, 1)),
+            VariableKind::LightAim { .. } => Some((0, 2)),
+            VariableKind::HoleInSurface(_) => Some((1, 0)),
+            VariableKind::HoleSize { .. } => Some((1, 1)),
+            _ => None,
+        };
+        let group = |w: &VariableSpec| light_part(w).map(|(g, _)| g);
+        let allowed = variables
+            .iter()
+            .filter(|w: &&VariableSpec| w.id == spec.id)
+            .all(|w| {
+                let (a, b) = (w, &spec);
+                if turned(a) || turned(b) {
+                    let other = if turned(a) { b } else { a };
+                    !turned(other) && !aimed(other)
+                } else {
+                    light_part(a).is_some()
+                        && group(a) == group(b)
+                        && light_part(a) != light_part(b)
+                }
+            });
+        if !allowed {
+            return Err(self.error(
+                v,
+                format!(
+                    "a second variable with id '{}', expected distinct ids",
+                    spec.id
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn vertices(&self, v: Node) -> Result<[usize; 4], Diagnostic> {
+        let mut out = [0, 1, 2, 3];
+        for (k, attr) in VERTEX_ATTRS.iter().enumerate() {
+            if let Some(i) = self.number(v, attr, "a vertex index (0, 1, 2, …)")? {
+                out[k] = i;
+            }
+        }
+        Ok(out)
+    }
+
+    fn variable(&self, v: Node) -> Result<Option<VariableSpec>, Diagnostic> {
+        let name = v.tag_name().name();
+        let kind = match name {
+            "objectInSurface" | "lightInSurface" | "holeInSurface" => self.placement(v, name)?,
+            "directionalLight" => {
+                self.check_attributes(v, &["id"]);
+                VariableKind::DirectionalLight
+            }
+            "holeSize" => self.hole_size(v)?,
+            "sunTime" => self.sun_time(v)?,
+            "objectRotation" => self.object_rotation(v)?,
+            "lightAim" => self.light_aim(v)?,
+            "color" => self.colour(v)?,
+            "lightPower" => self.light_power(v)?,
+            other => {
+                self.warn(
+                    v,
+                    format!(
+                        "unknown variable <{other}> ignored (expected one of: {})",
+                        VARIABLES.join(", ")
+                    ),
+                );
+                return Ok(None);
+            }
+        };
+        Ok(Some(VariableSpec {
+            id: self.required(v, "id")?,
+            kind,
+            line: self.line(v),
+        }))
+    }
+
+    /// `<objectInSurface|lightInSurface|holeInSurface id surface anchor vertex…Index>`.
+    fn placement(&self, v: Node, name: &str) -> Result<VariableKind, Diagnostic> {
+        let mut known = vec!["id", "surface", "anchor"];
+        known.extend(VERTEX_ATTRS);
+        self.check_attributes(v, &known);
+        let anchor = match v.attribute("anchor").map(str::trim) {
+            None | Some("vertexA") => Anchor::VertexA,
+            Some("centre" | "center") => Anchor::Centre,
+            Some(other) => {
+                return Err(self.error(
+                    v,
+                    format!("'anchor' of <{name}> is '{other}', expected vertexA (P is where vertex A goes, ILPSolver's rule) or centre (P is where the object's own centre or the light goes)"),
+                ));
+            }
+        };
+        let spec = PlacementSpec {
+            surface: self.required(v, "surface")?,
+            vertices: self.vertices(v)?,
+            anchor,
+        };
+        Ok(match name {
+            "objectInSurface" => VariableKind::ObjectInSurface(spec),
+            "lightInSurface" => VariableKind::LightInSurface(spec),
+            _ => VariableKind::HoleInSurface(spec),
+        })
+    }
+
+    /// `<holeSize id minScale maxScale>`.
+    fn hole_size(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        self.check_attributes(v, &["id", "minScale", "maxScale"]);
+        let what = "a positive scale of the hole (1 is its authored size)";
+        let scale = |attr: &str, default: f64| -> Result<f64, Diagnostic> {
+            match self.real(v, attr, what)? {
+                Some(x) if x <= 0.0 => {
+                    Err(self.error(v, format!("'{attr}' of <holeSize> is {x}, expected {what}")))
+                }
+                x => Ok(x.unwrap_or(default)),
+            }
+        };
+        let (min, max) = (scale("minScale", 0.5)?, scale("maxScale", 2.0)?);
+        if min >= max {
+            return Err(self.error(
+                v,
+                format!(
+                    "<holeSize> has minScale {min} ≥ maxScale {max}, expected minScale < maxScale"
+                ),
+            ));
+        }
+        Ok(VariableKind::HoleSize { min, max })
+    }
+
+    /// `<objectRotation id min max>`, degrees.
+    fn object_rotation(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        self.check_attributes(v, &["id", "min", "max"]);
+        let what = "an angle in degrees";
+        let min = self.real(v, "min", what)?.unwrap_or(0.0);
+        let max = self.real(v, "max", what)?.unwrap_or(360.0);
+        if !(min < max && max - min <= 360.0) {
+            return Err(self.error(
+                v,
+                format!("<objectRotation> has min {min}° and max {max}°, expected min < max ≤ min + 360°"),
+            ));
+        }
+        Ok(VariableKind::ObjectRotation { min, max })
+    }
+
+    /// `<lightAim id maxTilt>`, degrees.
+    fn light_aim(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        self.check_attributes(v, &["id", "maxTilt"]);
+        let what = "the largest tilt from the authored aim, degrees in (0, 90]";
+        match self.real(v, "maxTilt", what)? {
+            Some(t) if t > 0.0 && t <= 90.0 => Ok(VariableKind::LightAim { max_tilt: t }),
+            Some(t) => Err(self.error(
+                v,
+                format!("'maxTilt' of <lightAim> is {t}, expected {what}"),
+            )),
+            None => Err(self.error(v, format!("<lightAim> needs 'maxTilt', {what}"))),
+        }
+    }
+
+    /// `<color id hue saturation min max>`.
+    fn colour(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        self.check_attributes(v, &["id", "hue", "saturation", "min", "max"]);
+        let need = |attr: &str, lo: f64, hi: f64| -> Result<f64, Diagnostic> {
+            self.unit(v, attr, lo, hi)?.ok_or_else(|| {
+                self.error(
+                    v,
+                    format!("<color> needs '{attr}', a number in [{lo}, {hi}]"),
+                )
+            })
+        };
+        let hue = need("hue", 0.0, 360.0)?;
+        let saturation = need("saturation", 0.0, 1.0)?;
+        let min = self.unit(v, "min", 0.0, 1.0)?.unwrap_or(0.0);
+        let max = self.unit(v, "max", 0.0, 1.0)?.unwrap_or(1.0);
+        if min >= max {
+            return Err(self.error(
+                v,
+                format!("<color> has min {min} ≥ max {max}, expected min < max"),
+            ));
+        }
+        Ok(VariableKind::Color {
+            hue,
+            saturation,
+            min,
+            max,
+        })
+    }
+
+    /// `<lightPower id min max>`.
+    fn light_power(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        self.check_attributes(v, &["id", "min", "max"]);
+        let level = |attr: &str, default: f64| -> Result<f64, Diagnostic> {
+            match self.real(v, attr, "a level (1 is the authored output)")? {
+                Some(x) if x < 0.0 => Err(self.error(
+                    v,
+                    format!("'{attr}' of <lightPower> is {x}, expected a level ≥ 0 (1 is the authored output)"),
+                )),
+                x => Ok(x.unwrap_or(default)),
+            }
+        };
+        let (min, max) = (level("min", 0.0)?, level("max", 1.0)?);
+        if min >= max {
+            return Err(self.error(
+                v,
+                format!("<lightPower> has min {min} ≥ max {max}, expected min < max"),
+            ));
+        }
+        Ok(VariableKind::LightPower { min, max })
+    }
+}
+
+/// `"20"` → [20]; `"20x6"` → [20, 6].
+pub(super) fn parse_mesh(s: &str) -> Option<Vec<u32>> {
+    let v: Option<Vec<u32>> = s
+        .trim()
+        .split(['x', 'X'])
+        .map(|p| p.trim().parse().ok().filter(|&n| n > 0))
+        .collect();
+    v.filter(|v| !v.is_empty())
+}
