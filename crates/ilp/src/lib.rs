@@ -91,7 +91,9 @@ pub use output::{
     ResultValue, Run, RunFile, SolutionRow, Solutions, Start, csv_header, csv_line, is_run_picture,
 };
 pub use photons::{EvaluationError, PhotonEvaluator, SideSplit};
-pub use problem::{Anchor, PlacementSpec, Problem, SceneRef, VariableKind, VariableSpec};
+pub use problem::{
+    Anchor, LightGroup, PlacementSpec, Problem, SceneRef, VariableKind, VariableSpec,
+};
 pub use reading::{GridSpec, Quantity, Reading};
 pub use space::{
     Cell, Configuration, Domain, Hemisphere, Parallelogram, ParallelogramError, Space, Variable,

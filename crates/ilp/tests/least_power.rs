@@ -178,3 +178,38 @@ fn impossible_bounds_leave_the_lamps_at_full_output() {
     assert_eq!(y, [1.0, 1.0]);
     assert!(e.constraints[0].mean < 2000.0);
 }
+
+#[test]
+fn a_group_takes_the_one_level_its_neediest_desk_asks_for() {
+    // One level for both lamps: DeskA's 200 lx decides it, DeskB gets what it gets.
+    let text = "<input><scene path=\"built-in-code.gltf\"/>
+         <conditions meshSize=\"20\">
+           <lightGroup id=\"Both\" lights=\"LampA LampB\"/>
+           <lightPower id=\"Both\" min=\"0.1\" max=\"1\"/>
+         </conditions>
+         <objectives photons=\"400000\" seed=\"3\" maxIterations=\"10\">
+           <minimizePower/>
+           <constraint surface=\"DeskA\" side=\"front\" minLux=\"200\"/>
+           <constraint surface=\"DeskB\" side=\"front\" minLux=\"100\"/>
+         </objectives></input>";
+    let pb = Problem::parse(Path::new("/tests/problem.xml"), text).unwrap();
+    let mut scene = scene();
+    let binding = Binding::new(&pb, &mut scene).unwrap();
+    let mut eval = PhotonEvaluator::new(&binding, scene, pb.seed, 8, pb.photons);
+    let e = eval.evaluate(&binding.initial, pb.photons).unwrap();
+    let config = e.solved.clone().unwrap();
+    let y = 0.1 + 0.9 * binding.space.slice(&config, 0)[0];
+    let i = f64::from(CANDELA);
+    let per_level = i * (per_candela(2.5, 2.5) + per_candela(2.5, 7.5));
+    let z = pb.confidence.z_one_sided();
+    let a = &e.constraints[0];
+    let needed = (200.0 + z * a.std_error) / per_level;
+    assert!(
+        (y - needed).abs() < 4.0 * a.std_error / per_level,
+        "level {y}, closed form {needed}"
+    );
+    // Both lamps draw at that level: the power is twice one lamp's.
+    let lumens = 4.0 * std::f64::consts::PI * i;
+    assert!((e.goal.mean - 2.0 * lumens * y).abs() < 1e-6 * lumens);
+    assert!(e.constraints[1].mean > 150.0, "{:?}", e.constraints[1]);
+}

@@ -56,13 +56,11 @@ enum Target {
     Move(Moved),
     /// A directional light's direction.
     Sun { light: LightId },
-    /// A spot's or goniometric light's aim, turned from its authored aim `axis` by the
-    /// shortest rotation (a luminaire's authored `frame` turns with it, C0 included).
-    Aim {
-        light: LightId,
-        axis: Vec3,
-        frame: Mat3,
-    },
+    /// The aim of a spot or goniometric light, or of a `<lightGroup>`'s lamps: each
+    /// light with its authored aim `axis` and `frame`, all turned by the shortest
+    /// rotation from the first one's axis to the aim (a luminaire's authored frame
+    /// turns with it, C0 included).
+    Aim { lights: Vec<(LightId, Vec3, Mat3)> },
     /// Materials' K_d.
     Colour {
         materials: Vec<MaterialId>,
@@ -265,6 +263,9 @@ impl Binding {
             if let Target::Power { dimmed, component } = t {
                 match dimmed {
                     Dimmed::Light { light, .. } => c.set_light(*light, *component),
+                    Dimmed::Group(lights) => {
+                        lights.iter().for_each(|&(l, _)| c.set_light(l, *component))
+                    }
                     Dimmed::Emissive { instances, .. } => instances
                         .iter()
                         .for_each(|&i| c.set_instance(i, *component)),
@@ -525,14 +526,9 @@ impl Binding {
                         *direction = d.as_vec3().normalize();
                     }
                 }
-                (
-                    VariableValue::Direction(d),
-                    Target::Aim {
-                        light,
-                        axis,
-                        frame: authored,
-                    },
-                ) => aim::apply(scene, *light, *axis, authored, d),
+                (VariableValue::Direction(d), Target::Aim { lights }) => {
+                    aim::apply(scene, lights, d);
+                }
                 (VariableValue::Colour { rgb, .. }, Target::Colour { materials, .. }) => {
                     for &m in materials {
                         scene.materials[m].diffuse =
@@ -611,9 +607,11 @@ fn bind(
         VariableKind::ObjectRotation { min, max } => {
             rotation::variable(problem, scene, spec, *min, *max, err)
         }
-        VariableKind::LightAim { max_tilt } => aim::variable(scene, spec, *max_tilt, err),
+        VariableKind::LightAim { max_tilt } => {
+            aim::variable(scene, spec, *max_tilt, &problem.groups, err)
+        }
         VariableKind::LightPower { min, max } => {
-            power::variable(scene, spec, *min, *max, targets, err)
+            power::variable(scene, spec, (*min, *max), targets, &problem.groups, err)
         }
         VariableKind::Color {
             hue,
@@ -750,6 +748,21 @@ fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Ve
             matches!(t, Target::Power { dimmed: Dimmed::Light { light: l, .. }, .. } if *l == light)
         })
     };
+    // The group dimming and the group aim a lamp shares with others, if any.
+    let shared = |light: LightId| {
+        let dimming = targets.iter().position(|t| match t {
+            Target::Power {
+                dimmed: Dimmed::Group(g),
+                ..
+            } => g.iter().any(|(l, _)| *l == light),
+            _ => false,
+        });
+        let aim = targets.iter().position(|t| match t {
+            Target::Aim { lights } => lights.len() > 1 && lights.iter().any(|(l, ..)| *l == light),
+            _ => false,
+        });
+        (dimming, aim)
+    };
     let mut groups: Vec<(usize, Vec<Vec<usize>>)> = Vec::new();
     for (i, (spec, target)) in specs.iter().zip(targets).enumerate() {
         let (VariableKind::LightInSurface(p), Target::Move(m)) = (&spec.kind, target) else {
@@ -758,10 +771,10 @@ fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Ve
         let [(light, _)] = m.lights[..] else {
             continue;
         };
-        // An aimed or turned lamp is not like another: swapping places would swap
-        // aims too.
+        // A lamp aimed or turned on its own is not like another: swapping places would
+        // swap aims too. Lamps of one group aim alike.
         if targets.iter().any(|t| match t {
-            Target::Aim { light: l, .. } => *l == light,
+            Target::Aim { lights } => lights.len() == 1 && lights[0].0 == light,
             Target::Rotate {
                 light: Some((l, _)),
                 ..
@@ -787,6 +800,7 @@ fn exchangeable(scene: &Scene, specs: &[VariableSpec], targets: &[Target]) -> Ve
             q == p
                 && same_light(&scene.lights[light].kind, &scene.lights[other].kind)
                 && range(power_of(light)) == range(power_of(other))
+                && shared(light) == shared(other)
         };
         match groups.iter_mut().find(|(first, _)| alike(*first)) {
             Some((_, members)) => members.push(member),

@@ -6,7 +6,7 @@
 //! dimmed.
 
 use super::Target;
-use crate::problem::VariableSpec;
+use crate::problem::{LightGroup, VariableSpec};
 use crate::space::Domain;
 use invlight_scene::{
     Diagnostic, InstanceId, LightId, LightKind, MaterialId, Rgb, Scene, SurfaceId, known_names,
@@ -23,6 +23,9 @@ pub enum Dimmed {
         /// Its authored strength.
         authored: Rgb,
     },
+    /// The lamps of a `<lightGroup>`, each with its authored strength: one level dims
+    /// them all, as one circuit does.
+    Group(Vec<(LightId, Rgb)>),
     /// The emissive materials of a surface's instances (private copies, so that other
     /// objects sharing a material stay lit), each with its authored emission.
     Emissive {
@@ -38,6 +41,11 @@ impl Dimmed {
     pub fn same(&self, other: &Dimmed) -> bool {
         match (self, other) {
             (Dimmed::Light { light: a, .. }, Dimmed::Light { light: b, .. }) => a == b,
+            (Dimmed::Group(a), Dimmed::Group(b)) => {
+                a.iter().any(|(l, _)| b.iter().any(|(m, _)| l == m))
+            }
+            (Dimmed::Group(g), Dimmed::Light { light, .. })
+            | (Dimmed::Light { light, .. }, Dimmed::Group(g)) => g.iter().any(|(l, _)| l == light),
             (Dimmed::Emissive { instances: a, .. }, Dimmed::Emissive { instances: b, .. }) => {
                 a.iter().any(|i| b.contains(i))
             }
@@ -46,13 +54,23 @@ impl Dimmed {
     }
 }
 
-/// Binds the light or emissive object `id`. An object's emissive materials are copied
-/// for its instances alone.
+/// Binds the light, the `<lightGroup>` of `groups` or the emissive object `id`. An
+/// object's emissive materials are copied for its instances alone.
 pub fn bind(
     scene: &mut Scene,
     id: &str,
+    groups: &[LightGroup],
     err: &dyn Fn(String) -> Diagnostic,
 ) -> Result<Dimmed, Diagnostic> {
+    if let Some(group) = groups.iter().find(|g| g.id == id) {
+        let lights = group_lights(scene, group, err)?;
+        return Ok(Dimmed::Group(
+            lights
+                .into_iter()
+                .map(|l| (l, *scene.lights[l].kind.clone().strength_mut()))
+                .collect(),
+        ));
+    }
     if let Some(light) = scene.light(id) {
         let authored = *scene.lights[light].kind.clone().strength_mut();
         return Ok(Dimmed::Light { light, authored });
@@ -118,12 +136,45 @@ pub fn apply(scene: &mut Scene, dimmed: &Dimmed, level: f64) {
         Dimmed::Light { light, authored } => {
             *scene.lights[*light].kind.strength_mut() = *authored * level;
         }
+        Dimmed::Group(lights) => {
+            for &(light, authored) in lights {
+                *scene.lights[light].kind.strength_mut() = authored * level;
+            }
+        }
         Dimmed::Emissive { materials, .. } => {
             for &(m, emission) in materials {
                 scene.materials[m].emission = emission * level;
             }
         }
     }
+}
+
+/// The lamps of `group` in `scene`: each must be a light, and the group's id must name
+/// none (a `<lightPower>` of it would be ambiguous).
+pub(super) fn group_lights(
+    scene: &Scene,
+    group: &LightGroup,
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<Vec<LightId>, Diagnostic> {
+    if scene.light(&group.id).is_some() {
+        return Err(err(format!(
+            "the <lightGroup> id '{}' is also a light's name, expected an id of its own",
+            group.id
+        )));
+    }
+    group
+        .lights
+        .iter()
+        .map(|name| {
+            scene.light(name).ok_or_else(|| {
+                err(format!(
+                    "no light named '{name}' in the scene, expected the lamps of <lightGroup id=\"{}\">",
+                    group.id
+                ))
+                .with_hint(known_names(scene.lights.iter().map(|l| l.name.as_str()), "lights"))
+            })
+        })
+        .collect()
 }
 
 /// Whether `kind` is daylight, which costs no power (the sun; the sky is not a light of
@@ -138,12 +189,12 @@ pub fn is_daylight(kind: &LightKind) -> bool {
 pub(super) fn variable(
     scene: &mut Scene,
     spec: &VariableSpec,
-    min: f64,
-    max: f64,
+    (min, max): (f64, f64),
     targets: &[Target],
+    groups: &[LightGroup],
     err: &dyn Fn(String) -> Diagnostic,
 ) -> Result<(Domain, Target), Diagnostic> {
-    let dimmed = bind(scene, &spec.id, err)?;
+    let dimmed = bind(scene, &spec.id, groups, err)?;
     let component = 1 + targets
         .iter()
         .filter(|t| matches!(t, Target::Power { .. }))

@@ -645,3 +645,98 @@ fn light_aim_recomputes_the_tilt_factor() {
         );
     }
 }
+
+/// Two spots of one `<lightGroup>`: one level dims both, one aim turns both alike, and
+/// placed on one rectangle they are interchangeable members (placements alone: the
+/// level and aim are the group's).
+#[test]
+fn a_light_group_shares_one_level_and_one_aim() {
+    let mut s = scene();
+    for (name, x) in [("A", 1.5f32), ("B", 2.5)] {
+        s.lights.push(Light {
+            name: name.into(),
+            kind: LightKind::Spot {
+                position: Vec3::new(x, 1.5, 2.5),
+                direction: -Vec3::Z,
+                intensity: Vec3::splat(100.0),
+                inner: 0.3,
+                outer: 0.6,
+            },
+        });
+    }
+    let conditions = "<lightGroup id=\"G\" lights=\"A B\"/>
+        <lightInSurface id=\"A\" surface=\"Floor__Geometry\" anchor=\"centre\"/>
+        <lightInSurface id=\"B\" surface=\"Floor__Geometry\" anchor=\"centre\"/>
+        <lightPower id=\"G\" min=\"0.1\" max=\"1\"/>
+        <lightAim id=\"G\" maxTilt=\"30\"/>";
+    let p = problem(conditions);
+    assert_eq!(p.groups.len(), 1);
+    let b = Binding::new(&p, &mut s).unwrap();
+    assert_eq!(b.space.exchangeable(), &[vec![vec![0], vec![1]]]);
+    // Both spots in the group's component, the undimmed lamp and sun in component 0.
+    assert_eq!(b.component_count(), 2);
+    let (a, bb) = (s.light("A").unwrap(), s.light("B").unwrap());
+    let Target::Power {
+        dimmed: Dimmed::Group(g),
+        component: 1,
+    } = &b.targets[2]
+    else {
+        panic!("the group's one level: {:?}", b.targets[2]);
+    };
+    assert_eq!(g.iter().map(|(l, _)| *l).collect::<Vec<_>>(), [a, bb]);
+    // Level 0.1 + 0.5 × 0.9 = 0.55, and the aim at the cone's edge (θ = 30°, φ = 0).
+    let config = Configuration {
+        coords: vec![0.25, 0.5, 0.75, 0.5, 0.5, 0.0, 1.0],
+    };
+    assert_eq!(b.levels(&config), vec![1.0, 0.55]);
+    b.apply(&mut s, &config);
+    let aim = Vec3::new(-0.5, 0.0, -(3f32.sqrt()) / 2.0);
+    for l in [a, bb] {
+        let LightKind::Spot {
+            direction,
+            intensity,
+            ..
+        } = s.lights[l].kind
+        else {
+            panic!("a spot");
+        };
+        assert!((direction - aim).length() < 1e-5, "{direction:?}");
+        assert!((intensity.x - 55.0).abs() < 1e-4, "{intensity:?}");
+    }
+}
+
+#[test]
+fn light_group_mistakes_name_the_lamp() {
+    let bad = |conditions: &str, says: &str| {
+        let mut s = scene();
+        let e = Problem::parse(
+            Path::new("/p/x.xml"),
+            &format!(
+                "<input><scene path=\"s.gltf\"/><conditions>{conditions}</conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"
+            ),
+        )
+        .and_then(|p| Binding::new(&p, &mut s).map(|_| ()));
+        let e = e.unwrap_err().to_string();
+        assert!(e.contains(says), "{e}");
+    };
+    bad(
+        "<lightGroup id=\"G\" lights=\"Lamp Nope\"/><lightPower id=\"G\"/>",
+        "no light named 'Nope'",
+    );
+    bad(
+        "<lightGroup id=\"G\" lights=\"Lamp\"/><lightPower id=\"G\"/>",
+        "expected two or more",
+    );
+    bad(
+        "<lightGroup id=\"Lamp\" lights=\"Lamp Sun\"/><lightPower id=\"Lamp\"/>",
+        "also a light's name",
+    );
+    bad(
+        "<lightGroup id=\"G\" lights=\"Lamp Sun\"/><lightGroup id=\"H\" lights=\"Sun Lamp\"/><lightPower id=\"G\"/>",
+        "in <lightGroup id=\"G\"> already",
+    );
+    bad(
+        "<lightGroup id=\"G\" lights=\"Lamp Sun\"/><lightPower id=\"G\"/><lightPower id=\"Lamp\"/>",
+        "a second <lightPower>",
+    );
+}

@@ -16,6 +16,7 @@
 
 mod bare_attributes;
 mod daylight;
+mod groups;
 mod intentions;
 mod scene;
 mod search;
@@ -27,6 +28,7 @@ pub(crate) use sun_time::SunClock;
 use crate::intention::{Bound, Constraint, Goal};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
+pub use groups::LightGroup;
 use invlight_scene::daylight::{Date, Daylight, DaylightError, DaylightFlags, SunSchedule};
 use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
@@ -229,6 +231,8 @@ pub struct Problem {
     pub cells_per_dimension: Vec<u32>,
     /// The free variables, in file order.
     pub variables: Vec<VariableSpec>,
+    /// `<lightGroup>`s: lamps that share one dimming level and one aim.
+    pub groups: Vec<LightGroup>,
     /// What to achieve above all.
     pub goal: Goal,
     /// Line of the goal's element.
@@ -594,6 +598,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             output,
             cells_per_dimension: conditions.cells_per_dimension,
             variables: conditions.variables,
+            groups: conditions.groups,
             goal,
             goal_line,
             constraints,

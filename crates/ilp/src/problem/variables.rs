@@ -2,7 +2,7 @@
 //! on rectangles, a sun's direction, a hole's size, an object's turn, a lamp's aim and
 //! dimming, a material's colour; `<sunTime>` is read in `sun_time.rs`.
 
-use super::{Anchor, Node, PlacementSpec, Reader, VariableKind, VariableSpec};
+use super::{Anchor, LightGroup, Node, PlacementSpec, Reader, VariableKind, VariableSpec};
 use invlight_scene::Diagnostic;
 use invlight_scene::daylight::SunSchedule;
 
@@ -34,6 +34,8 @@ pub(super) struct Conditions {
     pub variables: Vec<VariableSpec>,
     /// The sun's id, its instants and the element's line.
     pub sun_schedule: Option<(String, SunSchedule, u32)>,
+    /// `<lightGroup>`s, in file order.
+    pub groups: Vec<LightGroup>,
 }
 
 impl<'a, 'i> Reader<'a, 'i> {
@@ -59,7 +61,12 @@ impl<'a, 'i> Reader<'a, 'i> {
         };
         let mut variables = Vec::new();
         let mut sun_schedule = None;
+        let mut groups = Vec::new();
         for v in self.elements(conditions) {
+            if v.tag_name().name() == "lightGroup" {
+                groups.push(self.light_group(v, &groups)?);
+                continue;
+            }
             if v.tag_name().name() == "sunTime" && v.attribute("objective").is_some() {
                 if sun_schedule.is_some() {
                     return Err(
@@ -87,6 +94,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             cells_per_dimension,
             variables,
             sun_schedule,
+            groups,
         })
     }
 
