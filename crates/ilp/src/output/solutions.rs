@@ -11,7 +11,7 @@
 //! `<label>.mean`, `<label>.high`, `<label>.std_error` and `<label>.verdict`
 //! (`feasible`, `infeasible` or `undecided`, one-sided at the run's confidence).
 
-use crate::binding::{Binding, VariableValue};
+use crate::binding::{Binding, ConfigurationError, VariableValue};
 use crate::intention::{Constraint, Feasibility};
 use crate::problem::VariableKind;
 use crate::space::Domain;
@@ -146,7 +146,7 @@ impl SolutionRow {
 
     /// The search record of this row: its values mapped back to a configuration by
     /// [`Binding::configuration`].
-    pub fn record(&self, binding: &Binding) -> Result<Record, String> {
+    pub fn record(&self, binding: &Binding) -> Result<Record, ConfigurationError> {
         Ok(Record {
             iteration: self.iteration,
             config: binding.configuration(&self.values)?,
@@ -222,8 +222,11 @@ impl Solutions {
                 line,
             };
             let solution = cells.solution_row(binding, out.elapsed)?;
-            out.records
-                .push(solution.record(binding).map_err(|e| bad(line, e))?);
+            out.records.push(
+                solution
+                    .record(binding)
+                    .map_err(|e| bad(line, e.to_string()))?,
+            );
             out.elapsed = solution.elapsed;
         }
         Ok(out)
