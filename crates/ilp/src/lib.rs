@@ -75,7 +75,9 @@ mod reading;
 mod space;
 mod vns;
 
-pub use binding::{Binding, Bounds, LuminaireUse, PowerUnit, VariableValue, hsv_to_rgb};
+pub use binding::{
+    Binding, Bounds, ConfigurationError, LuminaireUse, PowerUnit, VariableValue, hsv_to_rgb,
+};
 pub use cache::{Cache, Entry};
 pub use history::{Axes, Role, Visit, visits};
 pub use intention::{
@@ -84,11 +86,12 @@ pub use intention::{
 pub use invlight_scene::Diagnostic;
 pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};
 pub use isoc::{Admission, Isoc, Member};
-pub use member::{MemberRef, configured_scene};
+pub use member::{MemberNumberError, MemberRef, configured_scene};
 pub use output::{
-    ConstraintInfo, FolderLock, ObjectiveInfo, Output, OutputError, Progress, RESULT_SCHEMA,
-    RUN_FILES, RUN_SCHEMA, Recorder, ResultConstraint, ResultEstimate, ResultFile, ResultMember,
-    ResultValue, Run, RunFile, SolutionRow, Solutions, Start, csv_header, csv_line, is_run_picture,
+    ConstraintInfo, FolderLock, MemberError, ObjectiveInfo, Output, OutputError, Progress,
+    RESULT_SCHEMA, RUN_FILES, RUN_SCHEMA, Recorder, ResultConstraint, ResultEstimate, ResultFile,
+    ResultMember, ResultValue, Run, RunFile, SolutionRow, Solutions, Start, csv_header, csv_line,
+    is_run_picture,
 };
 pub use photons::{EvaluationError, PhotonEvaluator, SideSplit};
 pub use problem::{

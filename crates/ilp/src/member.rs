@@ -18,19 +18,33 @@ pub struct MemberRef {
     pub number: usize,
 }
 
-impl FromStr for MemberRef {
-    type Err = String;
+/// Why a `RESULT#K` names no member: K, as written, is not a number from 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemberNumberError(pub String);
 
-    fn from_str(s: &str) -> Result<MemberRef, String> {
+impl std::fmt::Display for MemberNumberError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "'{}' is not an ISOC member number (they count from 1, as isoc-01.png, isoc-02.png, …)",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for MemberNumberError {}
+
+impl FromStr for MemberRef {
+    type Err = MemberNumberError;
+
+    fn from_str(s: &str) -> Result<MemberRef, MemberNumberError> {
         match s.rsplit_once('#') {
             Some((f, k)) => match k.parse::<usize>() {
                 Ok(number) if number >= 1 => Ok(MemberRef {
                     file: PathBuf::from(f),
                     number,
                 }),
-                _ => Err(format!(
-                    "'{k}' is not an ISOC member number (they count from 1, as isoc-01.png, isoc-02.png, …)"
-                )),
+                _ => Err(MemberNumberError(k.into())),
             },
             None => Ok(MemberRef {
                 file: PathBuf::from(s),
@@ -48,7 +62,7 @@ impl MemberRef {
         let result = ResultFile::read(&self.file)?;
         let config = result
             .configuration(&binding, self.number)
-            .map_err(|e| Diagnostic::new(&self.file, e))?;
+            .map_err(|e| Diagnostic::new(&self.file, e.to_string()))?;
         binding.apply(scene, &config);
         Ok(())
     }

@@ -21,7 +21,7 @@ mod value;
 
 pub use colour::hsv_to_rgb;
 pub use placement::Bounds;
-pub use value::VariableValue;
+pub use value::{ConfigurationError, VariableValue};
 
 use crate::intention::{Constraint, Goal};
 use crate::problem::{Problem, SunClock, VariableKind, VariableSpec};

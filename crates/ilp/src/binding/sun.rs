@@ -50,7 +50,8 @@ pub(super) fn time(
         return Err(err("<sunTime> in a daylight-factor problem: the factor is the overcast sky's light alone, with no sun".into())
             .with_hint("measure the sun's light in a problem of its own (<maximizeRadiance>)"));
     }
-    let target = Target::SunTime(SunClock::place(problem, spec, scene).map_err(err)?);
+    let target =
+        Target::SunTime(SunClock::place(problem, spec, scene).map_err(|e| err(e.to_string()))?);
     let half = step / 2.0;
     let domain = Domain::Segment {
         min: from - half,

@@ -4,6 +4,7 @@
 use super::{Binding, Target, hsv_to_rgb};
 use crate::space::{Configuration, Domain};
 use glam::DVec3;
+use std::fmt;
 
 /// A variable's value in world terms, for the outputs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,6 +42,41 @@ pub enum VariableValue {
         direction: DVec3,
     },
 }
+
+/// Why world values make no configuration of a binding ([`Binding::configuration`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConfigurationError {
+    /// There are not as many values as variables.
+    Count {
+        /// Values given.
+        values: usize,
+        /// Variables bound.
+        variables: usize,
+    },
+    /// The value of the variable of this id lies more than 10⁻⁶ outside its domain.
+    Outside(String),
+    /// The value of the variable of this id is of another kind (a direction for a
+    /// placement, …).
+    Kind(String),
+}
+
+impl fmt::Display for ConfigurationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ConfigurationError::Count { values, variables } => {
+                write!(f, "{values} values for {variables} variables")
+            }
+            ConfigurationError::Outside(id) => {
+                write!(f, "the value of '{id}' lies outside its domain")
+            }
+            ConfigurationError::Kind(id) => {
+                write!(f, "the value of '{id}' is not of its variable's kind")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ConfigurationError {}
 
 impl Binding {
     /// The world value of every variable at `config`.
@@ -105,19 +141,21 @@ impl Binding {
     /// rounding of world values written as decimals is undone. Values may stray from
     /// their domain by rounding (they are clamped); a value farther than 10⁻⁶ of the
     /// domain outside it is an error naming the variable.
-    pub fn configuration(&self, values: &[VariableValue]) -> Result<Configuration, String> {
+    pub fn configuration(
+        &self,
+        values: &[VariableValue],
+    ) -> Result<Configuration, ConfigurationError> {
         const SLACK: f64 = 1e-6;
         if values.len() != self.space.variables().len() {
-            return Err(format!(
-                "{} values for {} variables",
-                values.len(),
-                self.space.variables().len()
-            ));
+            return Err(ConfigurationError::Count {
+                values: values.len(),
+                variables: self.space.variables().len(),
+            });
         }
         let mut coords = Vec::with_capacity(self.space.dimensions());
         for (var, value) in self.space.variables().iter().zip(values) {
             let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
-            let outside = || format!("the value of '{}' lies outside its domain", var.id);
+            let outside = || ConfigurationError::Outside(var.id.clone());
             match (&var.domain, value) {
                 (Domain::Parallelogram(r), VariableValue::Position { point, .. }) => {
                     let (s, t) = r.coords(*point);
@@ -152,12 +190,7 @@ impl Binding {
                     }
                     coords.push(x.clamp(0.0, 1.0));
                 }
-                _ => {
-                    return Err(format!(
-                        "the value of '{}' is not of its variable's kind",
-                        var.id
-                    ));
-                }
+                _ => return Err(ConfigurationError::Kind(var.id.clone())),
             }
         }
         Ok(self.space.snap(&Configuration { coords }))

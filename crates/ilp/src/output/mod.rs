@@ -18,8 +18,8 @@ mod solutions;
 pub use lock::FolderLock;
 pub use recorder::{Progress, Recorder};
 pub use result::{
-    ConstraintInfo, ObjectiveInfo, RESULT_SCHEMA, ResultConstraint, ResultEstimate, ResultFile,
-    ResultMember, ResultValue,
+    ConstraintInfo, MemberError, ObjectiveInfo, RESULT_SCHEMA, ResultConstraint, ResultEstimate,
+    ResultFile, ResultMember, ResultValue,
 };
 pub use run::{RUN_SCHEMA, RunFile};
 pub use solutions::{SolutionRow, Solutions, header as csv_header, line as csv_line};

@@ -2,7 +2,7 @@
 //! read back by `render/measure/map --config RESULT#K`. One [`ResultFile`] writes and
 //! reads it.
 
-use crate::binding::{Binding, VariableValue};
+use crate::binding::{Binding, ConfigurationError, VariableValue};
 use crate::intention::{Constraint, Goal, Side};
 use crate::isoc::Member;
 use crate::problem::{VariableKind, VariableSpec};
@@ -608,22 +608,21 @@ impl ResultFile {
         &self,
         binding: &Binding,
         number: usize,
-    ) -> Result<crate::space::Configuration, String> {
+    ) -> Result<crate::space::Configuration, MemberError> {
         // A problem without a feasible configuration has its closest ones instead.
         let members = if self.isoc.is_empty() {
             &self.closest
         } else {
             &self.isoc
         };
-        let member = number
-            .checked_sub(1)
-            .and_then(|k| members.get(k))
-            .ok_or_else(|| {
-                format!(
-                    "no ISOC member {number} (it has {}, counted from 1)",
-                    members.len()
-                )
-            })?;
+        let member =
+            number
+                .checked_sub(1)
+                .and_then(|k| members.get(k))
+                .ok_or(MemberError::Missing {
+                    number,
+                    count: members.len(),
+                })?;
         let values = (0..binding.specs.len())
             .map(|i| {
                 let key = VariableSpec::key(&binding.specs, i);
@@ -631,11 +630,52 @@ impl ResultFile {
                     .variables
                     .get(&key)
                     .map(|v| v.value())
-                    .ok_or_else(|| {
-                        format!("ISOC member {number} has no value for variable '{key}'")
-                    })
+                    .ok_or(MemberError::NoValue { number, key })
             })
-            .collect::<Result<Vec<_>, String>>()?;
-        binding.configuration(&values)
+            .collect::<Result<Vec<_>, MemberError>>()?;
+        binding
+            .configuration(&values)
+            .map_err(MemberError::Configuration)
     }
 }
+
+/// Why a `result.json`'s member maps to no configuration ([`ResultFile::configuration`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum MemberError {
+    /// No member has this number.
+    Missing {
+        /// The number asked for, from 1.
+        number: usize,
+        /// The members there are.
+        count: usize,
+    },
+    /// Member `number` has no value for the variable of key `key`
+    /// ([`VariableSpec::key`]).
+    NoValue {
+        /// The member's number, from 1.
+        number: usize,
+        /// The variable's key.
+        key: String,
+    },
+    /// The member's values make no configuration of the binding.
+    Configuration(ConfigurationError),
+}
+
+impl std::fmt::Display for MemberError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MemberError::Missing { number, count } => {
+                write!(
+                    f,
+                    "no ISOC member {number} (it has {count}, counted from 1)"
+                )
+            }
+            MemberError::NoValue { number, key } => {
+                write!(f, "ISOC member {number} has no value for variable '{key}'")
+            }
+            MemberError::Configuration(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for MemberError {}

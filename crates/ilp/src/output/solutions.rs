@@ -11,7 +11,7 @@
 //! `<label>.mean`, `<label>.high`, `<label>.std_error` and `<label>.verdict`
 //! (`feasible`, `infeasible` or `undecided`, one-sided at the run's confidence).
 
-use crate::binding::{Binding, VariableValue};
+use crate::binding::{Binding, ConfigurationError, VariableValue};
 use crate::intention::{Constraint, Feasibility};
 use crate::problem::VariableKind;
 use crate::space::Domain;
@@ -146,7 +146,7 @@ impl SolutionRow {
 
     /// The search record of this row: its values mapped back to a configuration by
     /// [`Binding::configuration`].
-    pub fn record(&self, binding: &Binding) -> Result<Record, String> {
+    pub fn record(&self, binding: &Binding) -> Result<Record, ConfigurationError> {
         Ok(Record {
             iteration: self.iteration,
             config: binding.configuration(&self.values)?,
@@ -206,138 +206,197 @@ impl Solutions {
                 }
             }
         }
-        let mut last_elapsed = 0.0f64;
         for row in rows {
             let row = row.map_err(|e| Diagnostic::new(path, e.to_string()))?;
-            let n = row.position().map_or(0, |p| p.line());
+            let line = row.position().map_or(0, |p| p.line());
             if row.len() != want.len() {
                 return Err(bad(
-                    n,
+                    line,
                     format!("{} columns, expected {}", row.len(), want.len()),
                 ));
             }
-            let real = |i: usize| -> Result<f64, Diagnostic> {
-                match row[i].parse::<f64>() {
-                    Ok(x) if x.is_finite() => Ok(x),
-                    _ => Err(bad(
-                        n,
-                        format!(
-                            "'{}' in column {}, expected a finite number",
-                            &row[i], want[i]
-                        ),
-                    )),
-                }
+            let cells = Cells {
+                row: &row,
+                want: &want,
+                path,
+                line,
             };
-            let integer = |i: usize| -> Result<u64, Diagnostic> {
-                row[i].parse::<u64>().map_err(|_| {
-                    bad(
-                        n,
-                        format!("'{}' in column {}, expected an integer", &row[i], want[i]),
-                    )
-                })
-            };
-            let iteration = integer(0)?;
-            let mut values = Vec::new();
-            let mut c = 1;
-            let vec3 = |c: usize| -> Result<DVec3, Diagnostic> {
-                Ok(DVec3::new(real(c)?, real(c + 1)?, real(c + 2)?))
-            };
-            for (v, spec) in binding.space.variables().iter().zip(&binding.specs) {
-                match &v.domain {
-                    Domain::Parallelogram(_) => {
-                        values.push(VariableValue::Position {
-                            point: vec3(c)?,
-                            anchor: vec3(c + 3)?,
-                        });
-                        c += 6;
-                    }
-                    Domain::Hemisphere(_) => {
-                        values.push(VariableValue::Direction(vec3(c)?));
-                        c += 3;
-                    }
-                    Domain::Segment { .. } | Domain::Turn { .. } => {
-                        // A colour's row holds V alone; K_d follows from it (and is not
-                        // needed to map the row back to a configuration).
-                        values.push(match spec.kind {
-                            VariableKind::LightPower { .. } => VariableValue::Power(real(c)?),
-                            VariableKind::HoleSize { .. } => VariableValue::Scale(real(c)?),
-                            VariableKind::ObjectRotation { .. } => VariableValue::Angle(real(c)?),
-                            VariableKind::SunTime { .. } => VariableValue::Time {
-                                minutes: real(c)?,
-                                direction: DVec3::ZERO,
-                            },
-                            _ => VariableValue::Colour {
-                                value: real(c)?,
-                                rgb: [0.0; 3],
-                            },
-                        });
-                        c += 1;
-                    }
-                }
-            }
-            let (low, mean, high, std_error) = (real(c)?, real(c + 1)?, real(c + 2)?, real(c + 3)?);
-            let samples = integer(c + 4)?;
-            let (seconds, elapsed) = (real(c + 5)?, real(c + 6)?);
-            let verdict = Verdict::parse(&row[c + 7])
-                .ok_or_else(|| bad(n, format!("verdict '{}' unknown", &row[c + 7])))?;
-            if !(std_error >= 0.0 && low <= mean && mean <= high && samples > 0) {
-                return Err(bad(
-                    n,
-                    "the estimate is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, photons > 0)".into(),
-                ));
-            }
-            if !(seconds >= 0.0 && elapsed >= last_elapsed) {
-                return Err(bad(
-                    n,
-                    format!(
-                        "times {seconds} s and {elapsed} s, expected non-negative seconds and an elapsed time that does not go back ({last_elapsed} s before)"
-                    ),
-                ));
-            }
-            last_elapsed = elapsed;
-            let mut constraints = Vec::new();
-            for k in 0..binding.constraints.len() {
-                let at = c + 8 + k * CONSTRAINT_COLUMNS;
-                let (low, mean, high, std_error) =
-                    (real(at)?, real(at + 1)?, real(at + 2)?, real(at + 3)?);
-                if Feasibility::parse(&row[at + 4]).is_none()
-                    || !(std_error >= 0.0 && low <= mean && mean <= high)
-                {
-                    return Err(bad(
-                        n,
-                        format!(
-                            "the estimate of constraint {} is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, a verdict feasible, infeasible or undecided)",
-                            binding.constraints[k].label()
-                        ),
-                    ));
-                }
-                constraints.push(Estimate {
+            let solution = cells.solution_row(binding, out.elapsed)?;
+            out.records.push(
+                solution
+                    .record(binding)
+                    .map_err(|e| bad(line, e.to_string()))?,
+            );
+            out.elapsed = solution.elapsed;
+        }
+        Ok(out)
+    }
+}
+
+/// One complete data row of a `solutions.csv`, with what names its mistakes: the file,
+/// the row's line and the header's column names.
+struct Cells<'r> {
+    row: &'r csv::StringRecord,
+    want: &'r [String],
+    path: &'r Path,
+    line: u64,
+}
+
+impl Cells<'_> {
+    fn bad(&self, msg: String) -> Diagnostic {
+        Diagnostic::at_line(self.path, self.line as u32, msg)
+    }
+
+    /// Column `i` as a finite number.
+    fn real(&self, i: usize) -> Result<f64, Diagnostic> {
+        match self.row[i].parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(self.bad(format!(
+                "'{}' in column {}, expected a finite number",
+                &self.row[i], self.want[i]
+            ))),
+        }
+    }
+
+    /// Column `i` as a non-negative integer.
+    fn integer(&self, i: usize) -> Result<u64, Diagnostic> {
+        self.row[i].parse::<u64>().map_err(|_| {
+            self.bad(format!(
+                "'{}' in column {}, expected an integer",
+                &self.row[i], self.want[i]
+            ))
+        })
+    }
+
+    /// Columns `c` to `c + 2` as a vector.
+    fn vec3(&self, c: usize) -> Result<DVec3, Diagnostic> {
+        Ok(DVec3::new(
+            self.real(c)?,
+            self.real(c + 1)?,
+            self.real(c + 2)?,
+        ))
+    }
+
+    /// The row: its variables' values, the goal's estimate, times and verdict, then the
+    /// constraints' estimates; its `elapsed` may not go back before `last_elapsed`, the
+    /// row above's.
+    fn solution_row(
+        &self,
+        binding: &Binding,
+        last_elapsed: f64,
+    ) -> Result<SolutionRow, Diagnostic> {
+        let iteration = self.integer(0)?;
+        let (values, c) = self.values(binding)?;
+        let (low, mean, high, std_error) = (
+            self.real(c)?,
+            self.real(c + 1)?,
+            self.real(c + 2)?,
+            self.real(c + 3)?,
+        );
+        let samples = self.integer(c + 4)?;
+        let (seconds, elapsed) = (self.real(c + 5)?, self.real(c + 6)?);
+        let verdict = Verdict::parse(&self.row[c + 7])
+            .ok_or_else(|| self.bad(format!("verdict '{}' unknown", &self.row[c + 7])))?;
+        if !(std_error >= 0.0 && low <= mean && mean <= high && samples > 0) {
+            return Err(self.bad(
+                "the estimate is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, photons > 0)".into(),
+            ));
+        }
+        if !(seconds >= 0.0 && elapsed >= last_elapsed) {
+            return Err(self.bad(format!(
+                "times {seconds} s and {elapsed} s, expected non-negative seconds and an elapsed time that does not go back ({last_elapsed} s before)"
+            )));
+        }
+        Ok(SolutionRow {
+            iteration,
+            values,
+            evaluation: Evaluation {
+                goal: Estimate {
                     mean,
                     std_error,
                     samples,
-                });
-            }
-            let row = SolutionRow {
-                iteration,
-                values,
-                evaluation: Evaluation {
-                    goal: Estimate {
-                        mean,
-                        std_error,
-                        samples,
-                    },
-                    constraints,
-                    groups: Vec::new(),
-                    solved: None,
                 },
-                seconds,
-                elapsed,
-                verdict,
-            };
-            out.records
-                .push(row.record(binding).map_err(|e| bad(n, e))?);
-            out.elapsed = elapsed;
+                constraints: self.constraints(binding, c + 8, samples)?,
+                groups: Vec::new(),
+                solved: None,
+            },
+            seconds,
+            elapsed,
+            verdict,
+        })
+    }
+
+    /// The variables' world values from column 1 on, and the first column after them.
+    fn values(&self, binding: &Binding) -> Result<(Vec<VariableValue>, usize), Diagnostic> {
+        let mut values = Vec::new();
+        let mut c = 1;
+        for (v, spec) in binding.space.variables().iter().zip(&binding.specs) {
+            match &v.domain {
+                Domain::Parallelogram(_) => {
+                    values.push(VariableValue::Position {
+                        point: self.vec3(c)?,
+                        anchor: self.vec3(c + 3)?,
+                    });
+                    c += 6;
+                }
+                Domain::Hemisphere(_) => {
+                    values.push(VariableValue::Direction(self.vec3(c)?));
+                    c += 3;
+                }
+                Domain::Segment { .. } | Domain::Turn { .. } => {
+                    // A colour's row holds V alone; K_d follows from it (and is not
+                    // needed to map the row back to a configuration).
+                    let x = self.real(c)?;
+                    values.push(match spec.kind {
+                        VariableKind::LightPower { .. } => VariableValue::Power(x),
+                        VariableKind::HoleSize { .. } => VariableValue::Scale(x),
+                        VariableKind::ObjectRotation { .. } => VariableValue::Angle(x),
+                        VariableKind::SunTime { .. } => VariableValue::Time {
+                            minutes: x,
+                            direction: DVec3::ZERO,
+                        },
+                        _ => VariableValue::Colour {
+                            value: x,
+                            rgb: [0.0; 3],
+                        },
+                    });
+                    c += 1;
+                }
+            }
         }
-        Ok(out)
+        Ok((values, c))
+    }
+
+    /// The constraints' estimates from column `first` on, each of `samples` photons.
+    fn constraints(
+        &self,
+        binding: &Binding,
+        first: usize,
+        samples: u64,
+    ) -> Result<Vec<Estimate>, Diagnostic> {
+        let mut constraints = Vec::new();
+        for (k, constraint) in binding.constraints.iter().enumerate() {
+            let at = first + k * CONSTRAINT_COLUMNS;
+            let (low, mean, high, std_error) = (
+                self.real(at)?,
+                self.real(at + 1)?,
+                self.real(at + 2)?,
+                self.real(at + 3)?,
+            );
+            if Feasibility::parse(&self.row[at + 4]).is_none()
+                || !(std_error >= 0.0 && low <= mean && mean <= high)
+            {
+                return Err(self.bad(format!(
+                    "the estimate of constraint {} is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, a verdict feasible, infeasible or undecided)",
+                    constraint.label()
+                )));
+            }
+            constraints.push(Estimate {
+                mean,
+                std_error,
+                samples,
+            });
+        }
+        Ok(constraints)
     }
 }

@@ -505,3 +505,60 @@ fn an_unlit_search_says_so_in_its_files() {
     again.replay(&rows.records);
     assert_eq!(again.isoc().members(), search.isoc().members());
 }
+
+/// A damaged complete row of `solutions.csv` is an error naming its line and what was
+/// expected: a number that is not one, an integer that is not one, a missing column, an
+/// unknown verdict, an estimate out of order, a negative time.
+#[test]
+fn damaged_rows_are_errors_naming_the_line() {
+    let (b, _) = binding();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    run_into(dir, &b);
+    let csv = dir.join("solutions.csv");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    // The second data row, line 3: iteration, six placement columns, three of the
+    // sun, Grey.value (10), low, mean, high, std_error, photons (15), seconds (16),
+    // elapsed, verdict (18).
+    // `None` drops the last column.
+    let damaged = |k: usize, value: Option<&str>| -> Diagnostic {
+        let mut fields: Vec<&str> = lines[2].split(',').collect();
+        match value {
+            Some(v) => fields[k] = v,
+            None => {
+                fields.pop();
+            }
+        }
+        let mut out = lines.clone();
+        let row = fields.join(",");
+        out[2] = &row;
+        std::fs::write(&csv, out.join("\n") + "\n").unwrap();
+        let e = Solutions::read(&csv, &b).unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        e
+    };
+    for (k, value, message) in [
+        (
+            10,
+            Some("NaN"),
+            "'NaN' in column Grey.value, expected a finite number",
+        ),
+        (15, Some("x"), "'x' in column photons, expected an integer"),
+        (18, None, "18 columns, expected 19"),
+        (18, Some("maybe"), "verdict 'maybe' unknown"),
+        (
+            11,
+            Some("1e9"),
+            "the estimate is inconsistent (expected low ≤ mean ≤ high, std_error ≥ 0, photons > 0)",
+        ),
+    ] {
+        assert_eq!(damaged(k, value).message, message);
+    }
+    let e = damaged(16, Some("-1"));
+    assert!(
+        e.message.starts_with("times -1 s and ")
+            && e.message.contains("expected non-negative seconds"),
+        "{e}"
+    );
+}

@@ -326,7 +326,7 @@ impl Problem {
         for spec in &self.variables {
             if matches!(spec.kind, VariableKind::SunTime { .. }) {
                 SunClock::place(self, spec, &mut scene)
-                    .map_err(|e| Diagnostic::at_line(&self.path, spec.line, e))?;
+                    .map_err(|e| Diagnostic::at_line(&self.path, spec.line, e.to_string()))?;
             }
         }
         if let (Some((id, schedule, line)), Some(site)) = (&self.sun_schedule, self.daylight.site) {

@@ -12,6 +12,7 @@ use invlight_scene::daylight::{
     TimeOfDay,
 };
 use invlight_scene::{Diagnostic, LightId, LightKind, Scene};
+use std::fmt;
 
 impl Reader<'_, '_> {
     /// `<sunTime id days|date from to [step] [dayStep] objective="mean">`: the instants
@@ -180,6 +181,53 @@ impl Reader<'_, '_> {
     }
 }
 
+/// Why a `sunTime`'s sun cannot be placed.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum SunTimeError {
+    /// The variable of this id is not a `sunTime`.
+    NotSunTime(String),
+    /// The problem has no `<site>` to put the sun over.
+    NoSite,
+    /// The light of this id is not a directional light.
+    NotDirectional(String),
+    /// No light has the id, and the scene's suns have other names.
+    OtherSun {
+        /// The `sunTime`'s id.
+        id: String,
+        /// The scene's directional lights.
+        suns: Vec<String>,
+    },
+    /// The site's compass or the sun's position cannot be had.
+    Daylight(DaylightError),
+}
+
+impl fmt::Display for SunTimeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SunTimeError::NotSunTime(id) => write!(f, "'{id}' is not a sunTime"),
+            SunTimeError::NoSite => write!(f, "<sunTime> needs the problem's <site>"),
+            SunTimeError::NotDirectional(id) => write!(
+                f,
+                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
+            ),
+            SunTimeError::OtherSun { id, suns } => write!(
+                f,
+                "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
+                suns.join(", ")
+            ),
+            SunTimeError::Daylight(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for SunTimeError {}
+
+impl From<DaylightError> for SunTimeError {
+    fn from(e: DaylightError) -> SunTimeError {
+        SunTimeError::Daylight(e)
+    }
+}
+
 /// The sun of a `sunTime` variable: the directional light it sets, standing where the
 /// sun stands at a time of `date` at `site` (SPA), with `lux` or else the clear-sky
 /// beam of IES RP-21 then.
@@ -201,15 +249,12 @@ impl SunClock {
         problem: &Problem,
         spec: &VariableSpec,
         scene: &mut Scene,
-    ) -> Result<SunClock, String> {
+    ) -> Result<SunClock, SunTimeError> {
         let VariableKind::SunTime { date, from, to, .. } = &spec.kind else {
-            return Err(format!("'{}' is not a sunTime", spec.id));
+            return Err(SunTimeError::NotSunTime(spec.id.clone()));
         };
-        let site = problem
-            .daylight
-            .site
-            .ok_or("<sunTime> needs the problem's <site>")?;
-        let compass = site.compass(scene.up).map_err(|e| e.to_string())?;
+        let site = problem.daylight.site.ok_or(SunTimeError::NoSite)?;
+        let compass = site.compass(scene.up)?;
         let light = sun_time_light(scene, &spec.id)?;
         let clock = SunClock {
             light,
@@ -230,10 +275,9 @@ impl SunClock {
     /// the day): the direction its light travels and its direct normal illuminance, lx
     /// (the problem's `<sun illuminance>`, else IES RP-21's clear-sky beam; 0 below the
     /// horizon).
-    pub(crate) fn at(&self, minutes: f64) -> Result<(DVec3, f64), String> {
+    pub(crate) fn at(&self, minutes: f64) -> Result<(DVec3, f64), DaylightError> {
         let time = TimeOfDay::from_minutes(minutes);
-        let sun = SunPosition::new(&self.site, &self.date, &time, &SunOptions::default())
-            .map_err(|e| e.to_string())?;
+        let sun = SunPosition::new(&self.site, &self.date, &time, &SunOptions::default())?;
         let beam = match (sun.is_up(), self.lux) {
             (false, _) => 0.0,
             (true, Some(l)) => l,
@@ -245,27 +289,25 @@ impl SunClock {
 
 /// The directional light a `sunTime` of id `id` sets: the one of that name, else one of
 /// that name added to a scene without any.
-fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, String> {
+fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, SunTimeError> {
     let directional = |k: &LightKind| matches!(k, LightKind::Directional { .. });
     if let Some(l) = scene.light(id) {
         return match directional(&scene.lights[l].kind) {
             true => Ok(l),
-            false => Err(format!(
-                "'{id}' is not a directional light, expected the sun a <sunTime> moves"
-            )),
+            false => Err(SunTimeError::NotDirectional(id.into())),
         };
     }
-    let suns: Vec<&str> = scene
+    let suns: Vec<String> = scene
         .lights
         .iter()
         .filter(|l| directional(&l.kind))
-        .map(|l| l.name.as_str())
+        .map(|l| l.name.clone())
         .collect();
     if !suns.is_empty() {
-        return Err(format!(
-            "no directional light named '{id}', and the scene's sun is {}: give its name as the <sunTime>'s id",
-            suns.join(", ")
-        ));
+        return Err(SunTimeError::OtherSun {
+            id: id.into(),
+            suns,
+        });
     }
     scene.lights.push(invlight_scene::Light {
         name: id.into(),
