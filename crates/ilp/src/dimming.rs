@@ -20,16 +20,17 @@
 //! The estimates are noisy and a constraint holds only at the run's confidence
 //! (mean − z·σ above its bound), so each bound is moved by a margin z·σ before the
 //! program is solved, σ that of the quantity at the levels found before (three rounds
-//! from full output settle it to a fraction of a per cent). The margin is the one an
-//! evaluation with the search's full photon count N would need (σ scaled by
-//! √(photons/N)), so that the levels, and the power, that a look with fewer photons
-//! finds estimate the same thing as a full evaluation's: a look is not made to look
-//! worse for its noise, and its constraints are decided when it is traced to N.
+//! from full output settle it to a fraction of a per cent). The margins are those of
+//! the evaluation's own photons, so that it decides its constraints: a look with few
+//! photons asks for more light than a full evaluation would, and so for more power,
+//! which makes it look no better than it is. When no levels meet a look's margins, the
+//! margins a full evaluation of N photons would need are tried (σ scaled by
+//! √(photons/N); its constraints are then undecided, and the search traces it on), and
+//! last the bounds alone.
 
 use crate::intention::Bound;
 use crate::reading::{Quantity, Reading};
 use invlight_photon::Measurement;
-use invlight_stats::Estimate;
 
 /// One level the program chooses: the components it dims and its range.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,7 +56,7 @@ pub struct LevelSolver {
     pub z: f64,
 }
 
-/// The levels found, and the first-order standard error of the power they draw.
+/// The levels found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Levels {
     /// One per dimmer.
@@ -63,10 +64,6 @@ pub struct Levels {
     /// Whether the constraints can be met at all, at the means: when not, `levels` are
     /// the greatest (the most light there is) and the configuration is infeasible.
     pub feasible: bool,
-    /// The relative standard error of the least power that the arrangement needs: that
-    /// of the constraint that binds (the one with the least slack at `levels`). To
-    /// first order, the least power scales with the binding quantity's inverse.
-    pub relative_error: f64,
 }
 
 /// Rounds of margins, each from the σ at the levels of the round before.
@@ -94,13 +91,39 @@ impl LevelSolver {
     /// evaluation of `full` photons.
     pub fn solve(&self, reading: &Reading, bounds: &[Bound], m: &Measurement, full: u64) -> Levels {
         let most: Vec<f64> = self.dimmers.iter().map(|d| d.max).collect();
-        let scale = if m.photons >= full || full == 0 {
+        let rows = Rows::new(self, reading, bounds, m);
+        // This look's own margins, else a full evaluation's, else none.
+        let full_scale = if m.photons >= full || full == 0 {
             1.0
         } else {
             (m.photons as f64 / full as f64).sqrt()
         };
-        let rows = Rows::new(self, reading, bounds, m);
-        let mut levels = most.clone();
+        for scale in [1.0, full_scale, 0.0] {
+            if let Some(levels) = self.with_margins(&rows, reading, m, &most, scale) {
+                return Levels {
+                    levels,
+                    feasible: true,
+                };
+            }
+        }
+        Levels {
+            levels: most,
+            feasible: false,
+        }
+    }
+
+    /// The least-power levels with every bound moved inward by `scale` times its
+    /// margin z·σ, σ at the levels of the round before (from `most`); `None` when no
+    /// levels in range meet them.
+    fn with_margins(
+        &self,
+        rows: &Rows,
+        reading: &Reading,
+        m: &Measurement,
+        most: &[f64],
+        scale: f64,
+    ) -> Option<Vec<f64>> {
+        let mut levels = most.to_vec();
         let mut found = false;
         for _ in 0..ROUNDS {
             let e = reading.read(m, &self.weights(&levels), 0.0);
@@ -109,33 +132,20 @@ impl LevelSolver {
                 .iter()
                 .map(|c| MARGIN_FACTOR * self.z * c.std_error * scale)
                 .collect();
-            match self.program(&rows, &margins) {
+            match self.program(rows, &margins) {
                 Some(y) => {
                     levels = y;
                     found = true;
                 }
-                None if found => break,
-                None => match self.program(&rows, &vec![0.0; margins.len()]) {
-                    Some(y) => {
-                        levels = y;
-                        break;
-                    }
-                    None => {
-                        return Levels {
-                            levels: most,
-                            feasible: false,
-                            relative_error: 0.0,
-                        };
-                    }
-                },
+                // The margins of the last levels found are too much for these: keep
+                // those, which met theirs.
+                None => break,
+            }
+            if scale == 0.0 {
+                break;
             }
         }
-        let e = reading.read(m, &self.weights(&levels), 0.0);
-        Levels {
-            relative_error: binding_error(bounds, &e.constraints),
-            levels,
-            feasible: true,
-        }
+        found.then_some(levels)
     }
 
     /// The least-power levels with each constraint's bound moved inward by its margin,
@@ -180,25 +190,6 @@ impl LevelSolver {
                 .collect(),
         )
     }
-}
-
-/// The relative standard error of the constraint with the least relative slack.
-fn binding_error(bounds: &[Bound], estimates: &[Estimate]) -> f64 {
-    bounds
-        .iter()
-        .zip(estimates)
-        .filter(|(_, e)| e.mean > 0.0)
-        .map(|(b, e)| {
-            let limit = b.limit().abs().max(f64::MIN_POSITIVE);
-            let slack = if b.is_lower() {
-                e.mean - b.limit()
-            } else {
-                b.limit() - e.mean
-            };
-            (slack / limit, e.std_error / e.mean)
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map_or(0.0, |(_, r)| r)
 }
 
 /// One linear inequality over the levels, Σ a_j y_j ≥ rhs (or ≤), from constraint

@@ -341,10 +341,10 @@ impl PhotonEvaluator<'_> {
 /// The evaluation of `config`'s arrangement, traced in `m`, at the least-power levels
 /// that meet its constraints with the margins of a full evaluation of `full` photons
 /// ([`LevelSolver::solve`]); the configuration with those levels goes with it. The
-/// power of those levels is exact, but which levels the arrangement needs is
-/// estimated: the goal's standard error is the binding constraint's relative error
-/// times the power, so that two arrangements whose least powers the noise cannot tell
-/// apart are not ranked as if it could.
+/// power of those levels is exact, as any configuration's is: the noise of the
+/// estimate that chose them is in its constraints, which decide at the confidence
+/// whether they hold, and with fewer than `full` photons they are undecided, so that
+/// an arrangement is admitted only once traced with N.
 fn solved(
     binding: &Binding,
     variables: &[usize],
@@ -366,7 +366,6 @@ fn solved(
     }
     let power = binding.power(&config);
     let mut evaluation = binding.reading.read(m, &binding.levels(&config), power);
-    evaluation.goal.std_error = power * found.relative_error;
     evaluation.solved = Some(config);
     evaluation
 }
