@@ -9,6 +9,7 @@
 //! quotes, which is not XML; such values are quoted before parsing, with a warning.
 
 mod bare_attributes;
+mod calculation;
 mod daylight;
 
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
@@ -17,7 +18,7 @@ use bare_attributes::quote_bare_attributes;
 use invlight_scene::daylight::{
     Date, Daylight, DaylightError, DaylightFlags, SkyKind, SunSchedule, TimeOfDay,
 };
-use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
+use invlight_scene::{Calculation, Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
 
@@ -201,6 +202,9 @@ pub struct SceneRef {
     /// `<luminaire light="…" file="…" multiplier="…"/>` children (invlight), in file
     /// order: the named point or spot light emits the file's candela table.
     pub luminaires: Vec<Luminaire>,
+    /// `<calculationSurface>` and `<workplane>` children (invlight): surfaces that
+    /// receive light without touching it.
+    pub calculation: Calculation,
     /// Line of its element.
     pub line: u32,
 }
@@ -330,6 +334,7 @@ impl Problem {
         options.up = up.or(self.scene.up);
         let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
         scene.set_luminaires(path, luminaires, &options)?;
+        scene.set_calculation(path, &self.scene.calculation)?;
         // A sun below the horizon was warned of with its line when the file was read.
         self.daylight
             .apply(&mut scene)
@@ -540,13 +545,15 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut out = Vec::new();
         for e in self.elements(scene) {
             if e.tag_name().name() != "luminaire" {
-                self.warn(
-                    e,
-                    format!(
-                        "unknown element <{}> in <scene> ignored (expected luminaire)",
-                        e.tag_name().name()
-                    ),
-                );
+                if !calculation::ELEMENTS.contains(&e.tag_name().name()) {
+                    self.warn(
+                        e,
+                        format!(
+                            "unknown element <{}> in <scene> ignored (expected luminaire, calculationSurface or workplane)",
+                            e.tag_name().name()
+                        ),
+                    );
+                }
                 continue;
             }
             self.check_attributes(e, &["light", "file", "multiplier"]);
@@ -632,6 +639,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             scale,
             up,
             luminaires: self.luminaires(scene_el)?,
+            calculation: self.calculation(scene_el)?,
             line: self.line(scene_el),
         };
 
