@@ -147,3 +147,64 @@ impl Accel {
 pub fn crossing_slack(origin: Vec3, end: Vec3) -> f32 {
     8.0 * OFFSET_SCALE * origin.abs().max(end.abs()).max_element().max(1.0 / 32.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::{Accel, Ray};
+    use invlight_scene::{Mat4, Material, Mesh, Scene, Vec3};
+
+    /// A unit square at z = 1 made a calculation surface over a grey floor at z = 0: rays
+    /// pass it and stop at the floor; its crossing is reported before the hit only.
+    #[test]
+    fn rays_pass_a_calculation_surface_and_report_crossing_it() {
+        let mut scene = Scene::default();
+        let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+        let quad = |z: f32| {
+            Mesh::quad(
+                [
+                    Vec3::new(0.0, 0.0, z),
+                    Vec3::new(1.0, 0.0, z),
+                    Vec3::new(1.0, 1.0, z),
+                    Vec3::new(0.0, 1.0, z),
+                ],
+                grey,
+            )
+        };
+        let (floor_mesh, plane_mesh) = (scene.add_mesh(quad(0.0)), scene.add_mesh(quad(1.0)));
+        let floor = scene.add_instance("Floor", floor_mesh, Mat4::IDENTITY);
+        let plane = scene.add_instance("Plane", plane_mesh, Mat4::IDENTITY);
+        scene.make_calculation_surface(scene.surface("Plane").unwrap());
+        let accel = Accel::new(&scene);
+        assert_eq!(accel.stats().calculation_triangles, 2);
+        let down = Ray::new(Vec3::new(0.3, 0.6, 2.0), Vec3::NEG_Z);
+        let hit = accel.intersect(&down).unwrap();
+        assert_eq!((hit.instance, hit.t), (floor, 2.0));
+        let mut crossed = Vec::new();
+        accel.crossings(&down, hit.t, |h| crossed.push(h));
+        assert_eq!(crossed.len(), 1);
+        assert_eq!((crossed[0].instance, crossed[0].t), (plane, 1.0));
+        let at = accel.interaction(&scene, &down, &crossed[0]);
+        assert!(at.point.distance(Vec3::new(0.3, 0.6, 1.0)) < 1e-6);
+        assert_eq!(at.normal, Vec3::Z);
+        // Up from the floor: nothing blocks, the crossing is on the way out.
+        let up = Ray::new(Vec3::new(0.3, 0.6, 0.001), Vec3::Z);
+        assert!(!accel.occluded(&up) && accel.intersect(&up).is_none());
+        let mut n = 0;
+        accel.crossings(&up, f32::INFINITY, |_| n += 1);
+        assert_eq!(n, 1);
+        // A ray ending before the plane, and one beside it, cross nothing.
+        accel.crossings(&up, 0.5, |_| n += 1);
+        let beside = Ray::new(Vec3::new(1.5, 0.6, 2.0), Vec3::NEG_Z);
+        accel.crossings(&beside, f32::INFINITY, |_| n += 1);
+        assert_eq!(n, 1);
+        // Without calculation surfaces the plane blocks as any surface does.
+        let mut plain = Scene::default();
+        plain.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
+        plain.meshes = scene.meshes.clone();
+        plain.add_instance("Floor", floor_mesh, Mat4::IDENTITY);
+        plain.add_instance("Plane", plane_mesh, Mat4::IDENTITY);
+        let accel = Accel::new(&plain);
+        assert!(!accel.has_calculation_surfaces());
+        assert_eq!(accel.intersect(&down).unwrap().instance, plane);
+    }
+}
