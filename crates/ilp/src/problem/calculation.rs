@@ -144,4 +144,58 @@ mod tests {
             p.warnings
         );
     }
+
+    /// A problem over lamp-room.gltf (a 4 m × 4 m floor, Y up) with a workplane and the
+    /// desk made a calculation surface, from the file at `dir`.
+    fn lamp_room(dir: &Path, scene: &str) -> Problem {
+        let gltf =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/ilp/lamp-room.gltf");
+        let text = format!(
+            "<input>\n<scene path=\"{}\">\n{scene}\n</scene>\n<conditions><lightInSurface id=\"Lamp\" surface=\"Ceiling__Geometry\"/></conditions><objectives><maximizeRadiance surface=\"Task\" side=\"front\"/><constraint surface=\"Desk\" minLux=\"1\"/></objectives></input>",
+            gltf.display()
+        );
+        let path = dir.join("problem.xml");
+        std::fs::write(&path, text).unwrap();
+        Problem::read(&path).unwrap()
+    }
+
+    #[test]
+    fn a_problem_builds_its_workplane_and_measures_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = lamp_room(
+            dir.path(),
+            "<workplane id=\"Task\" height=\"0.85\" border=\"0.5\"/>\n<calculationSurface surface=\"Desk\"/>",
+        );
+        let mut scene = p
+            .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
+            .unwrap();
+        let task = scene.surface("Task").unwrap();
+        let desk = scene.surface("Desk").unwrap();
+        assert_eq!(scene.calculation_surfaces(), [task, desk]);
+        assert!((scene.surface_area(task) - 9.0).abs() < 1e-3);
+        let floor = scene.surface("Floor").unwrap();
+        let level = |s: invlight_scene::SurfaceId| {
+            let i = scene.surfaces[s].instances[0];
+            let t = scene.world_triangles(i).next().unwrap();
+            (t.corners[0].y, t.normal())
+        };
+        let ((task_y, up), (floor_y, _)) = (level(task), level(floor));
+        assert!((task_y - floor_y - 0.85).abs() < 1e-5 && up.distance(scene.up) < 1e-6);
+        let binding = crate::Binding::new(&p, &mut scene).unwrap();
+        assert_eq!(binding.reading.surfaces, [task, desk]);
+    }
+
+    #[test]
+    fn a_workplane_with_no_room_left_names_its_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = lamp_room(
+            dir.path(),
+            "\n<workplane id=\"Task\" height=\"0.85\" border=\"2\"/>",
+        );
+        let e = p
+            .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
+            .unwrap_err();
+        assert_eq!(e.line, Some(4), "{e}");
+        assert!(e.message.contains("leaves nothing"), "{e}");
+    }
 }
