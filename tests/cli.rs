@@ -2621,3 +2621,148 @@ mod daylight {
         );
     }
 }
+
+/// Calculation surfaces: `--calculation-surface NAME` on every command that reads a
+/// scene, `<calculationSurface>` and `<workplane>` in a problem file's `<scene>`.
+mod calculation_surfaces {
+    use super::*;
+
+    /// Every command that reads a scene takes the flag, as it takes `--luminaire`.
+    #[test]
+    fn every_scene_command_takes_the_flag() {
+        for command in ["measure", "map", "solve", "render", "scene"] {
+            let out = invlight([command, "--help"]);
+            let help = text(&out.stdout);
+            assert!(help.contains("--calculation-surface"), "{command}: {help}");
+        }
+    }
+
+    /// `scene` lists it as a calculation surface; `measure` reads the desk as a
+    /// calculation surface (it receives the lamp on its front, as before) and names a
+    /// wrong name with the flag.
+    #[test]
+    fn scene_lists_it_and_measure_reads_it() {
+        let room = data("ilp/lamp-room.gltf");
+        let out = json([
+            "scene".as_ref(),
+            room.as_os_str(),
+            "--calculation-surface".as_ref(),
+            "Desk".as_ref(),
+            "--json".as_ref(),
+        ]);
+        assert_eq!(named(&out["surfaces"], "Desk")["calculation"], true);
+        assert_eq!(named(&out["surfaces"], "Floor")["calculation"], false);
+        let out = invlight([
+            "scene".as_ref(),
+            room.as_os_str(),
+            "--calculation-surface".as_ref(),
+            "Desk".as_ref(),
+        ]);
+        assert!(
+            text(&out.stdout).contains("calculation surface"),
+            "{}",
+            text(&out.stdout)
+        );
+        let args = [
+            "--calculation-surface",
+            "Desk",
+            "--max-bounces",
+            "0",
+            "-n",
+            "100000",
+        ];
+        let out = measure(&room, &["Desk"], &args);
+        let desk = named(&out["surfaces"], "Desk");
+        let (front, back) = (f64_of(&desk["front"]), f64_of(&desk["back"]));
+        let (mean, se) = (f64_of(&desk["mean"]), f64_of(&desk["std_error"]));
+        // The desk lies 1 cm over the floor, lit from above only (no bounce).
+        assert_eq!(back, 0.0);
+        assert_eq!(mean, front);
+        let h: f64 = 1.1 - 0.01;
+        let corner = |a: f64, b: f64| (a * b / (h * (a * a + b * b + h * h).sqrt())).atan();
+        let exact = 100.0
+            * (corner(3.25, 1.5) - corner(2.75, 1.5) - corner(3.25, 1.0) + corner(2.75, 1.0))
+            / 0.25;
+        assert!((mean - exact).abs() < 4.0 * se, "{mean} ± {se} vs {exact}");
+        input_error(
+            [
+                "measure".as_ref(),
+                room.as_os_str(),
+                "-s".as_ref(),
+                "Desk".as_ref(),
+                "--calculation-surface".as_ref(),
+                "Dsk".as_ref(),
+            ],
+            &["--calculation-surface Dsk", "no surface named 'Dsk'"],
+        );
+    }
+
+    /// A measured hole is warned of: it reads 0 lx, and the warning says why and what
+    /// to do; as a calculation surface it reads its light and is not warned of.
+    #[test]
+    fn a_measured_hole_is_warned_of() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut gltf: Value =
+            serde_json::from_str(&std::fs::read_to_string(data("ilp/lamp-room.gltf")).unwrap())
+                .unwrap();
+        gltf["materials"][1]["extensions"] = serde_json::json!({"KHR_materials_ior": {"ior": 0.5}});
+        gltf["extensionsUsed"] = serde_json::json!(["KHR_lights_punctual", "KHR_materials_ior"]);
+        let room = dir.path().join("room.gltf");
+        std::fs::write(&room, gltf.to_string()).unwrap();
+        let run = |extra: &[&str]| {
+            let mut args = vec![
+                "measure",
+                room.to_str().unwrap(),
+                "-s",
+                "Desk",
+                "-n",
+                "20000",
+            ];
+            args.extend(extra);
+            let out = invlight(&args);
+            assert!(out.status.success(), "{}", text(&out.stderr));
+            (text(&out.stderr), text(&out.stdout))
+        };
+        let (warned, table) = run(&[]);
+        assert!(
+            warned.contains("'Desk' is a hole") && warned.contains("reads 0 lx"),
+            "{warned}"
+        );
+        assert!(warned.contains("--calculation-surface Desk"), "{warned}");
+        assert!(table.contains(" 0 "), "{table}");
+        let (quiet, _) = run(&["--calculation-surface", "Desk"]);
+        assert!(!quiet.contains("is a hole"), "{quiet}");
+    }
+
+    /// A problem's workplane is built when its scene is read: `measure PROBLEM.xml -s
+    /// Task` measures it, and a border that leaves nothing names its line.
+    #[test]
+    fn a_problem_workplane_is_measured() {
+        let dir = tempfile::tempdir().unwrap();
+        let problem = |border: &str| {
+            let path = dir.path().join(format!("problem-{border}.xml"));
+            std::fs::write(
+                &path,
+                format!(
+                    "<input>\n<scene path=\"{}\">\n<workplane id=\"Task\" height=\"0.85\" border=\"{border}\"/>\n</scene>\n<conditions><lightInSurface id=\"Lamp\" surface=\"Ceiling__Geometry\"/></conditions><objectives><maximizeRadiance surface=\"Task\"/></objectives></input>",
+                    data("ilp/lamp-room.gltf").display()
+                ),
+            )
+            .unwrap();
+            path
+        };
+        let out = measure(&problem("0.5"), &["Task"], &["-n", "20000"]);
+        let task = named(&out["surfaces"], "Task");
+        close(f64_of(&task["area"]), 9.0, 1e-4, "3 m × 3 m");
+        assert!(f64_of(&task["mean"]) > 0.0);
+        input_error(
+            [
+                "measure".as_ref(),
+                problem("2").as_os_str(),
+                "-s".as_ref(),
+                "Task".as_ref(),
+            ],
+            &[":3", "leaves nothing"],
+        );
+    }
+}

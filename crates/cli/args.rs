@@ -11,7 +11,9 @@ use invlight_photon::{DEFAULT_MAX_BOUNCES, TraceSettings, photon_count};
 use invlight_render::Requirement;
 use invlight_report::GridOptions as Grid;
 use invlight_scene::daylight::{Daylight, DaylightFlags, Site, SkySpec, SunAt};
-use invlight_scene::{LoadOptions, Luminaire, Scene, UpAxis, load_with};
+use invlight_scene::{
+    Calculation, CalculationSurface, LoadOptions, Luminaire, Scene, UpAxis, load_with,
+};
 pub use invlight_scene::{finite, positive};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -45,6 +47,11 @@ pub struct LoadArgs {
     /// NAME=FILE: light NAME emits an IES or EULUMDAT file's table (repeatable; wins over <luminaire>)
     #[arg(long)]
     pub luminaire: Vec<Luminaire>,
+    /// NAME: surface NAME receives light without touching it: photons pass it unchanged,
+    /// it casts no shadow and is not drawn, and it is measured on both sides as asked
+    /// (repeatable; as a problem file's <calculationSurface>).
+    #[arg(long, value_name = "NAME")]
+    pub calculation_surface: Vec<String>,
     /// LAT,LON,TZ: the site of --sun (degrees, longitude east positive; the clock's hours
     /// east of UTC, e.g. -34.9,-56.2,-3 for Montevideo), else the problem file's site.
     #[arg(long, value_name = "LAT,LON,TZ", allow_hyphen_values = true)]
@@ -79,12 +86,21 @@ impl LoadArgs {
         Daylight::flags(self.site, self.north, self.sun, self.sky)
     }
 
-    /// Puts the flags' daylight on a scene file's scene (a problem's goes over its own);
-    /// refuses a scene whose ray-tracing structure would not fit the memory limit.
+    /// Puts the flags' daylight on a scene file's scene (a problem's goes over its own)
+    /// and makes the --calculation-surface surfaces calculation surfaces; refuses a scene whose ray-tracing structure would not fit the memory limit.
     fn fits(&self, mut scene: Scene, path: &Path, file: bool) -> anyhow::Result<Scene> {
         if file {
             crate::warn(self.daylight().light(&mut scene)?);
         }
+        let calculation = Calculation {
+            surfaces: self
+                .calculation_surface
+                .iter()
+                .map(|name| CalculationSurface::named(name))
+                .collect(),
+            workplanes: Vec::new(),
+        };
+        scene.set_calculation(path, &calculation)?;
         Accel::check_memory(&scene, path, self.options().max_memory)?;
         Ok(scene)
     }

@@ -61,6 +61,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let path = &args.scene.scene;
     let scene = args.scene.load()?;
     let surface = scene.find_surface(path, &args.surface)?;
+    crate::warn(scene.reception_warning(surface));
     scene.require_light(path)?;
     let pool = args.trace.pool()?;
     let start = Instant::now();

@@ -60,6 +60,7 @@ pub fn run(args: MeasureArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|name| scene.find_surface(path, name))
         .collect::<Result<Vec<_>, _>>()?;
+    crate::warn(ids.iter().filter_map(|&s| scene.reception_warning(s)));
     scene.require_light(path)?;
     let pool = args.trace.pool()?;
     let start = Instant::now();

@@ -86,6 +86,13 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     scene.require_light(&problem.scene.path)?;
     let binding = Binding::new(&problem, &mut scene)?;
     crate::warn(&binding.warnings);
+    crate::warn(
+        binding
+            .reading
+            .surfaces
+            .iter()
+            .filter_map(|&s| scene.reception_warning(s)),
+    );
     let info = ObjectiveInfo::of(&problem, &binding);
     let pictures = (!args.no_images)
         .then(|| {

@@ -28,6 +28,12 @@
 //! would alone.
 //! Arrivals after a mirror or glass (a delta lobe no connection can sample) count fully.
 //!
+//! A calculation surface is a target that hides nothing: no ray stops at it, so a
+//! connection to one of its points counts when nothing lies before the point, and the
+//! photon's own ray reports its crossing there as an arrival ([`crate::PathVisitor::cross`]);
+//! the two are weighed by the same densities as on any surface. Connections to other
+//! targets pass it, as the photons do.
+//!
 //! A goniometric light (a photometric file) draws its photons from a piecewise-constant
 //! density p(ω) (each cell of the table its share of the flux, uniform inside the cell)
 //! while its intensity I(ω) is bilinear in the cell: the two differ inside a cell. Its
@@ -45,7 +51,7 @@ use crate::sampling;
 use glam::{Mat3, Vec3};
 use invlight_scene::{InstanceId, Photometry, Scene, SurfaceId};
 use invlight_stats::Distribution1D;
-use invlight_trace::{Accel, OFFSET_SCALE, Ray, offset_point};
+use invlight_trace::{Accel, Ray, crossing_slack, offset_point};
 use std::f32::consts::PI;
 
 /// How a photon leaves a point: the directional distribution of its next ray.
@@ -236,6 +242,9 @@ struct Shape {
     /// The instances the target covers, sorted: a connection counts when its ray's first
     /// hit is one of them.
     instances: Vec<InstanceId>,
+    /// Whether each triangle is on a calculation surface, which no ray hits: a
+    /// connection to it counts when nothing hides it. Empty when none is.
+    receivers: Vec<bool>,
 }
 
 /// The solid angles a target's triangles subtend from a departure, when its connections
@@ -310,6 +319,7 @@ pub struct Targets {
 impl Targets {
     /// The surfaces `targets` of `scene` with their current instance transforms.
     pub fn new(scene: &Scene, targets: &[SurfaceId]) -> Targets {
+        let calculation = scene.calculation_instances();
         let shapes = targets
             .iter()
             .map(|&s| {
@@ -318,15 +328,22 @@ impl Targets {
                 shape.instances = scene.surfaces[s].instances.clone();
                 shape.instances.sort_unstable();
                 shape.instances.dedup();
+                let any_receiver = shape.instances.iter().any(|i| calculation[i.index()]);
                 for &i in &scene.surfaces[s].instances {
+                    let receiver = calculation[i.index()];
                     for t in scene.world_triangles(i) {
                         let area = t.area();
-                        if scene.materials[t.material].hole || !(area > 0.0 && area.is_finite()) {
+                        // A calculation surface receives whatever its material.
+                        let hole = scene.materials[t.material].hole && !receiver;
+                        if hole || !(area > 0.0 && area.is_finite()) {
                             continue;
                         }
                         let [a, b, c] = t.corners;
                         areas.push(area as f64);
                         shape.tris.push((a, b - a, c - a, t.cross / (2.0 * area)));
+                        if any_receiver {
+                            shape.receivers.push(receiver);
+                        }
                     }
                 }
                 shape.by_area = Distribution1D::new(areas);
@@ -412,19 +429,19 @@ impl Targets {
         if shape.area <= 0.0 || from.survival <= 0.0 || from.lumens <= 0.0 {
             return None;
         }
-        let (y, n_y) = match solid {
+        let (y, n_y, i) = match solid {
             Some(&SolidAngles { ref angles, total }) => {
                 let (i, u1) = pick(angles, total, u1 as f64);
                 let (p0, e1, e2, n_y) = shape.tris[i];
                 let (b1, b2) =
                     sampling::spherical_triangle(from.point, [p0, e1, e2], angles[i], u1, u2)?;
-                (p0 + e1 * b1 + e2 * b2, n_y)
+                (p0 + e1 * b1 + e2 * b2, n_y, i)
             }
             None => {
                 let (i, u1) = shape.by_area.sample_continuous(u1 as f64);
                 let (p0, e1, e2, n_y) = shape.tris[i];
                 let (b1, b2) = sampling::triangle(u1 as f32, u2);
-                (p0 + e1 * b1 + e2 * b2, n_y)
+                (p0 + e1 * b1 + e2 * b2, n_y, i)
             }
         };
         // q = p_b/p_a; the connection's estimate f·g·V/p_a weighted by p_a/(p_a + p_b)
@@ -452,20 +469,31 @@ impl Targets {
             return None;
         }
         // The rounding of the two ends: the offsets' own scale, a few times over.
-        let slack = 8.0 * OFFSET_SCALE * origin.abs().max(y.abs()).max_element().max(1.0 / 32.0);
+        let slack = crossing_slack(origin, y);
         let ray = Ray {
             origin,
             dir: d / dist,
             t_max: dist + slack,
         };
         // A hit before dist − slack hides y whether or not it is the closest, so the
-        // traversal may stop at the first one it meets.
-        let reached = accel
-            .intersect_unless_blocked(&ray, dist - slack)
-            .is_some_and(|hit| {
-                (hit.t - dist).abs() <= slack
-                    && shape.instances.binary_search(&hit.instance).is_ok()
-            });
+        // traversal may stop at the first one it meets. A point on a calculation surface,
+        // which no ray hits, is reached when nothing hides it: the photon's own ray
+        // counts its crossing there unless it hit something before, within the same
+        // slack ([`invlight_trace::crossing_slack`]).
+        let reached = if shape.receivers.get(i).copied().unwrap_or(false) {
+            let before = Ray {
+                t_max: dist - slack,
+                ..ray
+            };
+            !(before.t_max > 0.0 && accel.occluded(&before))
+        } else {
+            accel
+                .intersect_unless_blocked(&ray, dist - slack)
+                .is_some_and(|hit| {
+                    (hit.t - dist).abs() <= slack
+                        && shape.instances.binary_search(&hit.instance).is_ok()
+                })
+        };
         let lumens = if reached {
             (from.lumens * weight / from.survival * q / (1.0 + q)) as f64
         } else {

@@ -92,7 +92,12 @@ pub fn emissive_triangles(scene: &Scene) -> impl Iterator<Item = EmissiveTriangl
 fn emissive_triangles_of(
     scene: &Scene,
 ) -> impl Iterator<Item = (InstanceId, EmissiveTriangle)> + '_ {
+    // A calculation surface does not touch the light: it emits none either.
+    let calculation = scene.calculation_instances();
     scene.all_world_triangles().filter_map(move |(i, t)| {
+        if calculation[i.index()] {
+            return None;
+        }
         let emission = scene.materials[t.material].emission;
         let area = t.area();
         (emission.max_element() > 0.0 && area > 0.0).then(|| {

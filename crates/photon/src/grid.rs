@@ -105,12 +105,14 @@ struct Plane {
 
 fn plane_of(scene: &Scene, surface: SurfaceId) -> Result<Plane, GridError> {
     let mut tris: Vec<[Vec3; 3]> = Vec::new();
+    let calculation = scene.is_calculation_surface(surface);
     for &i in &scene.surfaces[surface].instances {
-        // Holes are left out: photons pass through them, so they hold no light.
+        // Holes are left out: photons pass through them, so they hold no light. A
+        // calculation surface receives on every triangle, whatever its material.
         tris.extend(
             scene
                 .world_triangles(i)
-                .filter(|t| !scene.materials[t.material].hole)
+                .filter(|t| calculation || !scene.materials[t.material].hole)
                 .map(|t| t.corners),
         );
     }

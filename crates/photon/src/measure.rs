@@ -455,6 +455,13 @@ impl PathVisitor for ChunkTally<'_> {
         }
     }
 
+    /// A calculation surface receives as any target does: the crossing is an arrival
+    /// that the photon survives unchanged.
+    #[inline]
+    fn cross(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32, from: &Departure) {
+        self.arrive(at, dir, power, bounce, from);
+    }
+
     #[inline]
     fn escape(&mut self, power: Rgb) {
         self.escaped += luminance(power) as f64;

@@ -2,7 +2,8 @@
 //! light-path shape, `LightPathIntegrator`): emit, then intersect → report the arrival →
 //! choose by Russian roulette between diffuse reflection, mirror reflection, refraction
 //! and absorption. Paths end only by absorption, escape or the bounce cap, so estimates
-//! are unbiased when the cap is not reached.
+//! are unbiased when the cap is not reached. Calculation surfaces are reported where a
+//! ray crosses them ([`PathVisitor::cross`]) and change nothing about the path.
 
 use crate::connect::{Departure, Lobe};
 use crate::emit::{EmitSample, Emitters};
@@ -25,6 +26,21 @@ pub trait PathVisitor {
     /// `bounce` is 0 for the first hit from the light. Called for every arrival, before
     /// the surface acts.
     fn arrive(&mut self, at: &Interaction, dir: Vec3, power: Rgb, bounce: u32, from: &Departure);
+    /// A photon carrying `power`, travelling along `dir` from `from` toward its next
+    /// arrival (or out of the scene), crossed a calculation surface at `at`
+    /// ([`Accel::crossings`]): it goes on unchanged. Measurements count it as an
+    /// arrival; a visitor that stores photons leaves it alone, as nothing reflects
+    /// there.
+    #[inline]
+    fn cross(
+        &mut self,
+        _at: &Interaction,
+        _dir: Vec3,
+        _power: Rgb,
+        _bounce: u32,
+        _from: &Departure,
+    ) {
+    }
     /// A photon carrying `power` left the scene.
     fn escape(&mut self, power: Rgb);
     /// A stratified group of photons ([`crate::GROUP`] consecutive ones, fewer at the
@@ -92,7 +108,16 @@ pub fn trace_photon(
     let mut rays = 0;
     for bounce in 0..=max_bounces {
         rays += 1;
-        let Some(hit) = accel.intersect(&ray) else {
+        let hit = accel.intersect(&ray);
+        // Calculation surfaces the ray passes before its hit receive it unchanged.
+        if accel.has_calculation_surfaces() {
+            let end = hit.map_or(f32::INFINITY, |h| h.t);
+            accel.crossings(&ray, end, |h| {
+                let at = accel.interaction(scene, &ray, &h);
+                visitor.cross(&at, ray.dir, power, bounce, &from);
+            });
+        }
+        let Some(hit) = hit else {
             visitor.escape(power);
             break;
         };

@@ -10,6 +10,9 @@
 //!   [`LightId`]: how the scene's lists refer to one another. Each indexes its own list
 //!   and no other (`scene.meshes[scene.instances[id].mesh]`), so an id handed to the
 //!   wrong list does not compile; each is a `u32` underneath.
+//! - [`Calculation`]: calculation surfaces, which receive light without touching it
+//!   (`--calculation-surface NAME`, a problem's `<calculationSurface>`), and the
+//!   [`Workplane`]s built over the floor as such ([`Scene::set_calculation`]).
 //! - [`load`]: reads a scene file, choosing the format from its extension.
 //! - [`daylight`]: sites and their compass, dates and times, the sun's position (NREL
 //!   SPA) and clear-sky illuminance, and CIE skies with their sampling distributions
@@ -39,6 +42,7 @@
 #![deny(missing_docs)]
 
 mod atomic;
+mod calculation;
 mod collada;
 pub mod daylight;
 mod error;
@@ -60,6 +64,7 @@ mod values;
 mod world;
 
 pub use atomic::write_atomically;
+pub use calculation::{Calculation, CalculationSurface, Workplane};
 pub use error::{Diagnostic, LoadError, PhotometryError};
 pub use files::parse_memory_size;
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};

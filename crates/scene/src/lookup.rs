@@ -83,7 +83,7 @@ impl Scene {
             format!("did you mean {}?", quoted(&close))
         };
         if self.placement(name).is_some() {
-            hint += "; it is a placement rectangle (*__Geometry), which is not lit";
+            hint += "; it is a placement rectangle (*__Geometry), which is not lit: to measure a task area, build a calculation rectangle with <workplane> or name one with --calculation-surface";
         }
         Err(Diagnostic::new(path, format!("no surface named '{name}'")).with_hint(hint))
     }

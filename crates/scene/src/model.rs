@@ -226,6 +226,9 @@ pub struct Scene {
     pub surfaces: Vec<Surface>,
     /// Placement rectangles.
     pub placements: Vec<Placement>,
+    /// The calculation surfaces: named surfaces that receive light without touching
+    /// it (`crate::calculation`; read it through [`Scene::calculation_surfaces`]).
+    pub(crate) calculation: Vec<SurfaceId>,
     /// The file's up axis (unit vector). Positions are kept as written, never swapped;
     /// this only orients what needs a zenith, such as sun directions in a problem file.
     pub up: Vec3,
@@ -258,6 +261,7 @@ impl Default for Scene {
             sky: None,
             surfaces: Vec::new(),
             placements: Vec::new(),
+            calculation: Vec::new(),
             up: Vec3::Y,
             names: SurfaceIndex::default(),
         }

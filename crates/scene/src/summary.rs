@@ -36,6 +36,10 @@ pub struct SurfaceSummary {
     pub emissive: bool,
     /// Whether it is a placement rectangle (`*__Geometry`), not lit.
     pub placement: bool,
+    /// Whether it is a calculation surface: it receives light without touching it
+    /// (`--calculation-surface`, `<calculationSurface>`, `<workplane>`).
+    #[serde(default)]
+    pub calculation: bool,
     /// A placement rectangle's vertices, in the order problem files index them.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub vertices: Option<Vec<[f32; 3]>>,
@@ -135,6 +139,7 @@ impl Scene {
                 kind: "placement".into(),
                 emissive: false,
                 placement: true,
+                calculation: false,
                 vertices: Some(p.vertices.iter().map(|v| v.to_array()).collect()),
             });
         }
@@ -289,6 +294,7 @@ impl Scene {
             kind: kinds.into_iter().collect::<Vec<_>>().join(", "),
             emissive,
             placement: false,
+            calculation: self.is_calculation_surface(i),
             vertices: None,
         }
     }
@@ -321,6 +327,8 @@ impl SceneSummary {
         for f in &self.surfaces {
             let material = if f.placement {
                 "placement rectangle (not lit)".to_string()
+            } else if f.calculation {
+                "calculation surface (receives, does not touch the light)".to_string()
             } else {
                 format!("{} ({})", f.material, f.kind)
             };

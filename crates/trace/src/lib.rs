@@ -23,6 +23,9 @@
 //!   (counter-clockwise) side, which emitters emit from.
 //! - Holes (thesis §4.1, fig. 4.2): instances of hole materials are not traced; each
 //!   makes its world-space box a volume in which every surface is transparent.
+//! - Calculation surfaces ([`invlight_scene::Scene::calculation_surfaces`]) are in no
+//!   tree: every ray passes them, and [`Accel::crossings`] lists where a ray crossed
+//!   them before its hit, so photons can be counted there without being stopped.
 //! - Rays leaving a surface come from [`Interaction::spawn`] / [`Interaction::spawn_to`],
 //!   which offset the origin (Wächter & Binder 2019) so they never re-hit it.
 //! - [`Accel`] is `Send + Sync`; tracing allocates nothing.
@@ -53,6 +56,8 @@ mod ray;
 mod triangle;
 mod wide;
 
-pub use accel::{Accel, AccelStats, BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE, BuildPreset};
+pub use accel::{
+    Accel, AccelStats, BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE, BuildPreset, crossing_slack,
+};
 pub use holes::HOLE_THICKNESS;
 pub use ray::{Hit, Interaction, OFFSET_SCALE, Ray, SHADOW_EPSILON, offset_point};

@@ -15,6 +15,7 @@
 //! constraints in `<objectives>`); [`Reader::problem`] puts them together.
 
 mod bare_attributes;
+mod calculation;
 mod daylight;
 mod groups;
 mod intentions;
@@ -30,7 +31,7 @@ use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
 pub use groups::LightGroup;
 use invlight_scene::daylight::{Date, Daylight, DaylightError, DaylightFlags, SunSchedule};
-use invlight_scene::{Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
+use invlight_scene::{Calculation, Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
 
@@ -214,6 +215,9 @@ pub struct SceneRef {
     /// `<luminaire light="…" file="…" multiplier="…"/>` children (invlight), in file
     /// order: the named point or spot light emits the file's candela table.
     pub luminaires: Vec<Luminaire>,
+    /// `<calculationSurface>` and `<workplane>` children (invlight): surfaces that
+    /// receive light without touching it.
+    pub calculation: Calculation,
     /// Line of its element.
     pub line: u32,
 }
@@ -319,6 +323,7 @@ impl Problem {
         options.up = up.or(self.scene.up);
         let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
         scene.set_luminaires(path, luminaires, &options)?;
+        scene.set_calculation(path, &self.scene.calculation)?;
         // A sun below the horizon was warned of with its line when the file was read.
         self.daylight
             .apply(&mut scene)

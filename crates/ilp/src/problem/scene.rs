@@ -39,6 +39,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             scale,
             up,
             luminaires: self.luminaires(scene_el)?,
+            calculation: self.calculation(scene_el)?,
             line: self.line(scene_el),
         })
     }
@@ -50,13 +51,15 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut out = Vec::new();
         for e in self.elements(scene) {
             if e.tag_name().name() != "luminaire" {
-                self.warn(
-                    e,
-                    format!(
-                        "unknown element <{}> in <scene> ignored (expected luminaire)",
-                        e.tag_name().name()
-                    ),
-                );
+                if !super::calculation::ELEMENTS.contains(&e.tag_name().name()) {
+                    self.warn(
+                        e,
+                        format!(
+                            "unknown element <{}> in <scene> ignored (expected luminaire, calculationSurface or workplane)",
+                            e.tag_name().name()
+                        ),
+                    );
+                }
                 continue;
             }
             self.check_attributes(e, &["light", "file", "multiplier"]);

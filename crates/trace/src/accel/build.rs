@@ -4,7 +4,7 @@
 
 use super::traverse::avx2_available;
 use super::tree::{BuildPreset, build_cwbvh, build_triangle_cwbvh};
-use super::{Accel, AccelStats, Blas, EMPTY_SLOT, MERGED, Placed, TlasItem};
+use super::{Accel, AccelStats, Blas, EMPTY_SLOT, MERGED, Placed, Receivers, TlasItem};
 use crate::holes::{HOLE_THICKNESS, HoleVolume};
 use crate::triangle::{Tri, TriBlock};
 use crate::wide;
@@ -110,6 +110,8 @@ impl Accel {
         let start = Instant::now();
         let hole_material: Vec<bool> = scene.materials.iter().map(|m| m.hole).collect();
         let n = scene.instances.len();
+        // Calculation surfaces are in no tree: rays pass them (see `receivers`).
+        let receivers = Receivers::new(scene);
         let separate: Vec<bool> = match &movable {
             None => vec![true; n],
             Some(ids) => {
@@ -123,8 +125,16 @@ impl Accel {
             }
         };
         let mut needed = vec![false; scene.meshes.len()];
-        for (inst, &sep) in scene.instances.iter().zip(&separate) {
-            if sep && let Some(u) = needed.get_mut(inst.mesh.index()) {
+        for ((inst, &sep), &calc) in scene
+            .instances
+            .iter()
+            .zip(&separate)
+            .zip(&receivers.of_instance)
+        {
+            if sep
+                && !calc
+                && let Some(u) = needed.get_mut(inst.mesh.index())
+            {
                 *u = true;
             }
         }
@@ -144,7 +154,8 @@ impl Accel {
             let mut tris = Vec::new();
             let mut owners = Vec::new();
             for (id, inst) in scene.instances.iter().enumerate() {
-                if separate[id] || inst.transform.determinant() == 0.0 {
+                if separate[id] || receivers.of_instance[id] || inst.transform.determinant() == 0.0
+                {
                     continue;
                 }
                 let Some(mesh) = scene.meshes.get(inst.mesh.index()) else {
@@ -188,6 +199,7 @@ impl Accel {
             items: Vec::new(),
             merged: None,
             holes: Vec::new(),
+            receivers,
             stats,
             preset,
             avx2: avx2_available(),
@@ -199,8 +211,8 @@ impl Accel {
     /// Rebuilds the top level and the hole volumes from the scene's instance transforms,
     /// keeping every mesh's BVH. The scene's meshes, instances' meshes and materials'
     /// hole flags must be those the structure was built with; if the number of meshes or
-    /// instances changed, or (see [`Accel::with_movable`]) a baked instance moved,
-    /// everything is rebuilt.
+    /// instances changed, the calculation surfaces changed, or (see
+    /// [`Accel::with_movable`]) a baked instance moved, everything is rebuilt.
     pub fn update_instances(&mut self, scene: &Scene) {
         let moved_baked = self.movable.is_some()
             && scene
@@ -211,6 +223,7 @@ impl Accel {
         if scene.meshes.len() != self.hole_bounds.len()
             || scene.instances.len() != self.baked.len()
             || moved_baked
+            || scene.calculation_instances() != self.receivers.of_instance
         {
             *self = Accel::build(scene, self.movable.take(), self.preset);
             return;
@@ -246,7 +259,7 @@ impl Accel {
         let mut boxes = Vec::new();
         let mut candidates = Vec::new();
         for (id, p) in self.placed.iter().enumerate() {
-            if self.baked[id].is_some() {
+            if self.baked[id].is_some() || self.receivers.of_instance[id] {
                 continue;
             }
             let Some(blas) = self.blas.get(p.mesh.index()) else {
@@ -309,17 +322,22 @@ impl Accel {
         } else {
             HOLE_THICKNESS
         };
+        // A calculation surface of a hole material receives: it cuts no hole.
         self.holes = scene
             .instances
             .iter()
-            .filter_map(|inst| {
+            .zip(&self.receivers.of_instance)
+            .filter(|(_, calc)| !**calc)
+            .filter_map(|(inst, _)| {
                 let (lo, hi) = (*self.hole_bounds.get(inst.mesh.index())?)?;
                 HoleVolume::new(lo, hi, &inst.transform, thickness)
             })
             .collect();
+        self.receivers.place(scene);
 
         self.stats.instances = self.items.len() + self.merged.is_some() as usize;
         self.stats.holes = self.holes.len();
+        self.stats.calculation_triangles = self.receivers.len();
         self.stats.tlas_nodes = self.tlas.len();
         self.stats.tlas_seconds = start.elapsed().as_secs_f64();
         let (blocks, slots) = self.blas.iter().fold((0, 0), |(b, s), blas| {

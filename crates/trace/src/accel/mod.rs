@@ -12,16 +12,19 @@
 //!   instances, then the top level's loop over instances into each bottom level, with
 //!   AVX2 where the CPU has it (eight child boxes, then eight triangles, at a time).
 //! - `interaction`: the surface at a hit, read from the scene's mesh.
+//! - `receivers`: calculation surfaces, in no tree: the crossings of a ray with them.
 //!
 //! The hole volumes are `crate::holes`, the node test and the loop over a tree
 //! `crate::wide`, the triangle test and the blocks of eight `crate::triangle`.
 
 mod build;
 mod interaction;
+mod receivers;
 mod traverse;
 mod tree;
 
 pub use build::{BUILD_BYTES_PER_TRIANGLE, BYTES_PER_INSTANCE};
+pub use receivers::crossing_slack;
 pub use tree::BuildPreset;
 
 use crate::holes::HoleVolume;
@@ -29,6 +32,7 @@ use crate::triangle::TriBlock;
 use glam::{Affine3A, Mat4, Vec3};
 use invlight_scene::{InstanceId, MeshId};
 use obvhs::cwbvh::node::CwBvhNode;
+use receivers::Receivers;
 
 /// Counts and timings of a build, for logs and benchmarks.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -41,6 +45,9 @@ pub struct AccelStats {
     pub instances: usize,
     /// Hole volumes.
     pub holes: usize,
+    /// Triangles of calculation surfaces, which no tree holds
+    /// ([`Accel::crossings`]).
+    pub calculation_triangles: usize,
     /// Triangles over all bottom-level BVHs (each mesh once, however often instanced);
     /// with a preset that pre-splits ([`BuildPreset::Slow`]), a triangle counts once per
     /// leaf that holds it.
@@ -145,6 +152,8 @@ pub struct Accel {
     /// which rays walk before the top level rather than through it.
     merged: Option<TlasItem>,
     holes: Vec<HoleVolume>,
+    /// The calculation surfaces' instances, which no tree holds.
+    receivers: Receivers,
     stats: AccelStats,
     /// How both levels are built, now and at every rebuild.
     preset: BuildPreset,
