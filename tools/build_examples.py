@@ -645,19 +645,29 @@ def office_daylight(scenes_dir, out):
 # A 7.2 m x 4.8 m x 2.8 m open-plan office (Y up, x along its length, z across), ceiling,
 # walls and floor of reflectance 0.7, 0.5 and 0.2, six downlights to place anywhere on
 # the ceiling (0.3 m from the walls) and dim: "Em >= 500 lx and U0 >= 0.6 over the task
-# area (0.85 m above the floor, less a 0.5 m border), the least electrical power".
+# area (0.85 m above the floor, less a 0.5 m border: problem.xml's <workplane>), the
+# least electrical power".
 # Built from nothing: no source geometry.
 OPEN_OFFICE = (7.2, 2.8, 4.8)
 OPEN_OFFICE_LAMPS = 6
 OPEN_OFFICE_ZONE_MARGIN = 0.3  # m, the lamps' centres from the walls
-OPEN_OFFICE_TASK = (0.85, 0.5)  # height and border, m
 
 
-def open_office(_scenes_dir, out):
-    """The open-plan office of examples/open-office: the room, the task area as a thin
-    horizontal quad (a calculation surface in problem.xml, so it shades nothing), the
-    ceiling zone the lamps may take and six lamps authored in a row along the room's
-    axis (not where a designer would put them), each emitting downlight.ldt."""
+def open_office(scenes_dir, out):
+    """examples/open-office: the office with its lamps in a row (scene.gltf, for the
+    search) and in the regular 3 x 2 array a designer lays first, half a spacing from
+    the walls (grid.gltf, for grid.xml's dimming alone)."""
+    open_office_scene(out, "scene", None)
+    w, _, d = OPEN_OFFICE
+    grid = [((i + 0.5) * w / 3, (j + 0.5) * d / 2) for j in range(2) for i in range(3)]
+    open_office_scene(out, "grid", grid)
+
+
+def open_office_scene(out, stem, lamps):
+    """The open-plan office: the room, the ceiling zone the lamps may take and six
+    lamps at `lamps` ((x, z) each), or authored in a row along the room's axis (not
+    where a designer would put them), each emitting downlight.ldt. The task area is the
+    problem's <workplane>, which receives light without touching it."""
     w, h, d = OPEN_OFFICE
     gl = Gltf("invlight tools/build_examples.py: open-office")
     room = gl.node("Room")
@@ -678,19 +688,17 @@ def open_office(_scenes_dir, out):
             pos += qp
         kd = OFFICE_REFLECTANCE[name]
         gl.node(name, room, mesh=gl.mesh(name, pos, tris, gl.material(name, (kd, kd, kd))))
-    y, b = OPEN_OFFICE_TASK
-    task = quad((b, y, b), (b, y, d - b), (w - b, y, d - b), (w - b, y, b))
-    gl.node("TaskArea", mesh=gl.mesh("TaskArea", *task, gl.material("Task", (0.5, 0.5, 0.5))))
     m = OPEN_OFFICE_ZONE_MARGIN
     ly = h - 0.01
     zone = quad((m, ly, m), (w - m, ly, m), (w - m, ly, d - m), (m, ly, d - m))
     gl.node("LampZone__Geometry", mesh=gl.mesh("LampZone__Geometry", *zone,
                                                   gl.material("Zone", (0.7, 0.7, 0.7))))
-    for k in range(OPEN_OFFICE_LAMPS):
-        x = m + (k + 0.5) * (w - 2 * m) / OPEN_OFFICE_LAMPS
-        gl.point_light("Lamp%d" % (k + 1), (x, ly, d / 2), 100.0)
+    row = [(m + (k + 0.5) * (w - 2 * m) / OPEN_OFFICE_LAMPS, d / 2)
+           for k in range(OPEN_OFFICE_LAMPS)]
+    for k, (x, z) in enumerate(lamps or row):
+        gl.point_light("Lamp%d" % (k + 1), (x, ly, z), 100.0)
     gl.camera("Camera", (0.5, 1.6, 0.5), (4.0, 0.8, 3.0), 70.0)
-    gl.write(out)
+    gl.write(out, stem)
     src = os.path.join(REPO, "tests", "data", "photometry", "downlight.ldt")
     with open(src, "rb") as f, open(os.path.join(out, "downlight.ldt"), "wb") as g:
         g.write(f.read())
