@@ -552,12 +552,9 @@ SKYLIGHT_SIZE = 1.0  # m, a square
 SKYLIGHT_ZONE = ((0.5, 0.5), (4.5, 3.5))  # (x, z) corners its centre may take: the ceiling less half its size
 
 
-def office(_scenes_dir, out, name="office-target", skylight=False):
-    """The office; with `skylight`, office-daylight's: no screen and no lamps, and a
-    hole that may go anywhere in the ceiling's SKYLIGHT_ZONE."""
-    w, h, d = OFFICE
-    gl = Gltf("invlight tools/build_examples.py: " + name)
-    room = gl.node("Room")
+def office_room(gl, room, w, h, d):
+    """The floor, ceiling and walls of a w x h x d room (Y up) under node `room`, of
+    OFFICE_REFLECTANCE."""
     # Every room surface faces into the room.
     faces = {
         "Floor": [quad((0, 0, 0), (0, 0, d), (w, 0, d), (w, 0, 0))],
@@ -576,6 +573,15 @@ def office(_scenes_dir, out, name="office-target", skylight=False):
             pos += qp
         kd = OFFICE_REFLECTANCE[name]
         gl.node(name, room, mesh=gl.mesh(name, pos, tris, gl.material(name, (kd, kd, kd))))
+
+
+def office(_scenes_dir, out, name="office-target", skylight=False):
+    """The office; with `skylight`, office-daylight's: no screen and no lamps, and a
+    hole that may go anywhere in the ceiling's SKYLIGHT_ZONE."""
+    w, h, d = OFFICE
+    gl = Gltf("invlight tools/build_examples.py: " + name)
+    room = gl.node("Room")
+    office_room(gl, room, w, h, d)
     oak = gl.material("Oak", (DESK_KD, DESK_KD * 0.9, DESK_KD * 0.75))
     (x0, x1), (z0, z1) = DESK_X, DESK_Z
     top = quad((x0, DESK_TOP, z0), (x0, DESK_TOP, z1), (x1, DESK_TOP, z1), (x1, DESK_TOP, z0))
@@ -671,23 +677,7 @@ def open_office_scene(out, stem, lamps):
     w, h, d = OPEN_OFFICE
     gl = Gltf("invlight tools/build_examples.py: open-office")
     room = gl.node("Room")
-    faces = {
-        "Floor": [quad((0, 0, 0), (0, 0, d), (w, 0, d), (w, 0, 0))],
-        "Ceiling": [quad((0, h, 0), (w, h, 0), (w, h, d), (0, h, d))],
-        "Walls": [
-            quad((0, 0, 0), (w, 0, 0), (w, h, 0), (0, h, 0)),
-            quad((0, 0, d), (0, h, d), (w, h, d), (w, 0, d)),
-            quad((0, 0, 0), (0, h, 0), (0, h, d), (0, 0, d)),
-            quad((w, 0, 0), (w, 0, d), (w, h, d), (w, h, 0)),
-        ],
-    }
-    for name, quads in faces.items():
-        pos, tris = [], []
-        for qp, qt in quads:
-            tris += [tuple(i + len(pos) for i in t) for t in qt]
-            pos += qp
-        kd = OFFICE_REFLECTANCE[name]
-        gl.node(name, room, mesh=gl.mesh(name, pos, tris, gl.material(name, (kd, kd, kd))))
+    office_room(gl, room, w, h, d)
     m = OPEN_OFFICE_ZONE_MARGIN
     ly = h - 0.01
     zone = quad((m, ly, m), (w - m, ly, m), (w - m, ly, d - m), (m, ly, d - m))
