@@ -227,7 +227,8 @@ def main():
                 extra = [a.replace("RESULT", os.path.join(out, "result.json")) for a in extra]
                 extra = [a.replace("GRID", out + "-grid") for a in extra]
                 cmd = command + [extra[0], on or problem] + extra[1:]
-                done = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, check=True)
+                done = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                      check=True)
                 return json.loads(done.stdout)
 
             ok, what = check(best, again) if check in (office_target, office_ies, office_daylight, open_office) else check(best)
