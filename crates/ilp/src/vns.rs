@@ -822,6 +822,27 @@ impl<'s> Search<'s> {
         })
     }
 
+    /// Whether a drawn cell is worth an evaluation: not one already looked at, and
+    /// not one the evaluation refuses (cached as refused and reported, so it is never
+    /// drawn into an evaluation again). Every way of proposing a cell (regular
+    /// arrays, screening, the walks) asks this before it evaluates.
+    fn fresh<E: Evaluate, O: Observer>(
+        &mut self,
+        (iteration, config, cell): (u64, &Configuration, &Cell),
+        eval: &E,
+        observer: &mut O,
+    ) -> bool {
+        if self.cache.get(cell).is_some() {
+            return false;
+        }
+        if let Some(why) = eval.refuses(config) {
+            self.cache.insert(cell.clone(), Entry::Refused);
+            observer.refused(iteration, &why);
+            return false;
+        }
+        true
+    }
+
     fn exhausted(&self) -> bool {
         self.cache.len() as f64 >= self.space.cell_count()
     }
@@ -1033,12 +1054,7 @@ impl<'s> Search<'s> {
             let iteration = self.iteration;
             self.iteration += 1;
             observer.iteration(self.iteration);
-            if self.cache.get(&cell).is_some() {
-                continue;
-            }
-            if let Some(why) = eval.refuses(&config) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
+            if !self.fresh((iteration, &config, &cell), eval, observer) {
                 continue;
             }
             self.candidate((iteration, config, cell), 0.0, eval, observer)?;

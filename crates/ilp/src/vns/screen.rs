@@ -3,7 +3,6 @@
 //! them and a plateau of no light is left by screening on, not by walking at random.
 
 use super::{Evaluate, Evaluation, Observer, Record, Search, SearchError, Sense, Verdict};
-use crate::cache::Entry;
 use crate::intention::Feasibility;
 use crate::space::{Cell, Configuration};
 use invlight_stats::{SplitMix64, mix};
@@ -66,14 +65,9 @@ impl Search<'_> {
                 self.iteration += 1;
                 observer.iteration(self.iteration);
                 if self.screened.contains(&cell)
-                    || self.cache.get(&cell).is_some()
                     || batch.iter().any(|(_, _, c)| *c == cell)
+                    || !self.fresh((iteration, &config, &cell), eval, observer)
                 {
-                    continue;
-                }
-                if let Some(why) = eval.refuses(&config) {
-                    self.cache.insert(cell, Entry::Refused);
-                    observer.refused(iteration, &why);
                     continue;
                 }
                 batch.push((iteration, config, cell));

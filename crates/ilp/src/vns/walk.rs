@@ -17,7 +17,6 @@
 //! threads.
 
 use super::{Evaluate, Observer, Search, SearchError, Verdict};
-use crate::cache::Entry;
 use crate::space::{Cell, Configuration};
 use invlight_stats::SplitMix64;
 use std::collections::VecDeque;
@@ -69,12 +68,7 @@ impl Search<'_> {
             let iteration = self.iteration;
             self.iteration += 1;
             observer.iteration(self.iteration);
-            if self.cache.get(&cell).is_some() {
-                continue;
-            }
-            if let Some(why) = eval.refuses(&candidate) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
+            if !self.fresh((iteration, &candidate, &cell), eval, observer) {
                 continue;
             }
             let lead = match ahead.take(&cell) {
@@ -232,9 +226,7 @@ impl Search<'_> {
             let iteration = self.iteration;
             self.iteration += 1;
             observer.iteration(self.iteration);
-            if let Some(why) = eval.refuses(&config) {
-                self.cache.insert(cell, Entry::Refused);
-                observer.refused(iteration, &why);
+            if !self.fresh((iteration, &config, &cell), eval, observer) {
                 continue;
             }
             let lead = match ahead.take(&cell) {
