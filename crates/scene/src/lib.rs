@@ -70,7 +70,7 @@ pub use files::parse_memory_size;
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
 pub use load::{LoadOptions, UpAxis, load, load_with};
-pub use lookup::known_names;
+pub use lookup::{known_names, nearest};
 pub use luminaire::Luminaire;
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;

@@ -29,6 +29,19 @@ fn quoted(names: &[&str]) -> String {
         .join(", ")
 }
 
+/// The name of `known` nearest to `name` when it is close enough to be what was meant
+/// — another case, a British spelling (`minimise` for `minimize`), a typo of a letter
+/// or two (one in a name of four letters or fewer) — for "did you mean" hints.
+pub fn nearest<'k>(name: &str, known: &[&'k str]) -> Option<&'k str> {
+    let lower = name.to_lowercase();
+    known
+        .iter()
+        .map(|k| (edit_distance(&k.to_lowercase(), &lower), *k))
+        .filter(|(d, k)| *d <= if k.chars().count() > 4 { 2 } else { 1 })
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, k)| k)
+}
+
 /// Levenshtein distance, for "did you mean" hints.
 fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
@@ -120,6 +133,20 @@ mod tests {
     use super::*;
     use crate::{Light, LightKind, Material, Mesh};
     use glam::{Mat4, Vec3};
+
+    #[test]
+    fn the_nearest_known_name_is_suggested() {
+        let goals = ["maximizeRadiance", "minimizePower", "targetRadiance"];
+        assert_eq!(nearest("minimisePower", &goals), Some("minimizePower"));
+        assert_eq!(
+            nearest("MAXIMIZERADIANCE", &goals),
+            Some("maximizeRadiance")
+        );
+        assert_eq!(nearest("targtRadiace", &goals), Some("targetRadiance"));
+        assert_eq!(nearest("uniformity", &goals), None);
+        assert_eq!(nearest("id", &["ids", "lights"]), Some("ids"));
+        assert_eq!(nearest("x", &["id"]), None);
+    }
 
     #[test]
     fn wrong_names_get_close_ones_or_the_list() {

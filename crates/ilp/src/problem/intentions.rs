@@ -23,6 +23,7 @@ impl Reader<'_, '_> {
         objectives: Node,
     ) -> Result<(Goal, u32, Vec<Constraint>), Diagnostic> {
         let mut goal: Option<(Goal, u32)> = None;
+        let mut unknown: Option<Node> = None;
         let mut constraints = Vec::new();
         for o in self.elements(objectives) {
             let name = o.tag_name().name();
@@ -48,13 +49,9 @@ impl Reader<'_, '_> {
                 continue;
             }
             let Some(parsed) = self.goal(o)? else {
-                self.warn(
-                    o,
-                    format!(
-                        "unknown objective <{name}> ignored (expected one of: {}, or <constraint>)",
-                        GOALS.join(", ")
-                    ),
-                );
+                let w = self.unknown_element(o, "objective", GOALS, ", or <constraint>");
+                self.warnings.borrow_mut().push(w);
+                unknown.get_or_insert(o);
                 continue;
             };
             if let Some((first, line)) = &goal {
@@ -70,14 +67,26 @@ impl Reader<'_, '_> {
             }
             goal = Some((parsed, self.line(o)));
         }
-        let (goal, goal_line) = goal.ok_or_else(|| {
-            self.error(
+        let (goal, goal_line) = goal.ok_or_else(|| match unknown {
+            // The goal the author meant is most likely the element not understood.
+            Some(o) => {
+                let d = self.unknown_element(o, "objective", GOALS, "");
+                Diagnostic {
+                    message: format!(
+                        "no goal in <objectives>: <{}> is not one, expected one of: {}",
+                        o.tag_name().name(),
+                        GOALS.join(", ")
+                    ),
+                    ..d
+                }
+            }
+            None => self.error(
                 objectives,
                 format!(
                     "no goal in <objectives>, expected one of: {}",
                     GOALS.join(", ")
                 ),
-            )
+            ),
         })?;
         Ok((goal, goal_line, constraints))
     }

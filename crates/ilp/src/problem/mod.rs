@@ -31,7 +31,7 @@ use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
 pub use groups::LightGroup;
 use invlight_scene::daylight::{Date, Daylight, DaylightError, DaylightFlags, SunSchedule};
-use invlight_scene::{Calculation, Diagnostic, LoadOptions, Luminaire, Scene, UpAxis};
+use invlight_scene::{Calculation, Diagnostic, LoadOptions, Luminaire, Scene, UpAxis, nearest};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
 
@@ -449,8 +449,9 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn check_attributes(&self, node: Node, known: &[&str]) {
         for a in node.attributes() {
             if !known.contains(&a.name()) {
-                self.warn(
-                    node,
+                let w = Diagnostic::at_line(
+                    self.path,
+                    self.line(node),
                     format!(
                         "unknown attribute '{}' of <{}> ignored (expected one of: {})",
                         a.name(),
@@ -458,7 +459,30 @@ impl<'a, 'i> Reader<'a, 'i> {
                         known.join(", ")
                     ),
                 );
+                let w = match nearest(a.name(), known) {
+                    Some(k) => w.with_hint(format!("did you mean '{k}'?")),
+                    None => w,
+                };
+                self.warnings.borrow_mut().push(w);
             }
+        }
+    }
+
+    /// The diagnostic for an element `node` not in `known`, "unknown {what} <name> …
+    /// (expected one of: …)", with the nearest known element as its hint.
+    fn unknown_element(&self, node: Node, what: &str, known: &[&str], more: &str) -> Diagnostic {
+        let name = node.tag_name().name();
+        let d = Diagnostic::at_line(
+            self.path,
+            self.line(node),
+            format!(
+                "unknown {what} <{name}> ignored (expected one of: {}{more})",
+                known.join(", ")
+            ),
+        );
+        match nearest(name, known) {
+            Some(k) => d.with_hint(format!("did you mean <{k}>?")),
+            None => d,
         }
     }
 
@@ -555,14 +579,8 @@ impl<'a, 'i> Reader<'a, 'i> {
         self.check_attributes(root, &[]);
         for e in self.elements(root) {
             if !TOP.contains(&e.tag_name().name()) {
-                self.warn(
-                    e,
-                    format!(
-                        "unknown element <{}> ignored (expected one of: {})",
-                        e.tag_name().name(),
-                        TOP.join(", ")
-                    ),
-                );
+                let w = self.unknown_element(e, "element", TOP, "");
+                self.warnings.borrow_mut().push(w);
             }
         }
         let dir = self.path.parent().unwrap_or(Path::new("."));

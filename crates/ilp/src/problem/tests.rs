@@ -299,6 +299,42 @@ fn unknown_things_are_warnings() {
 }
 
 #[test]
+fn a_misspelt_name_is_named_with_its_line_and_the_nearest_known_one() {
+    // A British spelling of the only goal: the error is at that element, not at
+    // <objectives>, and says what it most likely meant.
+    let e = parse(
+        "<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions>\n<objectives>\n<constraint surface=\"F\" minLux=\"500\"/>\n<minimisePower/>\n</objectives></input>",
+    )
+    .unwrap_err();
+    assert_eq!(e.line, Some(4), "{e}");
+    assert!(e.message.contains("<minimisePower> is not one"), "{e}");
+    assert_eq!(
+        e.hint.as_deref(),
+        Some("did you mean <minimizePower>?"),
+        "{e}"
+    );
+    // Misspelt variables, attributes and top-level elements are warnings with the
+    // same hint; a name near nothing known gets none.
+    let p = parse(
+        "<input><scene path=\"s.obj\" scael=\"2\"/><conditons/>\n<conditions><directionalLigth id=\"S\"/><directionalLight id=\"T\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><minimizeGlare/></objectives></input>",
+    )
+    .unwrap();
+    let hints: Vec<(Option<u32>, Option<&str>)> = p
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.hint.as_deref()))
+        .collect();
+    for expected in [
+        (Some(1), Some("did you mean 'scale'?")),
+        (Some(1), Some("did you mean <conditions>?")),
+        (Some(2), Some("did you mean <directionalLight>?")),
+        (Some(3), None),
+    ] {
+        assert!(hints.contains(&expected), "{expected:?} not in {hints:?}");
+    }
+}
+
+#[test]
 fn nonsense_values_are_errors() {
     for (objectives, what) in [
         (

@@ -171,14 +171,9 @@ impl<'a, 'i> Reader<'a, 'i> {
             "lightAim" => self.light_aim(v)?,
             "color" => self.colour(v)?,
             "lightPower" => self.light_power(v)?,
-            other => {
-                self.warn(
-                    v,
-                    format!(
-                        "unknown variable <{other}> ignored (expected one of: {})",
-                        VARIABLES.join(", ")
-                    ),
-                );
+            _ => {
+                let w = self.unknown_element(v, "variable", VARIABLES, "");
+                self.warnings.borrow_mut().push(w);
                 return Ok(None);
             }
         };
