@@ -17,15 +17,41 @@ pub const MAX_CELLS: u64 = 1 << 20;
 /// least twice it, and p at most 10 m. The grid then has ⌈d/p⌉ points along d, the other
 /// side spaced alike. Tabulated: 1 m → 0.20 m, 5 m → 0.60 m, 10 m → 1 m, 100 m → 5 m.
 pub fn en12464_spacing(longer: f64, shorter: f64) -> f64 {
-    let (longer, shorter) = (longer.max(shorter), longer.min(shorter));
+    let (d, _) = en12464_side(longer, shorter);
+    (0.2 * 5f64.powf(d.log10())).min(10.0)
+}
+
+/// The side d that [`en12464_spacing`] is reckoned from, and whether it is the
+/// shorter side (the longer being at least twice it).
+fn en12464_side(a: f64, b: f64) -> (f64, bool) {
+    let (longer, shorter) = (a.max(b), a.min(b));
     // "2 or more", read with the rounding of coordinates in metres: a 1.6 m × 0.8 m
     // desk whose sides come out as 1.5999999 and 0.8000001 is 2:1.
-    let d = if longer >= 2.0 * shorter * (1.0 - 1e-6) {
-        shorter
+    if longer >= 2.0 * shorter * (1.0 - 1e-6) {
+        (shorter, true)
     } else {
-        longer
+        (longer, false)
+    }
+}
+
+/// [`en12464_spacing`] of an `a` × `b` m area as a reader checks it: "EN 12464-1's grid
+/// rule: p = 0.2 × 5^log10(d) = 0.79 m, d = 7.20 m (the longer side)".
+pub fn en12464_rule(a: f64, b: f64) -> String {
+    let (d, shorter) = en12464_side(a, b);
+    let side = if shorter {
+        "the shorter side, the longer being at least twice it"
+    } else {
+        "the longer side"
     };
-    (0.2 * 5f64.powf(d.log10())).min(10.0)
+    let capped = if 0.2 * 5f64.powf(d.log10()) > 10.0 {
+        ", at most 10 m"
+    } else {
+        ""
+    };
+    format!(
+        "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {:.2} m{capped}, d = {d:.2} m ({side})",
+        en12464_spacing(a, b)
+    )
 }
 
 /// Why a grid cannot be laid on a surface.
@@ -335,6 +361,15 @@ mod tests {
         // A 20 m × 2 m corridor is spaced by its width: 0.2·5^log10(2) ≈ 0.32 m.
         assert!((en12464_spacing(20.0, 2.0) - 0.2 * 5f64.powf(2f64.log10())).abs() < 1e-12);
         assert_eq!(en12464_spacing(1e6, 1e6), 10.0);
+        assert_eq!(
+            en12464_rule(7.2, 4.8),
+            format!(
+                "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {:.2} m, d = 7.20 m (the longer side)",
+                0.2 * 5f64.powf(7.2f64.log10())
+            )
+        );
+        assert!(en12464_rule(1.6, 0.8).contains("d = 0.80 m (the shorter side"));
+        assert!(en12464_rule(1e6, 1e6).contains("= 10.00 m, at most 10 m"));
         // Exactly 2:1 is spaced by the shorter side, rounding aside.
         let p = en12464_spacing(1.5999999, 0.8000001);
         assert!((p - 0.2 * 5f64.powf(0.8f64.log10())).abs() < 1e-6, "{p}");

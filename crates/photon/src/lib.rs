@@ -78,7 +78,7 @@ pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shar
 pub use connect::{Connection, Departure, Lobe, SOLID_ANGLE_TRIANGLES, SolidAngles, Targets};
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
 pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
-pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_spacing};
+pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_rule, en12464_spacing};
 pub use measure::{
     DaylightFactor, Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport,
     behind_warning, measure, measure_across, measure_more, measure_with, much_from_behind,

@@ -483,6 +483,7 @@ mod tests {
             mean: est(482.0, 5.0),
             u0: est(1.08, 0.02),
             spacing: 1.0,
+            spacing_rule: String::new(),
             side: invlight_photon::Side::Both,
             front_back: (482.0, 0.0),
         };

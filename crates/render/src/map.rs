@@ -14,7 +14,8 @@
 use glam::Vec3;
 use invlight_photon::{
     Cluster, Components, Estimator, GridError, GridRequest, Request, Side, SurfaceGrid,
-    TraceSettings, behind_warning, cluster, en12464_spacing, measure_across, photons_traced,
+    TraceSettings, behind_warning, cluster, en12464_rule, en12464_spacing, measure_across,
+    photons_traced,
 };
 use invlight_scene::{Scene, SurfaceId};
 use invlight_stats::{Confidence, Estimate};
@@ -61,6 +62,20 @@ impl GridSpacing {
         match self {
             GridSpacing::Metres(m) => m,
             GridSpacing::Auto => en12464_spacing(grid.size.x as f64, grid.size.y as f64) as f32,
+        }
+    }
+
+    /// How this spacing chose the cells of `grid`, for a reader checking a grid as
+    /// DIALux prints it: EN 12464-1's rule with its d, or the spacing asked for beside
+    /// the one the rule would take (a coarser grid can hide an Emin).
+    pub fn rule(self, grid: &SurfaceGrid) -> String {
+        let (a, b) = (grid.size.x as f64, grid.size.y as f64);
+        match self {
+            GridSpacing::Auto => en12464_rule(a, b),
+            GridSpacing::Metres(m) => format!(
+                "{m} m as asked (EN 12464-1's grid rule would take {:.2} m)",
+                en12464_spacing(a, b)
+            ),
         }
     }
 }
@@ -133,6 +148,8 @@ pub struct IlluminanceMap {
     pub cell_v: f32,
     /// The largest cell side asked for, m (EN 12464-1's spacing for `auto`).
     pub spacing: f32,
+    /// How the spacing was chosen ([`GridSpacing::rule`]).
+    pub spacing_rule: String,
     /// The side whose light was counted.
     pub side: Side,
     /// Cells row by row (row 0 at v = 0); `None` where the surface covers no area.
@@ -164,6 +181,14 @@ pub struct MapSummary {
     pub u0: f64,
 }
 
+impl MapSummary {
+    /// The largest ratio of two cells, Emax/Emin, as DIALux prints it beside U0 (its
+    /// inverse is the diversity g2 = Emin/Emax); none when Emin is 0.
+    pub fn max_ratio(&self) -> Option<f64> {
+        (self.emin > 0.0).then(|| self.emax / self.emin)
+    }
+}
+
 /// Measures the illuminance over the grid `settings.spacing` lays on the planar
 /// surface `surface`: every photon arrival on the side `settings.side` counts (every
 /// bounce, as in `invlight_photon::measure`). `progress` receives photons traced.
@@ -192,6 +217,7 @@ pub fn illuminance_map_across(
     photons_traced(settings.trace.photons)
         .ok_or(MapError::TooManyPhotons(settings.trace.photons))?;
     let spacing = settings.spacing.metres(&grid);
+    let spacing_rule = settings.spacing.rule(&grid);
     let components = Components::one(scene);
     let request = Request {
         surfaces: &[surface],
@@ -229,6 +255,7 @@ pub fn illuminance_map_across(
         cell_u: grid.cell_u,
         cell_v: grid.cell_v,
         spacing,
+        spacing_rule,
         side: settings.side,
         cells,
         photons: measured.photons,
@@ -258,6 +285,10 @@ pub struct MapReport {
     pub surface: String,
     /// The largest cell side asked for, m (EN 12464-1's spacing for `--grid auto`).
     pub cell: f32,
+    /// How that cell side was chosen: EN 12464-1's rule with its d, or the spacing
+    /// asked for beside the rule's.
+    #[serde(default)]
+    pub spacing_rule: String,
     /// The side whose light counts: `front`, `back` or `both`.
     pub side: String,
     /// The cells' sides along u and v, m.
@@ -283,6 +314,9 @@ pub struct MapReport {
     pub eavg_std_error: f64,
     /// Largest cell mean.
     pub emax: f64,
+    /// Emax / Emin; absent when Emin is 0.
+    #[serde(default)]
+    pub emax_over_emin: Option<f64>,
     /// Emin / Eavg.
     pub u0: f64,
     /// Standard error of U0 (the delta method over the photon groups).
@@ -321,8 +355,17 @@ impl MapReport {
     pub fn summary(&self) -> String {
         use invlight_stats::significant;
         let z = Confidence::new(self.confidence).unwrap_or_default().z();
+        let ratio = match self.emax_over_emin {
+            Some(r) => format!("{r:.2}"),
+            None => "∞ (Emin 0)".into(),
+        };
+        let rule = if self.spacing_rule.is_empty() {
+            String::new()
+        } else {
+            format!("grid: {}\n", self.spacing_rule)
+        };
         format!(
-            "{}: {}×{} cells of {:.3}×{:.3} m, {} photons, {:.2} s\nEmin {} lx  Eavg {} lx  Emax {} lx  U0 = Emin/Eavg {:.3} [{:.3}, {:.3}]\n",
+            "{}: {}×{} cells of {:.3}×{:.3} m, {} photons, {:.2} s\n{rule}Emin {} lx  Eavg {} lx  Emax {} lx  U0 = Emin/Eavg {:.3} [{:.3}, {:.3}]  Emax/Emin {ratio}\n",
             self.surface,
             self.cells[0],
             self.cells[1],
@@ -407,6 +450,7 @@ impl IlluminanceMap {
         MapReport {
             surface: surface.to_string(),
             cell: self.spacing,
+            spacing_rule: self.spacing_rule.clone(),
             side: self.side.name().into(),
             cell_size: [self.cell_u, self.cell_v],
             cells: [self.columns, self.rows],
@@ -419,6 +463,7 @@ impl IlluminanceMap {
             eavg: summary.eavg,
             eavg_std_error: self.mean.std_error,
             emax: summary.emax,
+            emax_over_emin: summary.max_ratio(),
             u0: summary.u0,
             u0_std_error: self.u0.std_error,
         }

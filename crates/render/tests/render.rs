@@ -13,7 +13,7 @@ use invlight_scene::{
     Camera, Light, LightKind, Material, MaterialId, Mesh, PhotometricSystem, Photometry, Scene,
     aimed_frame,
 };
-use invlight_stats::Pcg32;
+use invlight_stats::{Confidence, Pcg32};
 use invlight_trace::Accel;
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -516,6 +516,11 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
     assert!((summary.eavg - total / 4.0).abs() < 1e-9 * total);
     assert!((summary.u0 - summary.emin / summary.eavg).abs() < 1e-12);
     assert!(summary.emin <= summary.eavg && summary.eavg <= summary.emax);
+    assert_eq!(summary.max_ratio(), Some(summary.emax / summary.emin));
+    assert_eq!(
+        map.spacing_rule,
+        "0.5 m as asked (EN 12464-1's grid rule would take 0.32 m)"
+    );
     // The whole surface's estimate is the cells' area-weighted mean, with an error no
     // larger than the cells' own (it pools their photons).
     assert!((map.mean.mean - summary.eavg).abs() < 1e-9 * summary.eavg);
@@ -558,11 +563,27 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
         },
         estimator: Estimator::Connected,
     };
+    let back_settings = back;
     let back = illuminance_map(&scene, &accel, floor, &back, None).unwrap();
     assert_eq!(back.mean.mean, 0.0);
     // EN 12464-1 spaces a 2 m square by 0.2·5^log10(2) = 0.325 m: 7 × 7 cells.
     assert_eq!((back.columns, back.rows), (7, 7));
     assert!((back.spacing - 0.2 * 5f32.powf(2f32.log10())).abs() < 1e-6);
+    assert!(
+        back.spacing_rule
+            .contains("= 0.32 m, d = 2.00 m (the longer side)"),
+        "{}",
+        back.spacing_rule
+    );
+    // Nothing on the back: no Emin, so no Emax/Emin either, and the lines say so.
+    assert_eq!(back.summary().max_ratio(), None);
+    let lines = back
+        .report("Floor", &back_settings, Confidence::DEFAULT, 0.0)
+        .summary();
+    assert!(
+        lines.contains("grid: EN 12464-1's grid rule") && lines.contains("Emax/Emin ∞"),
+        "{lines}"
+    );
 }
 
 #[test]

@@ -152,7 +152,7 @@ pub fn grid_section(
         ),
     );
     out += &format!(
-        "<dl><dt>Eavg</dt><dd>{} lx [{}, {}] ({} % interval)</dd><dt>Emin</dt><dd>{} lx</dd><dt>Emax</dt><dd>{} lx</dd><dt>U0 = Emin/Eavg</dt><dd>{:.3} [{:.3}, {:.3}]</dd><dt>Grid</dt><dd>{} × {} cells of {} × {} m, {} photons</dd></dl>\n",
+        "<dl><dt>Eavg</dt><dd>{} lx [{}, {}] ({} % interval)</dd><dt>Emin</dt><dd>{} lx</dd><dt>Emax</dt><dd>{} lx</dd><dt>U0 = Emin/Eavg</dt><dd>{:.3} [{:.3}, {:.3}]</dd><dt>Emax/Emin</dt><dd>{}</dd><dt>Grid</dt><dd>{} × {} cells of {} × {} m, {} photons; {}</dd></dl>\n",
         significant(s.eavg),
         significant(i.low),
         significant(i.high),
@@ -162,11 +162,14 @@ pub fn grid_section(
         s.u0,
         u0.low.max(0.0),
         u0.high,
+        s.max_ratio()
+            .map_or("∞ (Emin is 0)".into(), |r| format!("{r:.2}")),
         map.columns,
         map.rows,
         significant(map.cell_u as f64),
         significant(map.cell_v as f64),
-        map.photons
+        map.photons,
+        escape(&map.spacing_rule)
     );
     if let Some(r) = requirement {
         out += &compliance_html(&map.compliance(r, confidence));
