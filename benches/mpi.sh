@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 16: the overhead of MPI on this machine. Alternates, REPS times, the default
+# The overhead of MPI on this machine. Alternates, REPS times, the default
 # binary on 2 threads, the MPI binary as one rank on 2 threads (K = 1) and as two ranks
 # of one thread each, bound to a core each (K = 2), on
 #   - measure: 10⁷ photons on the Cornell cone's scene (surface Cone);

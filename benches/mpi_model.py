@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The cluster model of BENCHMARKS.md ("The same solve on K processes", issue 16).
+"""The cluster model of BENCHMARKS.md ("The same solve on K processes").
 
     python3 benches/mpi_model.py RUN_DIR... [--words 138] [--fold-us F] [--rate R]
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The thesis' search against PAIRED_ISOC and RACE_ISOC_ON_END on the bundled examples, one after the other
-in one run, with tools/check_examples.py's reduced budgets and its check of the answer
-(issue 15). For each run: evaluations, photons traced (what `solve` reports), photons
+in one run, with tools/check_examples.py's reduced budgets and its check of the answer.
+For each run: evaluations, photons traced (what `solve` reports), photons
 the rows ask for (the sum of solutions.csv's photons column: what re-tracing every
 evaluation from its first photon would cost), screened rows, seconds of search, the
 elapsed seconds at which the final best member first joined the ISOC (time to

@@ -2,9 +2,9 @@
 //!
 //! One test binary with a module per topic (as ripgrep lays out its integration tests),
 //! so that cargo links one executable. The library crates test their own pieces; these
-//! tests check what only the assembled program can show: exit codes, the JSON the
-//! issues promise (issue 2 item 7, issue 3 item 3), the same answer from the same scene
-//! in three formats (issue 3, "Done when"), and agreement with independent renderers.
+//! tests check what only the assembled program can show: exit codes, the JSON it
+//! promises, the same answer from the same scene in three formats, and agreement with
+//! independent renderers.
 //!
 //! Statistical checks use tolerances built from the standard errors the program reports
 //! and fixed seeds, so they are deterministic and can fail.
@@ -123,7 +123,7 @@ fn scene(file: &Path) -> Value {
 }
 
 /// The same room written as glTF, COLLADA and OBJ+MTL by tests/data/triple/make.py
-/// (issue 3, "Done when": the same illuminance from a scene in each format).
+/// (the same illuminance from a scene in each format).
 mod triple {
     use super::*;
 
@@ -270,7 +270,7 @@ mod triple {
     }
 }
 
-/// `invlight scene --json` on the real files of issue 3 item 4.
+/// `invlight scene --json` on real scene files.
 mod scene_files {
     use super::*;
     use std::f64::consts::PI;
@@ -280,7 +280,7 @@ mod scene_files {
         0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
     }
 
-    /// The JSON shape of issue 3 item 3, checked on every file below.
+    /// The JSON shape `invlight scene --json` promises, checked on every file below.
     fn check_shape(s: &Value) {
         for surface in s["surfaces"].as_array().expect("surfaces") {
             assert!(surface["name"].is_string(), "{surface}");
@@ -601,11 +601,11 @@ mod scene_files {
     }
 }
 
-/// `invlight measure` end to end (issue 2 item 7).
+/// `invlight measure` end to end.
 mod measure {
     use super::*;
 
-    /// The JSON of issue 2: photons, rays, seconds and per surface its name, area, mean,
+    /// The JSON of `measure`: photons, rays, seconds and per surface its name, area, mean,
     /// interval, standard error and hits, in the order asked; with the estimator and
     /// its connection rays.
     #[test]
@@ -756,7 +756,7 @@ mod measure {
 }
 
 /// Bad input: exit code 2, a message that starts with `error:` and names the file and
-/// the problem, never a panic (issue 2 item 7, issue 3 item 4).
+/// the problem, never a panic.
 mod errors {
     use super::*;
 
@@ -1243,8 +1243,8 @@ mod solve {
     }
 }
 
-/// What a newcomer meets in the first hour (issue 11) and what careless input does
-/// (issue 19): each a clear message or a correct result, never a panic.
+/// What a newcomer meets in the first hour and what careless input does: each a clear
+/// message or a correct result, never a panic.
 mod intentions {
     use super::*;
 
@@ -1755,7 +1755,7 @@ mod first_hour {
     }
 }
 
-/// `--help` of every subcommand exits 0 and documents every option the issues name.
+/// `--help` of every subcommand exits 0 and documents every option it is meant to have.
 mod help {
     use super::*;
 
@@ -1838,11 +1838,11 @@ mod help {
     }
 }
 
-/// Issue 19, "Hostile and huge inputs" (the scene part): what printed NaN or inf with
+/// Hostile and huge inputs (the scene part): what printed NaN or inf with
 /// exit code 0, panicked or aborted is an input error (exit code 2) naming the file,
 /// and a scene at the edge of the accepted range measures to finite numbers. The
 /// reproducers are tests/data/hostile, written by make.py there.
-mod r19 {
+mod hostile_inputs {
     use super::*;
 
     fn hostile(name: &str) -> PathBuf {
@@ -1855,10 +1855,10 @@ mod r19 {
         args
     }
 
-    /// Item 2: a 3e38 cd lamp (`measure` printed NaN, "inf lm emitted"), an OBJ `Ke 1e38`,
+    /// A 3e38 cd lamp (`measure` printed NaN, "inf lm emitted"), an OBJ `Ke 1e38`,
     /// and `--scale` 1e15…1e30 (area inf, then a BVH panic) in measure, map and render.
     #[test]
-    fn r19_overflows_are_input_errors() {
+    fn overflows_are_input_errors() {
         let lamp = hostile("lamp_floor.gltf");
         let p = ["--photons", "2000"];
         for (file, extra, mentions) in [
@@ -1903,7 +1903,7 @@ mod r19 {
     /// The largest accepted emitter (just under 1e20 lm) over the largest accepted floor
     /// gives finite numbers everywhere in `measure --json` and in `map`'s CSV.
     #[test]
-    fn r19_edge_of_range_is_finite() {
+    fn edge_of_range_is_finite() {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("edge.obj");
         // A 1 m² emissive triangle facing down 1 m above a floor 2e9 m wide: π·L·A
@@ -1954,9 +1954,9 @@ mod r19 {
         }
     }
 
-    /// Items 4 and 5: the memory limit and the folder rule, from the command line.
+    /// The memory limit and the folder rule, from the command line.
     #[test]
-    fn r19_memory_and_paths() {
+    fn memory_and_paths() {
         let tiles = hostile("instanced_200.gltf");
         input_error(
             run("scene", &tiles, &["--max-memory", "100K"]),
@@ -1985,7 +1985,7 @@ mod r19 {
     }
 }
 
-/// Luminaires from photometric files given to a scene's lights by name (issue 14):
+/// Luminaires from photometric files given to a scene's lights by name:
 /// `--luminaire NAME=FILE` on any command that reads a scene, `<luminaire>` in a
 /// problem file's `<scene>`.
 mod luminaires {
@@ -2276,7 +2276,7 @@ mod luminaires {
     }
 }
 
-/// Issue 18, daylight on the command line: `invlight sun` against the SPA paper's worked
+/// Daylight on the command line: `invlight sun` against the SPA paper's worked
 /// example, `--site`/`--sun` and `--sky` on a scene against closed forms, and
 /// `measure --daylight-factor`.
 mod daylight {

@@ -1,4 +1,4 @@
-//! report.html in a real browser (issue 17): headless Chromium opens the report of the
+//! report.html in a real browser: headless Chromium opens the report of the
 //! bundled cornell-cone example and a map's report, takes a screenshot, and the test
 //! checks the page rendered — not blank, the size asked for — and that the file
 //! references nothing outside itself, with the browser's networking blocked.

@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
 """Runs every bundled example with a reduced budget and checks that its answer lands in
-the region its README expects (issue 6: "CI runs every example with a reduced budget
-and checks that the answer lands in the expected region").
+the region its README expects (CI runs it).
 
     python3 tools/check_examples.py [--bin PATH] [--only NAME] [--full] [--strategy S]
 
@@ -205,7 +204,7 @@ def main():
                 failed += 1
                 continue
             result = json.loads(run.stdout)
-            # Every example's report.html is built, self-contained (issue 17).
+            # Every example's report.html is built, self-contained.
             report = os.path.join(out, "report.html")
             page = open(report, encoding="utf-8").read() if os.path.exists(report) else ""
             outside = re.findall(r"""(?:src|href)=["'](?!data:|#)[^"']*|url\((?!data:)|@import""", page)

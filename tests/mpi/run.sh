@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 16: the same solve on an MPI job of K ranks, bit-identical to one process.
+# The same solve on an MPI job of K ranks, bit-identical to one process.
 # Runs measure, map and solve (two examples) with `mpirun -np 1/2/3` of a binary built
 # with `--features mpi` and with the default binary, and compares their outputs with
 # the timing fields left out; then the faults: a rank that cannot load the scene, a

@@ -195,7 +195,7 @@ fn bad_input_is_an_input_error() {
     assert!(format!("{err:#}").contains("--photons"), "{err:#}");
 }
 
-/// `--strategy PAIRED_ISOC` and `RACE_ISOC_ON_END` (issue 15): the same `solutions.csv`
+/// `--strategy PAIRED_ISOC` and `RACE_ISOC_ON_END`: the same `solutions.csv`
 /// on 1 and 2 threads (the groups paired are the same photons whatever the thread
 /// count), the strategy kept in run.json, and why the search stopped in result.json.
 /// The race runs on examples/cornell-cone, whose flat top keeps many members: with

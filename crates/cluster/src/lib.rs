@@ -1,9 +1,8 @@
-//! invlight's traces shared by the processes of a cluster job (issue 16;
-//! docs/cluster.md): every process runs the same search on the same inputs, traces its
-//! share of each trace's chunks, and folds every chunk in chunk order
-//! ([`invlight_photon::trace_shared`]), so all of them hold the totals one process
-//! would have summed, bit for bit, and take the same decisions. Rank 0 alone writes
-//! files and prints.
+//! invlight's traces shared by the processes of a cluster job (docs/cluster.md): every
+//! process runs the same search on the same inputs, traces its share of each trace's
+//! chunks, and folds every chunk in chunk order ([`invlight_photon::trace_shared`]), so
+//! all of them hold the totals one process would have summed, bit for bit, and take the
+//! same decisions. Rank 0 alone writes files and prints.
 //!
 //! - [`Local`]: K ranks as threads of one process, exchanging through memory, to check
 //!   the split against one process without MPI (tests) and to count what an exchange

@@ -1,4 +1,4 @@
-//! A trace shared by K ranks gives the same bits as one process (issue 16): ranks are
+//! A trace shared by K ranks gives the same bits as one process: ranks are
 //! threads here ([`Local`]), exchanging what MPI's processes would.
 
 use invlight_cluster::Local;

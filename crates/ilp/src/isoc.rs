@@ -11,7 +11,7 @@
 //! (z·sqrt(σx² + σy²) ≤ z·(σx + σy)), and overlapping intervals on a line have a common
 //! point (Helly's theorem in one dimension): the SIISOC is always a real interval.
 //!
-//! A paired ISOC ([`Isoc::paired`], issue 15) compares two configurations that both
+//! A paired ISOC ([`Isoc::paired`]) compares two configurations that both
 //! kept their groups by the groups' paired differences (common random numbers) and
 //! falls back to eq. 3.7 otherwise. Paired indistinguishability over all the groups
 //! still implies overlapping intervals (var(d̄) = σx² + σy² − 2cov ≤ (σx + σy)²), but

@@ -269,7 +269,7 @@ impl PhotonEvaluator<'_> {
     /// [`PhotonEvaluator::ready`] in place of what it held (a failed trace is left for
     /// [`Evaluate::evaluate`] to make again and report). The candidates are dealt to the
     /// processes of a cluster job in turn (rank r takes the r-th, the (r + K)-th, …;
-    /// issue 16: a batch of one-chunk looks keeps every rank busy, where a shared trace
+    /// a batch of one-chunk looks keeps every rank busy, where a shared trace
     /// of one chunk would keep one), each rank traces its share on as many stages at
     /// once as it has threads, each trace its own, and the ranks exchange the
     /// measurements: the exchange comes from this thread alone, in the same order on
@@ -371,8 +371,7 @@ fn solved(
 }
 
 /// The kept trace that a trace of `key` continues: its arrangement's largest of fewer
-/// photons (issue 15: a candidate looked at with n, 4n, … then N photons traces N in
-/// all).
+/// photons (a candidate looked at with n, 4n, … then N photons traces N in all).
 fn previous<'k>(kept: &'k Kept, key: &(Vec<u64>, u64)) -> Option<&'k Measurement> {
     kept.iter()
         .filter(|((a, p), _)| *a == key.0 && *p < key.1)

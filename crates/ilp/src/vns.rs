@@ -65,7 +65,7 @@ pub enum Strategy {
     /// Everything with n, never refined.
     NoRefine,
     /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
-    /// the paired differences of their groups (common random numbers, issue 15) instead
+    /// the paired differences of their groups (common random numbers) instead
     /// of eq. 3.7's independent variances, wherever both kept their groups; a candidate
     /// is looked at with n/16, n/4, n, 4n, … samples ([`looks`]) and is out as soon as
     /// a member beats it by pairs or it falls below the SIISOC or its constraints at
@@ -100,7 +100,7 @@ impl Strategy {
 
     /// Whether evaluations keep their groups for paired comparisons, the search
     /// screens the space first, looks at a candidate with n/16, n/4, … before
-    /// deciding, and stops when decided (issue 15).
+    /// deciding, and stops when decided.
     pub fn paired(self) -> bool {
         matches!(self, Strategy::Paired | Strategy::RaceOnEnd)
     }
@@ -349,9 +349,9 @@ pub trait Evaluate {
 
     /// Readies evaluations of `configs` with `photons` samples that [`Evaluate::evaluate`]
     /// may be asked for next: an evaluator that can trace several at once on all cores
-    /// does (issue 15's parallel candidates). The search may go on to ask for only some
-    /// of them, in their order, or for none (the walk readies the candidates it will
-    /// draw if none of them changes its course): readying must change neither what
+    /// does. The search may go on to ask for only some of them, in their order, or for
+    /// none (the walk readies the candidates it will draw if none of them changes its
+    /// course): readying must change neither what
     /// `evaluate` returns nor the work it reports, so the search's results do not
     /// depend on the thread count or on how far ahead it readied.
     fn prepare(&mut self, _configs: &[Configuration], _photons: u64) {}
@@ -637,8 +637,7 @@ impl<'s> Search<'s> {
     /// candidate and Y the best ISOC member then, from their common groups, with the
     /// number of such pairs; `None` when no evaluation kept its groups (only
     /// [`Strategy::Paired`] and [`Strategy::RaceOnEnd`] keep them). It is what pairing
-    /// gains over eq. 3.7: the paired threshold is its square root times eq. 3.7's
-    /// (issue 15 asks for it).
+    /// gains over eq. 3.7: the paired threshold is its square root times eq. 3.7's.
     pub fn variance_ratio(&self) -> Option<(f64, usize)> {
         let mut r = self.ratios.clone();
         r.sort_by(f64::total_cmp);
@@ -734,7 +733,7 @@ impl<'s> Search<'s> {
     /// observer asks to stop; under [`Strategy::Paired`] and [`Strategy::RaceOnEnd`]
     /// also when it is decided.
     ///
-    /// The stopping rule (issue 15: "stop when the answer is decided"): a sweep is one
+    /// The stopping rule (stop when the answer is decided): a sweep is one
     /// pass of Algorithm 3.1's radii from 0.05 to 0.95 without an improvement, I
     /// candidates at each around the ISOC; when a whole sweep admits no candidate to
     /// the ISOC (neither better nor indistinguishable), every neighbourhood size up to

@@ -1,4 +1,4 @@
-//! Issue 19: the bounded fuzz target of the problem-file reader, on mutants of the
+//! The bounded fuzz target of the problem-file reader, on mutants of the
 //! repository's problem files (the mutator is the scene loaders', see
 //! crates/trace/tests/fuzz/mod.rs): `Problem::parse` must not panic or hang, and a
 //! problem it accepts is bound to its scene (`Binding::new`) without panic.

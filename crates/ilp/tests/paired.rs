@@ -1,4 +1,4 @@
-//! The search with paired comparisons (issue 15) on a synthetic function whose noise,
+//! The search with paired comparisons on a synthetic function whose noise,
 //! like photon tracing with common random numbers, is mostly shared between
 //! configurations group by group: group g of every configuration carries the same
 //! shared draw s_g (σ_s) plus its own o_g (σ_o). Eq. 3.7 sees σ_s + σ_o and cannot
@@ -363,7 +363,7 @@ fn window(c: &[f64]) -> f64 {
     (10.0 * (1.0 - d / 0.06)).max(0.0)
 }
 
-/// Global screening on a plateau (issue 15): on 40 × 40 cells of [`window`], started
+/// Global screening on a plateau: on 40 × 40 cells of [`window`], started
 /// in the dark at (0.1, 0.9), the paired search keeps screening past its tenth of the
 /// budget until a screened point is lit (the first lit evaluation is a screened one),
 /// then walks from it to the cone's peak cell
@@ -593,7 +593,7 @@ fn peak_2d(c: &[f64]) -> f64 {
     10.0 - 3.0 * ((c[0] - 0.43).abs() + (c[1] - 0.61).abs())
 }
 
-/// The ISOC's honesty over seeds (issue 15): on 10 × 10 cells of the 2-D peak
+/// The ISOC's honesty over seeds: on 10 × 10 cells of the 2-D peak
 /// 10 − 3(|x − 0.43| + |y − 0.61|), where half the noise is each configuration's own
 /// (σ_s = σ_o = 1 per group, 100 groups at N), so the optimum's cell ([0.4, 0.5) ×
 /// [0.6, 0.7), 9.82 at its centre) is only 0.06 above its best neighbour (9.76), 0.4

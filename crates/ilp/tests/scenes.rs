@@ -1,5 +1,5 @@
 //! End-to-end: small scenes built in code whose optimum is known from geometry, solved
-//! by photon tracing (issue 4). Every surface is black (K_d = 0) except where bounces
+//! by photon tracing. Every surface is black (K_d = 0) except where bounces
 //! are the point, so the objective is direct light with a closed form, and the check is
 //! statistical: the optimum's cell is in the ISOC, and every member's true value is
 //! within 2·z·sqrt(σ² + σ_best²) of the best member's (each estimate within z·σ of its
@@ -587,9 +587,9 @@ fn same_solutions_on_one_and_two_threads() {
     assert_eq!(one, two);
 }
 
-/// The paired search's screening traces its small looks side by side on all cores
-/// (issue 15's parallel candidates), a moving box rebuilding each copy's top level:
-/// the same solutions.csv on 1 and 2 threads, its screened rows included.
+/// The paired search's screening traces its small looks side by side on all cores, a
+/// moving box rebuilding each copy's top level: the same solutions.csv on 1 and 2
+/// threads, its screened rows included.
 #[test]
 fn paired_search_screens_side_by_side_with_the_same_rows() {
     let base = tempfile::tempdir().unwrap();
@@ -671,7 +671,7 @@ fn candidates_readied_but_not_asked_for_count_nothing() {
     assert_eq!(ahead.work(), one.work());
 }
 
-/// `lightAim` (issue 14): a spot authored straight down at the middle of a black room
+/// `lightAim`: a spot authored straight down at the middle of a black room
 /// finds the aim that puts its beam on a small desk 1.56 m off its axis: the desk's
 /// centre is where the aim of one cell centre of the cone (maxTilt 40°, meshSize 24x8:
 /// cells of 15° of azimuth and 5° of tilt) meets the floor. The beam is full to 5° and
@@ -741,7 +741,7 @@ fn light_aim_puts_the_beam_on_an_off_axis_desk() {
     }
 }
 
-/// `holeSize` (issue 14): a skylight grows until the floor's light reaches a cap. The
+/// `holeSize`: a skylight grows until the floor's light reaches a cap. The
 /// sun shines straight down (1000 lx) into a black 4 m × 4 m room through a 0.5 m
 /// square skylight at scale s, so the floor's mean is exactly 1000 lx × (0.5 s)² / 16
 /// m² = 15.625 s² lx. The cap is that at s = 1.5, the edge between cells 9 (s = 1.45,
@@ -801,7 +801,7 @@ fn hole_size_grows_a_skylight_up_to_a_cap() {
     }
 }
 
-/// `objectRotation` (issue 14): a luminaire whose light goes one way only
+/// `objectRotation`: a luminaire whose light goes one way only
 /// (tests/data/photometry/asymmetric.ies: I = 200 cd·cos γ·(1 + cos C)/2, toward C0)
 /// hangs aimed down in the middle of a black room with C0 along +X; turned about the
 /// up axis (+Y, no placement) it lights the north wall (z = 4 m) most when C0 points
@@ -865,7 +865,7 @@ fn object_rotation_turns_a_luminaire_toward_a_wall() {
     assert!((-frame.z_axis - Vec3::NEG_Y).length() < 1e-5);
 }
 
-/// A configuration evaluated again with more photons continues its trace (issue 15):
+/// A configuration evaluated again with more photons continues its trace:
 /// the looks n, 4n and N of one candidate give the numbers fresh traces would, and cost
 /// N photons in all (and the rest of a chunk each look ended in), not n + 4n + N.
 #[test]

@@ -1,4 +1,4 @@
-//! The search on synthetic noisy functions with known optima (issue 4: 1-D, 2-D,
+//! The search on synthetic noisy functions with known optima (1-D, 2-D,
 //! several variables, plateaus, a cap). The noise is Gaussian with a known standard
 //! error σ = σ₁/√N that the estimate reports, drawn from a stream keyed by the
 //! configuration, so every test is reproducible.
@@ -458,7 +458,7 @@ fn interrupted_run_resumes_without_retracing() {
     check_optimum(&space, resumed.isoc(), &[0.52, 0.71], &f);
 }
 
-/// The search with every sense and constraint on functions of known optimum (issue 13),
+/// The search with every sense and constraint on functions of known optimum,
 /// returning the search for its ISOC and closest configurations.
 fn run_search<'s, F: Fn(&[f64]) -> f64>(
     space: &'s Space,
@@ -578,10 +578,10 @@ fn an_infeasible_problem_walks_toward_feasibility_and_says_what_came_closest() {
     assert!(standing.closest.windows(2).all(|w| w[0].0 <= w[1].0));
 }
 
-/// [`Noisy`] that readies evaluations ahead as the photon tracer does side by side
-/// (issue 15's parallel candidates): `prepare` computes them into `ready`, `evaluate`
-/// checks that a readied one is what it evaluates, and counts it. It refuses x₀ > 0.9,
-/// as the tracer refuses a placement outside the scene.
+/// [`Noisy`] that readies evaluations ahead as the photon tracer does side by side:
+/// `prepare` computes them into `ready`, `evaluate` checks that a readied one is what
+/// it evaluates, and counts it. It refuses x₀ > 0.9, as the tracer refuses a placement
+/// outside the scene.
 struct Readied<F: Fn(&[f64]) -> f64> {
     inner: Noisy<F>,
     width: usize,

@@ -164,7 +164,7 @@ pub(crate) fn side_weights(side: Side, w: &[f64]) -> Vec<f64> {
 /// [`ChannelSums`] at [`SurfaceTallies::end_group`]. Only the targets the group touched
 /// are visited then, so a photon costs its contributions, not the number of targets.
 /// Each group's totals are also kept in order ([`SurfaceTallies::groups`]): the search
-/// compares two configurations by their groups' paired differences (issue 15), and
+/// compares two configurations by their groups' paired differences, and
 /// copying a group's few channels per target is nothing beside tracing its 64 photons.
 #[derive(Debug, Clone)]
 pub(crate) struct SurfaceTallies {

@@ -94,8 +94,8 @@ pub fn trace_chunks<V: PathVisitor + Send>(
 
 /// [`trace_chunks`] from chunk `first_chunk` on: the chunks before it are left out, the
 /// others traced and folded exactly as a whole trace would, so a trace continued from a
-/// chunk boundary adds the same terms in the same order (issue 15: a candidate refined
-/// from n to N photons traces the N − n more).
+/// chunk boundary adds the same terms in the same order (a candidate refined from n to
+/// N photons traces the N − n more).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
     first_chunk: u64,

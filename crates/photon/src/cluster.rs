@@ -1,4 +1,4 @@
-//! Traces shared by the processes of a cluster job (issue 16): every process runs the
+//! Traces shared by the processes of a cluster job: every process runs the
 //! same program on the same inputs, each traces its share of every trace's chunks, and
 //! all of them fold every chunk's tallies in chunk order, so each holds the totals a
 //! single process would have summed, bit for bit, and takes the same decisions.

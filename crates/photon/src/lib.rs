@@ -18,7 +18,7 @@
 //!   its own visitor, folded in index order, so results are bit-identical for any thread
 //!   count ([`Sampler`] streams are keyed by seed and photon index).
 //! - [`trace_shared`] splits a trace's chunks among the processes of a [`Cluster`]
-//!   (issue 16) and folds them in the same order on each: [`measure_with`] gives the
+//!   and folds them in the same order on each: [`measure_with`] gives the
 //!   same bits on one process or many.
 //!
 //! ```

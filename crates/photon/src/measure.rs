@@ -177,8 +177,8 @@ impl Measurement {
     }
 
     /// Appends this measurement to `out` as words, for another process of a cluster
-    /// job to read back with [`Measurement::unpack`] (issue 16: ranks that trace whole
-    /// candidates of a batch and exchange their measurements). Every number goes as its
+    /// job to read back with [`Measurement::unpack`] (ranks that trace whole candidates
+    /// of a batch exchange their measurements). Every number goes as its
     /// bits, so the reader holds the same measurement, bit for bit.
     pub fn pack(&self, out: &mut Vec<u64>) {
         let reals = |out: &mut Vec<u64>, xs: &[f64]| {
@@ -307,7 +307,7 @@ impl Measurement {
     /// [`Measurement::estimate_of`]'s, and they are the independent samples behind its
     /// standard error. Group g of every configuration is traced from the same seeds, so
     /// two configurations are compared by the differences of their groups (common
-    /// random numbers, issue 15). Empty unless the request kept the groups
+    /// random numbers). Empty unless the request kept the groups
     /// ([`Request::keep_groups`]).
     pub fn group_means(&self, i: usize, side: Side, w: &[f64]) -> Vec<f64> {
         let weights = side_weights(side, w);
@@ -559,7 +559,7 @@ pub fn measure_across(
 /// [`measure_with`] of `settings.photons` photons continued from `previous`, a
 /// measurement of fewer photons with the same scene, request and seed: only the photons
 /// after it are traced, so a candidate the search refines from n to N photons costs
-/// N − n more, not N again (the thesis re-traced; issue 15). Photon i draws from the
+/// N − n more, not N again (the thesis re-traced). Photon i draws from the
 /// stream (seed, i) and the chunks are folded in index order, so the result is the
 /// same, bit for bit, as tracing `settings.photons` at once (its `rays` aside, which
 /// count what this call cast too). `previous` continues from its last photon when it

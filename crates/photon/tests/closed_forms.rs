@@ -1,4 +1,4 @@
-//! Photon tracing against closed-form illuminances (issue 2, item 8). Every check is
+//! Photon tracing against closed-form illuminances. Every check is
 //! |estimate − exact| < 4 σ with σ the standard error the estimate reports itself
 //! (a 4 σ miss has probability 6·10⁻⁵ for an honest interval); seeds are fixed. Each case
 //! is measured with both estimators: the photons' arrivals alone (the thesis) and

@@ -1,4 +1,4 @@
-//! The CIE skies of `invlight_scene::daylight` traced as emitters (issue 18): photons
+//! The CIE skies of `invlight_scene::daylight` traced as emitters: photons
 //! enter the scene from the dome (CIE S 011 / ISO 15469 luminance distributions), and the
 //! readings match what the sky's luminance integrates to. Every check is
 //! |estimate − exact| < 4 σ with σ the standard error the estimate reports itself; seeds

@@ -212,7 +212,7 @@ fn sides_are_kept_apart() {
     }
 }
 
-/// Each group's own estimate, as the search pairs them (issue 15): their mean and
+/// Each group's own estimate, as the search pairs them: their mean and
 /// spread are the trace's estimate and standard error ([`Estimate::from_groups`] over
 /// the same groups), at any dimming; and a trace of fewer photons has the first groups
 /// of a larger one exactly (same seeds group by group), so a fast estimate pairs with
@@ -276,7 +276,7 @@ fn group_means_are_the_samples_of_the_estimate() {
 }
 
 /// A measurement continued from a smaller one is the measurement traced at once, bit
-/// for bit (issue 15: refining a candidate from n to N photons traces N − n more): from
+/// for bit (refining a candidate from n to N photons traces N − n more): from
 /// a chunk boundary (8 192 photons), from inside a chunk (2 048: the rest of that chunk
 /// is traced again), and along a chain of looks n, 4n, 16n, N, with a grid and two
 /// lamps apart; the photons each step did not trace again are what was already there.

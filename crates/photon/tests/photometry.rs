@@ -1,4 +1,4 @@
-//! Goniometric lights (photometric files, issue 14) against closed forms and numeric
+//! Goniometric lights (photometric files) against closed forms and numeric
 //! integrals of the tables they were given, never against the tracer's own output.
 //! Every check is |estimate − exact| < 4 σ of the estimate's own standard error, with
 //! fixed seeds, for both estimators (arrivals alone, and arrivals weighted against

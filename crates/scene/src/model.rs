@@ -483,7 +483,7 @@ mod tests {
     /// and `contains` on the ancestor's list take tens of seconds); that is not timed
     /// here — a shared machine's clock would make the test flaky, not the code wrong.
     #[test]
-    fn r19_many_names_are_indexed() {
+    fn many_names_are_indexed() {
         let mut scene = Scene::default();
         let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
         let quad = scene.add_mesh(Mesh::quad([Vec3::ZERO, Vec3::X, Vec3::ONE, Vec3::Y], grey));

@@ -1,4 +1,4 @@
-//! Issue 19, "Hostile and huge inputs": files that parse but once broke a run after
+//! Hostile and huge inputs: files that parse but once broke a run after
 //! parsing. The reproducers are in tests/data/hostile (written by make.py there); each
 //! must now be refused with an error naming the file, the place and what was expected,
 //! or load correctly.
@@ -39,10 +39,10 @@ fn check(e: &LoadError, place: &str, words: &[&str]) {
     assert!(e.hint.is_some(), "no hint: {e}");
 }
 
-/// Item 1: coordinates the BVH builder could not take (obvhs indexed out of bounds on
+/// Coordinates the BVH builder could not take (obvhs indexed out of bounds on
 /// each), refused in world space with the surface named.
 #[test]
-fn r19_huge_coordinates_are_refused() {
+fn huge_coordinates_are_refused() {
     check(
         &error("huge_triangle.obj"),
         "surface 'default'",
@@ -70,10 +70,10 @@ fn r19_huge_coordinates_are_refused() {
     );
 }
 
-/// Item 1: `--scale` is applied before the range check, so a valid file scaled out of
+/// `--scale` is applied before the range check, so a valid file scaled out of
 /// range is refused too (it escaped the check when the scale came after it).
 #[test]
-fn r19_scale_is_checked() {
+fn scale_is_checked() {
     let scaled = |s: f32| LoadOptions {
         scale: s,
         ..LoadOptions::default()
@@ -86,10 +86,10 @@ fn r19_scale_is_checked() {
     }
 }
 
-/// Item 2: lights whose flux overflows (NaN estimates once), alone or summed, and an
+/// Lights whose flux overflows (NaN estimates once), alone or summed, and an
 /// emitter of luminance 1e38 cd/m².
 #[test]
-fn r19_overflowing_flux_is_refused() {
+fn overflowing_flux_is_refused() {
     check(
         &error("light_3e38cd.gltf"),
         "light 'Lamp'",
@@ -105,10 +105,10 @@ fn r19_overflowing_flux_is_refused() {
     );
 }
 
-/// Item 2: a spot whose cone is so narrow its flux rounds to 0 is refused, not
+/// A spot whose cone is so narrow its flux rounds to 0 is refused, not
 /// silently dropped (the run said "the scene has no light").
 #[test]
-fn r19_underflowing_flux_is_refused() {
+fn underflowing_flux_is_refused() {
     check(
         &error("spot_underflow.gltf"),
         "light 'Lamp'",
@@ -118,7 +118,7 @@ fn r19_underflowing_flux_is_refused() {
 
 /// A scene just inside every bound loads; just outside, it does not.
 #[test]
-fn r19_bounds_are_inclusive() {
+fn bounds_are_inclusive() {
     let mut scene = Scene::default();
     let grey = scene.add_material(Material::diffuse("Grey", Vec3::splat(0.5)));
     let m = MAX_COORDINATE;
@@ -191,12 +191,12 @@ fn trusting() -> LoadOptions {
     }
 }
 
-/// Item 4: a 4 KB glTF whose bufferless accessor claims 178 956 970 VEC3 (it aborted
+/// A 4 KB glTF whose bufferless accessor claims 178 956 970 VEC3 (it aborted
 /// allocating 2 GB) is refused with the figure before anything is allocated, past the
 /// budget; a PNG whose header declares 13 000² pixels (2.5 GB decoded) in 118 bytes is left
 /// out as unreadable before the decoder allocates (tests/memory.rs has the rest).
 #[test]
-fn r19_memory_bombs_are_refused_with_the_figure() {
+fn memory_bombs_are_refused_with_the_figure() {
     let e = error_with("bufferless_accessor.gltf", &with_memory(1 << 30));
     assert_eq!(
         e.location,
@@ -219,11 +219,11 @@ fn r19_memory_bombs_are_refused_with_the_figure() {
     assert_eq!(s.meshes[0].triangles.len(), 2108);
 }
 
-/// Item 5: references outside the scene's folder tree (absolute paths, `file:` URIs,
+/// References outside the scene's folder tree (absolute paths, `file:` URIs,
 /// `..` out of the folder) are refused by default, naming the reference; device files
 /// are refused even when outside paths are allowed.
 #[test]
-fn r19_references_stay_in_the_scene_folder() {
+fn references_stay_in_the_scene_folder() {
     for (file, place, words) in [
         (
             "buffer_absolute.gltf",
@@ -288,11 +288,11 @@ fn r19_references_stay_in_the_scene_folder() {
     }
 }
 
-/// Item 5: a link inside the scene's folder that leads out of it is refused too.
+/// A link inside the scene's folder that leads out of it is refused too.
 #[cfg(unix)]
 #[test]
-fn r19_links_out_of_the_folder_are_refused() {
-    let dir = std::env::temp_dir().join(format!("invlight-r19-link-{}", std::process::id()));
+fn links_out_of_the_folder_are_refused() {
+    let dir = std::env::temp_dir().join(format!("invlight-hostile-link-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("linked.gltf");
     let bin = dir.join("outside.bin");

@@ -72,7 +72,7 @@ impl ChannelSums {
 
     /// Appends the sums to `out` as the bits of their values (Σ X_g, then the products),
     /// so that a process traces a chunk and another folds its sums with the same bits
-    /// (a trace shared by the processes of a cluster job, issue 16).
+    /// (a trace shared by the processes of a cluster job).
     pub fn pack(&self, out: &mut Vec<u64>) {
         out.extend(self.sum.iter().chain(&self.cross).map(|x| x.to_bits()));
     }

@@ -1,5 +1,5 @@
 //! Paired comparisons of two estimates traced with common random numbers (DESIGN.md
-//! §2; issue 15).
+//! §2).
 //!
 //! Eq. 3.7 of the thesis compares x and y as if independent: var(x̄ − ȳ) = σx² + σy².
 //! Every configuration is traced with the same photon seeds, group by group, so group g

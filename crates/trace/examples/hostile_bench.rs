@@ -1,5 +1,5 @@
-//! Load and build times of the large scenes of issue 19 ("Hostile and huge inputs",
-//! point 3), generated in a temporary folder rather than committed:
+//! Load and build times of large, hostile scenes, generated in a temporary folder
+//! rather than committed:
 //!
 //! - `parts`: 1 M triangles in 100 k named parts (10 triangles each, in a grid), as
 //!   an OBJ file (`o` per part) and a glTF file (a named node and mesh per part, under

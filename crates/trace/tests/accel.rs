@@ -667,12 +667,12 @@ fn mirrored_instance_front_is_the_world_winding() {
     }
 }
 
-/// Issue 19: 64 different triangles sharing one bounding box (each spans the box's
+/// 64 different triangles sharing one bounding box (each spans the box's
 /// diagonal) and 200 copies of one triangle are built as groups apart from PLOC
 /// (`COINCIDENT_GROUP`); with the random scene around them, every ray still finds what
 /// brute force finds.
 #[test]
-fn r19_boxes_shared_by_many_triangles_match_brute_force() {
+fn boxes_shared_by_many_triangles_match_brute_force() {
     let mut rng = Rng::new(19);
     let mut scene = random_scene(&mut rng);
     let mat = MaterialId::from_index(scene.materials.len() - 1);

@@ -1,4 +1,4 @@
-//! Issue 19: a bounded fuzz target per scene parser (glTF JSON, GLB, COLLADA, OBJ,
+//! A bounded fuzz target per scene parser (glTF JSON, GLB, COLLADA, OBJ,
 //! MTL), on mutants of the repository's sample files (see `fuzz/mod.rs`). Each mutant
 //! is written beside copies of the files its sample references and loaded through
 //! `invlight_scene::load`, with a 256 MB memory budget; the loader must not panic or

@@ -1,4 +1,4 @@
-//! Issue 19, "Hostile and huge inputs": [`Accel`] never panics on what a [`Scene`]
+//! Hostile and huge inputs: [`Accel`] never panics on what a [`Scene`]
 //! holds, builds tens of thousands of coincident triangles in time proportional to
 //! their number, and keeps instances instanced where flattening them would not fit.
 
@@ -37,11 +37,11 @@ fn down_at(x: f32, z: f32) -> Ray {
     Ray::new(Vec3::new(x, 1.0, z), Vec3::NEG_Y)
 }
 
-/// Item 1: coordinates obvhs could not take (it indexed out of bounds building boxes
+/// Coordinates obvhs could not take (it indexed out of bounds building boxes
 /// whose areas overflow) in a scene that skipped `Scene::validate`: the structure
 /// builds, those triangles are not traced, the others are.
 #[test]
-fn r19_huge_coordinates_do_not_panic() {
+fn huge_coordinates_do_not_panic() {
     let huge = [
         [
             Vec3::ZERO,
@@ -87,11 +87,11 @@ fn r19_huge_coordinates_do_not_panic() {
     assert!(Accel::new(&scene).intersect(&down_at(0.0, 0.0)).is_some());
 }
 
-/// Item 3: 30 000 copies of one triangle took 38 s to build (2 000: 0.28 s), PLOC
+/// 30 000 copies of one triangle took 38 s to build (2 000: 0.28 s), PLOC
 /// merging about one pair of equal boxes per pass; now a few hundredths of a second
 /// (BENCHMARKS.md). The bound leaves room for a debug build and a busy machine.
 #[test]
-fn r19_coincident_triangles_build_in_linear_time() {
+fn coincident_triangles_build_in_linear_time() {
     let scene = scene_of(&vec![floor_triangle(); 30_000], &[Mat4::IDENTITY]);
     let start = Instant::now();
     let accel = Accel::new(&scene);
@@ -109,11 +109,11 @@ fn r19_coincident_triangles_build_in_linear_time() {
     assert!(accel.intersect(&down_at(0.2, 0.2)).is_some());
 }
 
-/// Item 4: 50 000 nodes placing one 2 108-triangle mesh flatten to 105 M triangles,
+/// 50 000 nodes placing one 2 108-triangle mesh flatten to 105 M triangles,
 /// which aborted on an allocation in `Accel::with_movable`; they now stay instanced,
 /// while a scene whose flattening is small is still baked into one tree.
 #[test]
-fn r19_many_instances_stay_instanced() {
+fn many_instances_stay_instanced() {
     let tris: Vec<[Vec3; 3]> = (0..2108)
         .map(|t| {
             let x = (t % 62) as f32 / 62.0;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the hostile reproducers of issue 19 (standard library only).
+"""Writes the reproducers of hostile inputs (standard library only).
 
 Run from anywhere: `python3 tests/data/hostile/make.py`; the files land beside this
 script. Each is the smallest file that once broke a run after parsing: a panic in the

@@ -4,7 +4,7 @@
 Run from anywhere: `python3 tests/data/triple/make.py`; room.gltf, room.dae, room.obj and
 room.mtl land beside this script. tests/cli.rs (module `triple`) checks that invlight
 loads the three to the same surfaces, areas and light, and measures the same
-illuminance on them (issue 3, "Done when").
+illuminance on them.
 
 The scene, in metres, +Y up:
 - a 4 x 2.5 x 3 room (x in [0, 4], y in [0, 2.5], z in [0, 3]): `Floor` (K_d 0.6, 0.3,

@@ -448,7 +448,7 @@ fn constraints_and_levels_round_trip() {
     }
 }
 
-/// A search that lights nothing (issue 15): result.json says so (`unlit`, and
+/// A search that lights nothing: result.json says so (`unlit`, and
 /// `stopped` naming the surface), the table opens with it instead of calling the dark
 /// initial configuration the best, the screened rows read back as `screened`, and a
 /// search replaying them rebuilds the same one-member ISOC.

@@ -1,4 +1,4 @@
-//! A problem file's daylight (issue 18): `<site>`, `<sun>` and `<sky>` under `<input>`,
+//! A problem file's daylight: `<site>`, `<sun>` and `<sky>` under `<input>`,
 //! read into an [`invlight_scene::daylight::Daylight`] that [`super::Problem::load_scene`]
 //! puts on the scene. What is worth a warning (a sun below the horizon, a clock far from
 //! the site's meridian) is warned of here, with the line.

@@ -1,4 +1,4 @@
-//! `RACE_ISOC_ON_END`'s last step (issue 15): the ISOC of a walk made with n samples
+//! `RACE_ISOC_ON_END`'s last step: the ISOC of a walk made with n samples
 //! raced to N, instead of every member re-evaluated with N as `REFINE_ISOC_ON_END`
 //! does (thesis §4.7).
 //!

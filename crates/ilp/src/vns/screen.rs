@@ -1,4 +1,4 @@
-//! Global screening before the VNS walks (issue 15): a space-filling set of cells, each
+//! Global screening before the VNS walks: a space-filling set of cells, each
 //! looked at once with the fewest samples, so that the walk starts from the best of
 //! them and a plateau of no light is left by screening on, not by walking at random.
 
@@ -13,7 +13,7 @@ use std::time::Instant;
 const SCREEN_BATCH: u64 = 32;
 
 impl Search<'_> {
-    /// Global screening (issue 15), before the VNS walks: points of a space-filling
+    /// Global screening, before the VNS walks: points of a space-filling
     /// design, each looked at once with the fewest samples the evaluator takes, for at
     /// most a tenth of `max_iterations` — then the best of them that could be feasible
     /// is evaluated as a candidate, so the VNS starts from it if it beats the initial

@@ -1,5 +1,5 @@
 //! The walk of Algorithm 3.2 and the stopping rule's adjacent cells, with the first
-//! looks of the candidates ahead readied side by side (issue 15's parallel candidates).
+//! looks of the candidates ahead readied side by side.
 //!
 //! A fast evaluation (2 048 photons, one chunk of the tracer) keeps one core busy, and
 //! the walk decides its candidates one after another. So before evaluating a candidate

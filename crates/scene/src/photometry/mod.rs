@@ -15,8 +15,8 @@
 //!   clockwise): the polar axis is local Y; the vertical angle V turns about it from −Z
 //!   toward +X, the horizontal angle H leans out of the zero plane toward −Y;
 //!   d = (cos H sin V, −sin H, −cos H cos V), dω = d(sin H)·dV.
-//! - Type A is refused: no peer the issue names needs it and `EXT_lights_ies` makes it
-//!   optional.
+//! - Type A is refused: no peer renderer invlight is compared with needs it and
+//!   `EXT_lights_ies` makes it optional.
 //!
 //! Between the measured angles the intensity is bilinear in the two angles, and zero
 //! beyond the file's vertical range (a downlight measured to 90° sends nothing upward).

@@ -1,4 +1,4 @@
-//! A seeded mutator of sample files, for the bounded fuzz tests of issue 19: stable
+//! A seeded mutator of sample files, for the bounded fuzz tests of the loaders: stable
 //! Rust, no dependency, the same cases on every run of the same seed, so a failure
 //! replays. Each case applies one to four edits chosen among those that found the
 //! loaders' faults before: flipped bits, structural characters, deleted and duplicated
@@ -157,8 +157,8 @@ pub struct Tally {
 }
 
 /// Runs `cases` mutants of `samples` through `check`, which returns whether the input
-/// was accepted and panics on any broken promise. Prints the tally (for the fuzzing
-/// counts of the issue) and fails on any panic or hang, naming the case to replay.
+/// was accepted and panics on any broken promise. Prints the tally (runs, accepted,
+/// panics, hangs, slowest) and fails on any panic or hang, naming the case to replay.
 pub fn run(target: &str, samples: &[Vec<u8>], mut check: impl FnMut(&[u8]) -> bool) -> Tally {
     let mut rng = Rng::new(
         seed()
