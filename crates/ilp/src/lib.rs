@@ -76,7 +76,8 @@ mod space;
 mod vns;
 
 pub use binding::{
-    Binding, Bounds, ConfigurationError, LuminaireUse, PowerUnit, VariableValue, hsv_to_rgb,
+    ArrayLayout, Binding, Bounds, ConfigurationError, Layout, LuminaireUse, PowerUnit,
+    VariableValue, hsv_to_rgb, regular_array,
 };
 pub use cache::{Cache, Entry};
 pub use history::{Axes, Role, Visit, visits};

@@ -425,6 +425,10 @@ pub struct Standing<'a> {
     /// The configurations that violate the constraints least (by the largest relative
     /// shortfall of their means), least first, with that shortfall.
     pub closest: &'a [(f64, Member)],
+    /// The best of the structured starts ([`Space::regular_arrays`]) that was decided
+    /// feasible: the regular array an answer of free positions is to be weighed
+    /// against, even when the search went past it.
+    pub best_start: Option<&'a Member>,
 }
 
 /// Why a search stopped early.
@@ -573,6 +577,8 @@ pub struct Search<'s> {
     /// Structured starts evaluated as candidates right after the initial
     /// configuration, iterations 1, 2, … ([`Space::regular_arrays`]).
     starts: Vec<Configuration>,
+    /// The best of them decided feasible ([`Standing::best_start`]).
+    best_start: Option<Member>,
 }
 
 /// How many of the least-violating configurations a search keeps.
@@ -610,6 +616,7 @@ impl<'s> Search<'s> {
             } else {
                 Vec::new()
             },
+            best_start: None,
             settings,
         }
     }
@@ -620,6 +627,7 @@ impl<'s> Search<'s> {
         Standing {
             isoc: &self.isoc,
             closest: &self.closest,
+            best_start: self.best_start.as_ref(),
         }
     }
 
@@ -701,6 +709,12 @@ impl<'s> Search<'s> {
                     Verdict::Screened => self.screened_as(&cell, config.clone(), &rec.evaluation),
                     _ => {}
                 }
+            }
+            if !matches!(
+                rec.verdict,
+                Verdict::Refine | Verdict::Screened | Verdict::Final
+            ) {
+                self.note_start(rec.iteration, &config, &cell, &rec.evaluation);
             }
             if rec.iteration == 0 {
                 self.start = config;
@@ -905,6 +919,26 @@ impl<'s> Search<'s> {
                 solved: None,
                 ..e.clone()
             },
+        }
+    }
+
+    /// Keeps a structured start's decisive evaluation as [`Standing::best_start`] when
+    /// it is feasible and scores above the one kept.
+    fn note_start(&mut self, iteration: u64, config: &Configuration, cell: &Cell, e: &Evaluation) {
+        if iteration == 0
+            || iteration > self.starts.len() as u64
+            || self.invalid(e)
+            || self.feasibility(e) != Feasibility::Feasible
+        {
+            return;
+        }
+        let member = self.member(config.clone(), cell.clone(), e);
+        if self
+            .best_start
+            .as_ref()
+            .is_none_or(|b| member.estimate.mean > b.estimate.mean)
+        {
+            self.best_start = Some(member);
         }
     }
 
@@ -1168,6 +1202,7 @@ impl<'s> Search<'s> {
             (photons, full, lead),
         )?;
         let verdict = self.decide(&config, &cell, &evaluation, false);
+        self.note_start(iteration, &config, &cell, &evaluation);
         let record = Record {
             iteration,
             config,

@@ -718,3 +718,53 @@ fn readying_candidates_ahead_changes_nothing() {
         "{readied:?} read of those readied"
     );
 }
+
+/// Two interchangeable lamps on a 1 m square, whose best places are off any regular
+/// array: the search starts with the regular arrays, and its standing keeps the best of
+/// them decided feasible ([`Standing::best_start`]) beside an ISOC that goes past it;
+/// a search replaying the rows keeps the same one.
+#[test]
+fn the_best_regular_array_is_kept_beside_the_answer() {
+    let f = |x: &[f64]| {
+        100.0
+            - 40.0 * ((x[0] - 0.15).powi(2) + (x[1] - 0.25).powi(2))
+            - 40.0 * ((x[2] - 0.85).powi(2) + (x[3] - 0.45).powi(2))
+    };
+    let space = Space::new(
+        vec![rectangle("A", 1.0, 1.0), rectangle("B", 1.0, 1.0)],
+        &[10],
+    )
+    .with_exchangeable(vec![vec![vec![0], vec![1]]]);
+    let start = Configuration {
+        coords: vec![0.05, 0.95, 0.15, 0.95],
+    };
+    let arrays = space.regular_arrays(&space.snap(&start));
+    assert!(!arrays.is_empty());
+    // The best array by the noiseless function, as its cell's centre.
+    let value = |c: &Configuration| f(&space.snap(c).coords);
+    let best = arrays
+        .iter()
+        .max_by(|a, b| value(a).total_cmp(&value(b)))
+        .unwrap();
+    for strategy in [Strategy::Paired, Strategy::RaceOnEnd] {
+        let mut eval = Noisy::new(f, 0.5);
+        let mut search = Search::new(&space, settings(200, strategy), &start);
+        let mut log = Log::default();
+        search.run(&mut eval, &mut log).unwrap();
+        let kept = search
+            .standing()
+            .best_start
+            .expect("a regular array is feasible");
+        assert_eq!(kept.cell, space.cell(best), "{strategy:?}");
+        // The answer beats it: the optimum is irregular.
+        let answer = search.isoc().best().unwrap();
+        assert!(answer.estimate.mean > kept.estimate.mean, "{strategy:?}");
+        let mut replayed = Search::new(&space, settings(200, strategy), &start);
+        replayed.replay(&log.records);
+        assert_eq!(
+            replayed.standing().best_start.map(|m| &m.cell),
+            Some(&kept.cell),
+            "{strategy:?}"
+        );
+    }
+}

@@ -335,6 +335,23 @@ impl<'a> SolveReport<'a> {
                     );
                 }
                 s += "</ul>";
+                for l in b.layouts(&best.config) {
+                    s += &format!("<p>As laid out: {}.</p>", escape(&l.description));
+                }
+                if let Some(r) = &f.result.best_regular_array
+                    && r.variables != f.result.isoc.first().map_or(Default::default(), |m| m.variables.clone())
+                {
+                    let e = &r.estimate;
+                    let layouts: Vec<&str> = r.layouts.iter().map(|l| l.description.as_str()).collect();
+                    s += &format!(
+                        "<p>The best regular array tried gives {}{unit} [{}, {}] (at {} photons): {}.</p>",
+                        significant(e.mean),
+                        significant(e.low),
+                        significant(e.high),
+                        e.photons,
+                        escape(&layouts.join("; "))
+                    );
+                }
                 s += &constraint_list(b, best, f.isoc.z(), z_one_sided);
                 s += &match (feasible, members.len()) {
                     (false, n) => format!("<p>The {n} configurations that came closest are shown below.</p>"),

@@ -7,11 +7,12 @@
 //! `placement.rs` (`objectInSurface`, `lightInSurface`), `hole.rs` (`holeInSurface`,
 //! `holeSize`), `sun.rs` (`directionalLight`, `sunTime`), `aim.rs`, `rotation.rs`,
 //! `power.rs` and `colour.rs`; `value.rs` turns a configuration into world values and
-//! back.
+//! back, `layout.rs` reads interchangeable lamps as the array a designer would draw.
 
 mod aim;
 mod colour;
 mod hole;
+mod layout;
 mod placement;
 mod power;
 mod rotation;
@@ -20,6 +21,7 @@ mod sun;
 mod value;
 
 pub use colour::hsv_to_rgb;
+pub use layout::{ArrayLayout, Layout, regular_array};
 pub use placement::Bounds;
 pub use value::{ConfigurationError, VariableValue};
 

@@ -740,3 +740,56 @@ fn light_group_mistakes_name_the_lamp() {
         "a second <lightPower>",
     );
 }
+
+/// Four like lamps placed on one rectangle, dimmed as one group: set out on a 2 × 2
+/// grid they read as that array, its spacing and distance from the room's walls (the
+/// scene's bounds: the 4 m × 3 m floor) with the group's level; moved off it, as
+/// irregular.
+#[test]
+fn interchangeable_lamps_read_as_the_array_they_form() {
+    let mut s = scene();
+    for name in ["A", "B", "C", "D"] {
+        s.lights.push(Light {
+            name: name.into(),
+            kind: LightKind::Point {
+                position: Vec3::new(2.0, 1.5, 2.5),
+                intensity: Vec3::splat(100.0),
+            },
+        });
+    }
+    let mut conditions = "<lightGroup id=\"G\" lights=\"A B C D\"/>".to_string();
+    for name in ["A", "B", "C", "D"] {
+        conditions += &format!(
+            "<lightInSurface id=\"{name}\" surface=\"Floor__Geometry\" anchor=\"centre\"/>"
+        );
+    }
+    conditions += "<lightPower id=\"G\" min=\"0.1\" max=\"1\"/>";
+    let b = Binding::new(&problem(&conditions), &mut s).unwrap();
+    // The rectangle runs 1–3 m along x and 1–2 m along y: (s, t) = (¼, ¾) × (¼, ¾) is
+    // x = 1.5, 2.5 and y = 1.25, 1.75; the level 0.1 + 0.5 × 0.9.
+    let grid = Configuration {
+        coords: vec![0.75, 0.25, 0.25, 0.25, 0.75, 0.75, 0.25, 0.75, 0.5],
+    };
+    let [layout] = &b.layouts(&grid)[..] else {
+        panic!("one group: {:?}", b.layouts(&grid));
+    };
+    assert_eq!(layout.lights, ["A", "B", "C", "D"]);
+    assert_eq!(layout.levels, [0.55; 4]);
+    let array = layout.array.as_ref().expect("a 2 × 2 array");
+    assert_eq!((array.columns, array.rows), (2, 2));
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-6 && (a[1] - b[1]).abs() < 1e-6;
+    assert!(close(array.spacing, [1.0, 0.5]), "{:?}", array.spacing);
+    assert!(
+        close(array.from_walls.unwrap(), [1.5, 1.25]),
+        "{:?}",
+        array.from_walls
+    );
+    assert_eq!(
+        layout.description,
+        "A … D on Floor__Geometry: a 2 × 2 array (2 rows of 2), 1.00 m × 0.50 m apart, 1.50 m × 1.25 m from the walls; all at 55 %"
+    );
+    let mut moved = grid.clone();
+    moved.coords[6] = 0.95;
+    let layout = &b.layouts(&moved)[0];
+    assert!(layout.array.is_none() && layout.description.contains("irregular"));
+}

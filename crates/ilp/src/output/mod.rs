@@ -313,6 +313,9 @@ impl<'b> Output<'b> {
             feasible: !isoc.is_empty() || closest.is_empty(),
             isoc,
             closest,
+            best_regular_array: standing
+                .best_start
+                .map(|m| ResultMember::new(self.binding, m, (self.z, self.z_one_sided))),
         }
     }
 

@@ -2,7 +2,7 @@
 //! read back by `render/measure/map --config RESULT#K`. One [`ResultFile`] writes and
 //! reads it.
 
-use crate::binding::{Binding, ConfigurationError, VariableValue};
+use crate::binding::{Binding, ConfigurationError, Layout, VariableValue};
 use crate::intention::{Constraint, Goal, Side};
 use crate::isoc::Member;
 use crate::problem::{VariableKind, VariableSpec};
@@ -327,6 +327,11 @@ pub struct ResultMember {
     /// constraint's mean from its limit (0.1: 10 % short).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub violation: Option<f64>,
+    /// Each group of interchangeable lamps as laid out: a regular array (rows ×
+    /// columns, spacing, distance from the walls) or not, and its levels
+    /// ([`Binding::layouts`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub layouts: Vec<Layout>,
 }
 
 /// `result.json`.
@@ -368,6 +373,11 @@ pub struct ResultFile {
     /// least first.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub closest: Vec<ResultMember>,
+    /// The best regular array of the interchangeable lamps the search tried and found
+    /// feasible ([`crate::Standing::best_start`]), as looked at: what an answer of
+    /// free positions saves against the layout a designer would draw first.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub best_regular_array: Option<ResultMember>,
 }
 
 fn yes() -> bool {
@@ -414,6 +424,7 @@ impl ResultMember {
                 })
                 .collect(),
             violation: None,
+            layouts: binding.layouts(&m.config),
         }
     }
 }
@@ -592,8 +603,38 @@ impl ResultFile {
                     c.verdict
                 );
             }
+            for l in &m.layouts {
+                out += &format!("       {}\n", l.description);
+            }
             if let Some(v) = m.violation {
                 out += &format!("       short by {} %\n", significant(100.0 * v));
+            }
+        }
+        if let (Some(r), Some(best)) = (&self.best_regular_array, self.isoc.first())
+            && r.variables != best.variables
+        {
+            let e = &r.estimate;
+            out += &format!(
+                "The best regular array tried: {}{unit} [{}, {}] ({} photons)",
+                significant(e.mean),
+                significant(e.low),
+                significant(e.high),
+                e.photons
+            );
+            if e.mean != 0.0 {
+                out += &format!(
+                    ", the answer {} % {}",
+                    significant((100.0 * (best.estimate.mean - e.mean) / e.mean).abs()),
+                    if best.estimate.mean < e.mean {
+                        "below it"
+                    } else {
+                        "above it"
+                    }
+                );
+            }
+            out += "\n";
+            for l in &r.layouts {
+                out += &format!("       {}\n", l.description);
             }
         }
         if let Some(why) = &self.stopped {
