@@ -91,6 +91,17 @@ fn error(
     }
 }
 
+/// The eight corners of the box from `lo` to `hi`.
+fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
 /// Two unit vectors across `up` with `e1 × e2 = up`: Z and X for a Y-up scene, X and Y
 /// for a Z-up one, so that rooms along the axes get plan axes along them.
 fn plan_axes(up: Vec3) -> (Vec3, Vec3) {
@@ -358,6 +369,13 @@ impl Scene {
         };
         let up = self.up.normalize();
         let (e1, e2) = plan_axes(up);
+        let box_corners = box_corners(lo, hi);
+        let (bottom, top) = box_corners
+            .iter()
+            .map(|p| p.dot(up))
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(b, t), h| {
+                (b.min(h), t.max(h))
+            });
         let tolerance = 1e-3f64.max(1e-4 * f64::from((hi - lo).length()));
         let calc = self.calculation_instances();
         let (level, floor_name) = match &w.floor {
@@ -395,15 +413,9 @@ impl Scene {
                 (best, name.clone())
             }
             None => {
-                let corners = |p: Vec3| DVec2::new(p.dot(e1).into(), p.dot(e2).into());
-                let box_corners: Vec<DVec2> = (0..8)
-                    .map(|i| {
-                        corners(Vec3::new(
-                            if i & 1 == 0 { lo.x } else { hi.x },
-                            if i & 2 == 0 { lo.y } else { hi.y },
-                            if i & 4 == 0 { lo.z } else { hi.z },
-                        ))
-                    })
+                let box_corners: Vec<DVec2> = box_corners
+                    .iter()
+                    .map(|p| DVec2::new(p.dot(e1).into(), p.dot(e2).into()))
                     .collect();
                 let footprint = Rectangle::around(&box_corners, DVec2::X).area();
                 let tris = (0..self.instances.len())
@@ -416,16 +428,6 @@ impl Scene {
                 match found {
                     Some(l) => (l, "the lowest floor".to_string()),
                     None => {
-                        let bottom = (0..8)
-                            .map(|i| {
-                                Vec3::new(
-                                    if i & 1 == 0 { lo.x } else { hi.x },
-                                    if i & 2 == 0 { lo.y } else { hi.y },
-                                    if i & 4 == 0 { lo.z } else { hi.z },
-                                )
-                                .dot(up)
-                            })
-                            .fold(f32::INFINITY, f32::min);
                         let level = Level {
                             height: bottom.into(),
                             area: footprint,
@@ -452,16 +454,6 @@ impl Scene {
                 0.5 * length.min(width)
             )));
         }
-        let top = (0..8)
-            .map(|i| {
-                Vec3::new(
-                    if i & 1 == 0 { lo.x } else { hi.x },
-                    if i & 2 == 0 { lo.y } else { hi.y },
-                    if i & 4 == 0 { lo.z } else { hi.z },
-                )
-                .dot(up)
-            })
-            .fold(f32::NEG_INFINITY, f32::max);
         let height = level.height + f64::from(w.height);
         if height >= f64::from(top) {
             return Err(err(format!(
