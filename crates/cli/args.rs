@@ -207,9 +207,10 @@ pub struct ReportArgs {
     /// Required uniformity Emin/Eavg (replaces the task's).
     #[arg(long, value_name = "U0", value_parser = positive::<f64>)]
     pub u0: Option<f64>,
-    /// Maintenance factor in (0, 1]: maintained values are MF × the computed ones.
-    #[arg(long, default_value_t = 1.0, value_name = "MF")]
-    pub maintenance_factor: f64,
+    /// Maintenance factor in (0, 1]: maintained values are MF × the computed ones
+    /// [default: the problem's maintenanceFactor, else 1].
+    #[arg(long, value_name = "MF")]
+    pub maintenance_factor: Option<f64>,
 }
 
 /// How report.html measures the objective surface's grid.
@@ -221,9 +222,10 @@ pub struct GridArgs {
 }
 
 impl ReportArgs {
-    /// The requirement asked for, if any.
-    pub fn requirement(&self) -> anyhow::Result<Option<Requirement>> {
-        let (t, mf) = (self.task.as_deref(), self.maintenance_factor);
+    /// The requirement asked for, if any; `--maintenance-factor`, else `mf` (a
+    /// problem's own, or 1).
+    pub fn requirement(&self, mf: f64) -> anyhow::Result<Option<Requirement>> {
+        let (t, mf) = (self.task.as_deref(), self.maintenance_factor.unwrap_or(mf));
         Ok(Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?)
     }
 }

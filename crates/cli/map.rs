@@ -67,7 +67,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     // Nothing moves: one world-space tree, as `measure` builds.
     let accel = Accel::with_movable(&scene, &[]);
-    let requirement = args.require.requirement()?;
+    let requirement = args.require.requirement(1.0)?;
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let settings = MapSettings {

@@ -25,7 +25,7 @@ pub struct ReportCommandArgs {
 /// Runs `invlight report`.
 pub fn run(args: ReportCommandArgs) -> anyhow::Result<ExitCode> {
     let mut problem = SolveFolder::problem(&args.dir, args.problem.as_deref())?;
-    let requirement = args.report.requirement()?;
+    let requirement = args.report.requirement(problem.maintenance_factor)?;
     let grid = args.grid.grid(problem.seed, problem.bounces());
     let scene = args.load.load_problem(&mut problem)?;
     let written = SolveReport::rebuild(&args.dir, &problem, scene, requirement.as_ref(), grid)?;

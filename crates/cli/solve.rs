@@ -102,7 +102,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         })
         .transpose()?;
     let settings = problem.settings();
-    let requirement = args.report.requirement()?;
+    let requirement = args.report.requirement(problem.maintenance_factor)?;
     let grid = args.grid.grid(problem.seed, max_bounces);
     let report_scene = (!args.no_report).then(|| scene.clone());
 

@@ -30,7 +30,7 @@ fn args(out: &Path) -> SolveArgs {
             task: None,
             em: None,
             u0: None,
-            maintenance_factor: 1.0,
+            maintenance_factor: None,
         },
         grid: GridArgs {
             report_photons: Some(20_000),

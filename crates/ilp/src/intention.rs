@@ -184,6 +184,18 @@ impl Bound {
         }
     }
 
+    /// The bound with an illuminance limit divided by `factor` (a uniformity or a
+    /// daylight factor, ratios, unchanged): a maintained requirement E·MF ≥ L read as
+    /// the new installation's E ≥ L/MF.
+    pub fn for_new(&self, factor: f64) -> Bound {
+        match *self {
+            Bound::MinLux(x) => Bound::MinLux(x / factor),
+            Bound::MaxLux(x) => Bound::MaxLux(x / factor),
+            Bound::MinPointLux(x, g) => Bound::MinPointLux(x / factor, g),
+            other => other,
+        }
+    }
+
     /// Whether it bounds from below.
     pub fn is_lower(&self) -> bool {
         !matches!(self, Bound::MaxLux(_))
@@ -204,10 +216,14 @@ impl Bound {
 pub struct Constraint {
     /// The surface.
     pub surface: SurfaceRef,
-    /// What is bounded, and how.
+    /// What is bounded, and how, in the new installation's values: an illuminance
+    /// limit is the file's divided by the maintenance factor.
     pub bound: Bound,
     /// Line of its element.
     pub line: u32,
+    /// The maintenance factor the file's illuminance limit was divided by
+    /// (`<objectives maintenanceFactor>`); 1 for a ratio, or without one.
+    pub maintenance_factor: f64,
 }
 
 impl Constraint {
@@ -223,6 +239,13 @@ impl Constraint {
                 self.bound.attribute()
             ),
         }
+    }
+
+    /// The limit as the file states it: maintained illuminance (EN 12464-1's Em is
+    /// maintained, the value the installation must keep at the end of its
+    /// maintenance cycle), the bound's new-installation limit × the maintenance factor.
+    pub fn maintained_limit(&self) -> f64 {
+        self.bound.limit() * self.maintenance_factor
     }
 
     /// The unit of the bounded quantity: `lx`, `` for a uniformity, `DF %`.

@@ -612,13 +612,31 @@ fn constraint_list(b: &Binding, m: &Member, z: f64, z_one_sided: f64) -> String 
             u => format!(" {u}"),
         };
         let sign = if c.bound.is_lower() { "≥" } else { "≤" };
+        let (maintained, limit) = if c.maintenance_factor == 1.0 {
+            (
+                String::new(),
+                format!("{}{unit}", significant(c.bound.limit())),
+            )
+        } else {
+            (
+                format!(
+                    " new, {}{unit} maintained (× MF {})",
+                    significant(e.mean * c.maintenance_factor),
+                    c.maintenance_factor
+                ),
+                format!(
+                    "{}{unit} new for {}{unit} maintained",
+                    significant(c.bound.limit()),
+                    significant(c.maintained_limit())
+                ),
+            )
+        };
         s += &format!(
-            "<li>{}: {}{unit} [{}, {}], {sign} {}{unit}: <b>{}</b></li>",
+            "<li>{}: {}{unit} [{}, {}]{maintained}, {sign} {limit}: <b>{}</b></li>",
             escape(&c.label()),
             significant(e.mean),
             significant(i.low),
             significant(i.high),
-            significant(c.bound.limit()),
             c.verdict(e, z_one_sided).name()
         );
     }

@@ -127,10 +127,18 @@ pub struct ConstraintInfo {
     /// The bound's attribute: `minLux`, `maxLux`, `minUniformity`, `minPointLux` or
     /// `minDaylightFactor`.
     pub bound: String,
-    /// The limit, in `unit`.
+    /// The limit the estimates are held to, in `unit`: for an illuminance under a
+    /// maintenance factor, the new installation's (`maintained_limit` ÷ MF).
     pub limit: f64,
     /// `lx`, `` for a uniformity, or `DF %` for a daylight factor.
     pub unit: String,
+    /// Under `<objectives maintenanceFactor>`, the maintenance factor an illuminance
+    /// limit is divided by, and the limit as the file states it (maintained).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maintenance_factor: Option<f64>,
+    /// ″
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maintained_limit: Option<f64>,
 }
 
 impl ConstraintInfo {
@@ -143,6 +151,8 @@ impl ConstraintInfo {
             bound: c.bound.attribute().into(),
             limit: c.bound.limit(),
             unit: c.unit().into(),
+            maintenance_factor: (c.maintenance_factor != 1.0).then_some(c.maintenance_factor),
+            maintained_limit: (c.maintenance_factor != 1.0).then(|| c.maintained_limit()),
         }
     }
 }
@@ -593,8 +603,12 @@ impl ResultFile {
                     "maxLux" => "≤",
                     _ => "≥",
                 };
+                let maintained = match (info.maintained_limit, info.maintenance_factor) {
+                    (Some(m), Some(f)) => format!(" ({}{cu} maintained ÷ MF {f})", significant(m)),
+                    _ => String::new(),
+                };
                 out += &format!(
-                    "       {}: {}{cu} [{}, {}], {sign} {}{cu}: {}\n",
+                    "       {}: {}{cu} [{}, {}], {sign} {}{cu}{maintained}: {}\n",
                     c.label,
                     significant(c.estimate.mean),
                     significant(c.estimate.low),

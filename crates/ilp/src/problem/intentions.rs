@@ -253,6 +253,7 @@ impl Reader<'_, '_> {
             surface: self.surface_ref(c)?,
             bound,
             line: self.line(c),
+            maintenance_factor: 1.0,
         })
     }
 }

@@ -257,6 +257,12 @@ pub struct Problem {
     pub confidence: Confidence,
     /// invlight: `maxBounces` per photon path (default: the tracer's own).
     pub max_bounces: Option<u32>,
+    /// invlight: `maintenanceFactor` MF in (0, 1] (default 1). The constraints'
+    /// illuminances are maintained values, as EN 12464-1 states its Em: the search
+    /// holds the new installation to the file's limit ÷ MF
+    /// ([`Constraint::maintained_limit`] gives the file's back). Goals are the new
+    /// installation's values.
+    pub maintenance_factor: f64,
     /// `<site>`, `<sun>` and `<sky>`: the daylight [`Problem::load_scene`] puts on the
     /// scene.
     pub daylight: Daylight,
@@ -601,7 +607,14 @@ impl<'a, 'i> Reader<'a, 'i> {
             )
         })?;
         let search = self.search(objectives)?;
-        let (goal, goal_line, constraints) = self.intentions(objectives)?;
+        let (goal, goal_line, mut constraints) = self.intentions(objectives)?;
+        for c in &mut constraints {
+            let new = c.bound.for_new(search.maintenance_factor);
+            if new != c.bound {
+                c.bound = new;
+                c.maintenance_factor = search.maintenance_factor;
+            }
+        }
 
         let df = matches!(goal, Goal::MaximizeDaylightFactor { .. })
             || constraints
@@ -632,6 +645,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             seed: search.seed,
             confidence: search.confidence,
             max_bounces: search.max_bounces,
+            maintenance_factor: search.maintenance_factor,
             daylight,
             sun_schedule: conditions.sun_schedule,
             warnings: Vec::new(),

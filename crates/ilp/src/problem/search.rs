@@ -1,6 +1,6 @@
 //! The search's settings: the attributes of `<objectives>` (ILPSolver's
 //! `maxIterations`, `fastEvaluationQuality` and `strategy`, thesis §4.7; invlight's
-//! `photons`, `seed`, `confidence` and `maxBounces`).
+//! `photons`, `seed`, `confidence`, `maxBounces` and `maintenanceFactor`).
 
 use super::{Node, Reader};
 use crate::vns::Strategy;
@@ -17,6 +17,7 @@ pub(super) struct Search {
     pub seed: u64,
     pub confidence: Confidence,
     pub max_bounces: Option<u32>,
+    pub maintenance_factor: f64,
 }
 
 impl Reader<'_, '_> {
@@ -32,6 +33,7 @@ impl Reader<'_, '_> {
                 "seed",
                 "confidence",
                 "maxBounces",
+                "maintenanceFactor",
             ],
         );
         let max_iterations = self
@@ -70,6 +72,21 @@ impl Reader<'_, '_> {
             Some(c) => Confidence::new(c).map_err(|e| self.error(objectives, e.to_string()))?,
         };
         let max_bounces = self.number(objectives, "maxBounces", "a non-negative integer")?;
+        let maintenance_factor = match self.real(
+            objectives,
+            "maintenanceFactor",
+            "a number in (0, 1]",
+        )? {
+            Some(f) if !(f > 0.0 && f <= 1.0) => {
+                return Err(self
+                        .error(
+                            objectives,
+                            format!("maintenanceFactor is {f}, expected a number in (0, 1]"),
+                        )
+                        .with_hint("the maintained share of the new installation's light (CIE 97:2005), e.g. 0.8 for a clean office"));
+            }
+            f => f.unwrap_or(1.0),
+        };
         Ok(Search {
             max_iterations,
             fast_quality,
@@ -78,6 +95,7 @@ impl Reader<'_, '_> {
             seed,
             confidence,
             max_bounces,
+            maintenance_factor,
         })
     }
 }

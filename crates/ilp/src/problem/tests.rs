@@ -335,6 +335,46 @@ fn a_misspelt_name_is_named_with_its_line_and_the_nearest_known_one() {
 }
 
 #[test]
+fn a_maintenance_factor_holds_the_new_installation_to_the_maintained_limits() {
+    let text = |mf: &str| {
+        format!(
+            "<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions>\n<objectives{mf}>\n<minimizePower/>\n<constraint surface=\"F\" minLux=\"500\"/><constraint surface=\"G\" maxLux=\"1000\"/><constraint surface=\"F\" minUniformity=\"0.6\"/><constraint surface=\"H\" minPointLux=\"200\"/></objectives></input>"
+        )
+    };
+    let p = parse(&text(" maintenanceFactor=\"0.8\"")).unwrap();
+    assert_eq!(p.maintenance_factor, 0.8);
+    let limits: Vec<(f64, f64, f64)> = p
+        .constraints
+        .iter()
+        .map(|c| (c.bound.limit(), c.maintenance_factor, c.maintained_limit()))
+        .collect();
+    // 500 lx maintained is 625 lx new, a cap likewise; U0 is a ratio, unchanged.
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * b.max(1.0);
+    for (got, want) in limits.iter().zip([
+        (625.0, 0.8, 500.0),
+        (1250.0, 0.8, 1000.0),
+        (0.6, 1.0, 0.6),
+        (250.0, 0.8, 200.0),
+    ]) {
+        assert!(
+            close(got.0, want.0) && got.1 == want.1 && close(got.2, want.2),
+            "{got:?} against {want:?}"
+        );
+    }
+    // Without one, the limits are the file's.
+    let p = parse(&text("")).unwrap();
+    assert_eq!(p.maintenance_factor, 1.0);
+    assert_eq!(p.constraints[0].bound.limit(), 500.0);
+    for bad in ["0", "1.5", "-0.8", "NaN"] {
+        let e = parse(&text(&format!(" maintenanceFactor=\"{bad}\""))).unwrap_err();
+        assert!(
+            e.message.contains("maintenanceFactor") && e.line == Some(2),
+            "{e}"
+        );
+    }
+}
+
+#[test]
 fn nonsense_values_are_errors() {
     for (objectives, what) in [
         (
