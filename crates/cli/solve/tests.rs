@@ -242,3 +242,52 @@ fn paired_search_is_the_same_on_any_thread_count_and_says_why_it_stopped() {
         assert_eq!(runs[0], runs[1], "{}", strategy.name());
     }
 }
+
+/// `--luminaire` files reach run.json as given, where they were found and with their
+/// multiplier, and `--resume` refuses a folder whose lamp emitted another file, even one
+/// of the same name in another folder (its rows would mix two lamps' light).
+#[test]
+fn run_json_records_the_luminaire_flags_and_resume_checks_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let photometry = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/photometry");
+    for (folder, file) in [("a", "downlight.ldt"), ("b", "batwing.ldt")] {
+        std::fs::create_dir(dir.path().join(folder)).unwrap();
+        let to = dir.path().join(folder).join("lamp.ldt");
+        std::fs::copy(photometry.join(file), to).unwrap();
+    }
+    let out = dir.path().join("out");
+    let with = |folder: &str| {
+        let mut a = args(&out);
+        let given = dir.path().join(folder).join("lamp.ldt");
+        a.load.luminaire = vec![format!("Lamp={}", given.display()).parse().unwrap()];
+        a
+    };
+    assert_eq!(run(with("a")).unwrap(), ExitCode::SUCCESS);
+    let run_file: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("run.json")).unwrap()).unwrap();
+    let lamp = &run_file["luminaires"][0];
+    let given = dir.path().join("a/lamp.ldt");
+    assert_eq!(lamp["light"], "Lamp", "{run_file:#}");
+    assert_eq!(lamp["file"], given.display().to_string(), "{run_file:#}");
+    let found = given.canonicalize().unwrap();
+    assert_eq!(lamp["path"], found.display().to_string(), "{run_file:#}");
+    assert_eq!(lamp["multiplier"], 1.0, "{run_file:#}");
+
+    let rows_before = rows(&out);
+    let mut other = with("b");
+    other.resume = true;
+    let err = run(other).unwrap_err();
+    let text = format!("{err:#}");
+    assert!(crate::is_input(&err), "{text}");
+    assert!(
+        text.contains("cannot resume")
+            && text.contains("luminaires")
+            && text.contains("b/lamp.ldt"),
+        "{text}"
+    );
+    assert_eq!(rows(&out), rows_before, "a refused resume leaves the rows");
+    let mut same = with("a");
+    same.resume = true;
+    same.iterations = Some(60);
+    assert_eq!(run(same).unwrap(), ExitCode::SUCCESS);
+}
