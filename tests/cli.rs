@@ -1013,7 +1013,7 @@ mod solve {
         );
         let run: Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
-        assert_eq!(run["schema_version"], 1);
+        assert_eq!(run["schema_version"], 2);
 
         // The best member's scene, measured as the solve measured it.
         let best = &file["isoc"][0]["estimate"];

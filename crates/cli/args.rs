@@ -81,6 +81,20 @@ impl LoadArgs {
         }
     }
 
+    /// Whether any option changes how the scene is read, so that a command rebuilding
+    /// from the same files must be given them too.
+    pub fn given(&self) -> bool {
+        self.scale.is_some()
+            || self.up.is_some()
+            || self.allow_outside_paths
+            || !self.luminaire.is_empty()
+            || !self.calculation_surface.is_empty()
+            || self.site.is_some()
+            || self.north.is_some()
+            || self.sun.is_some()
+            || self.sky.is_some()
+    }
+
     /// --site, --north, --sun and --sky.
     fn daylight(&self) -> DaylightFlags {
         Daylight::flags(self.site, self.north, self.sun, self.sky)
@@ -222,6 +236,24 @@ pub struct GridArgs {
 }
 
 impl ReportArgs {
+    /// These options as flags, to pass on to `invlight report`.
+    pub fn flags(&self) -> Vec<String> {
+        let mut flags = Vec::new();
+        if let Some(task) = &self.task {
+            flags.extend(["--task".to_string(), task.clone()]);
+        }
+        if let Some(em) = self.em {
+            flags.extend(["--em".to_string(), em.to_string()]);
+        }
+        if let Some(u0) = self.u0 {
+            flags.extend(["--u0".to_string(), u0.to_string()]);
+        }
+        if let Some(mf) = self.maintenance_factor {
+            flags.extend(["--maintenance-factor".to_string(), mf.to_string()]);
+        }
+        flags
+    }
+
     /// The requirement asked for, if any; `--maintenance-factor`, else `mf` (a
     /// problem's own, or 1).
     pub fn requirement(&self, mf: f64) -> anyhow::Result<Option<Requirement>> {
@@ -231,6 +263,13 @@ impl ReportArgs {
 }
 
 impl GridArgs {
+    /// These options as flags, to pass on to `invlight report`.
+    pub fn flags(&self) -> Vec<String> {
+        self.report_photons
+            .map(|n| vec!["--report-photons".to_string(), n.to_string()])
+            .unwrap_or_default()
+    }
+
     /// The grid at EN 12464-1's spacing, traced with `seed` and the bounce cap `bounces`.
     pub fn grid(&self, seed: u64, bounces: u32) -> Grid {
         Grid::en(self.report_photons.unwrap_or(1_000_000), seed, bounces)

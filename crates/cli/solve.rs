@@ -3,11 +3,13 @@
 //! (`solutions.csv`, `result.json`, `run.json`) are written as the search goes; Ctrl-C
 //! stops it cleanly (exit 130) and `--resume` continues it. At the end (also after
 //! Ctrl-C) every ISOC member is rendered (`isoc-NN.png`), the visited configurations
-//! plotted (`search.png`) and all of it reported in `report.html`.
+//! plotted (`search.png`) and all of it reported in `report.html`; a second Ctrl-C
+//! exits at once and says what is left and how to finish it ([`finishing`]).
 
 use crate::InputError;
 use crate::args::{GridArgs, LoadArgs, ReportArgs, TraceArgs};
 use anyhow::{Context, Result};
+use finishing::{Finishing, Phase};
 use invlight_ilp::{
     Binding, ObjectiveInfo, Outcome, PhotonEvaluator, Problem, Recorder, Run, Strategy,
 };
@@ -15,6 +17,8 @@ use invlight_report::{Pictures, Progress, SolveFolder, SolveReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+mod finishing;
 
 /// Raised by Ctrl-C; the search stops before its next candidate (a second Ctrl-C exits
 /// at once).
@@ -116,15 +120,43 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
 
     // 3. Search until done or Ctrl-C. The first Ctrl-C stops before the next candidate;
     // a second one exits at once, which is safe too: every row is flushed as written
-    // and result.json is replaced atomically. A second handler cannot be installed in
-    // one process (tests run several solves); the first sets the same flag.
+    // and result.json is replaced atomically; it says what the folder holds and what
+    // was left unwritten. A second handler cannot be installed in one process (tests
+    // run several solves); the first sets the same flag and reads the same state.
     let pool = args.trace.pool()?;
     let mut eval =
         PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces, problem.photons);
     STOP.store(false, Ordering::Relaxed);
+    let mut report_flags = args.report.flags();
+    report_flags.extend(args.grid.flags());
+    *finishing::FINISHING
+        .lock()
+        .unwrap_or_else(|e| e.into_inner()) = Some(Finishing {
+        phase: Phase::Searching,
+        problem: args.problem.clone(),
+        dir: dir.clone(),
+        pictures: 0,
+        report: !args.no_report,
+        report_flags,
+        scene_flags: args.load.given(),
+    });
     let _ = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::Relaxed) {
+        let again = STOP.swap(true, Ordering::Relaxed);
+        let Some(state) = finishing::current() else {
+            if again {
+                std::process::exit(130);
+            }
+            return;
+        };
+        if again {
+            eprintln!(
+                "\n{}",
+                state.second_ctrl_c(&finishing::files_in(&state.dir))
+            );
             std::process::exit(130);
+        }
+        if let Some(note) = state.first_ctrl_c() {
+            eprintln!("\n{note}");
         }
     });
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
@@ -146,7 +178,17 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     crate::warn(eval.first_sides().iter().filter_map(|s| s.warning()));
 
     // 4. Pictures of the ISOC and of the search, and the report.
+    if let Ok(mut f) = finishing::FINISHING.lock()
+        && let Some(f) = f.as_mut()
+    {
+        f.pictures = match (&pictures, result.isoc.len()) {
+            (None, _) => 0,
+            (Some(_), 0) => result.closest.len(),
+            (Some(_), n) => n,
+        };
+    }
     if let Some(pictures) = &pictures {
+        finishing::enter(Phase::Pictures);
         let bar = Progress::new(0, "rows", "the ISOC pictures");
         let report = |done: u64, total: u64| bar.set_total(done, total);
         let records = &reporter.records;
@@ -157,6 +199,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         eprintln!("{line}");
     }
     if let Some(scene) = &report_scene {
+        finishing::enter(Phase::Report);
         let folder = SolveFolder::new(&dir, reporter.records.clone(), search.standing(), &result);
         let report = SolveReport::new(&problem, &binding, scene, &folder);
         let report = report.with(requirement.as_ref(), grid);
@@ -164,6 +207,9 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     }
 
     // 5. Report.
+    *finishing::FINISHING
+        .lock()
+        .unwrap_or_else(|e| e.into_inner()) = None;
     outcome.note().into_iter().for_each(|n| eprintln!("{n}"));
     search
         .paired_note()

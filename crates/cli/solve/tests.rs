@@ -3,6 +3,7 @@
 //! earlier run, its pictures.
 
 use super::*;
+use clap::Parser;
 use invlight_ilp::ResultFile;
 use std::collections::HashSet;
 use std::path::Path;
@@ -241,4 +242,140 @@ fn paired_search_is_the_same_on_any_thread_count_and_says_why_it_stopped() {
         }
         assert_eq!(runs[0], runs[1], "{}", strategy.name());
     }
+}
+
+/// `--luminaire` files reach run.json as given, where they were found and with their
+/// multiplier, and `--resume` refuses a folder whose lamp emitted another file, even one
+/// of the same name in another folder (its rows would mix two lamps' light).
+#[test]
+fn run_json_records_the_luminaire_flags_and_resume_checks_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let photometry = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/photometry");
+    for (folder, file) in [("a", "downlight.ldt"), ("b", "batwing.ldt")] {
+        std::fs::create_dir(dir.path().join(folder)).unwrap();
+        let to = dir.path().join(folder).join("lamp.ldt");
+        std::fs::copy(photometry.join(file), to).unwrap();
+    }
+    let out = dir.path().join("out");
+    let with = |folder: &str| {
+        let mut a = args(&out);
+        let given = dir.path().join(folder).join("lamp.ldt");
+        a.load.luminaire = vec![format!("Lamp={}", given.display()).parse().unwrap()];
+        a
+    };
+    assert_eq!(run(with("a")).unwrap(), ExitCode::SUCCESS);
+    let run_file: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("run.json")).unwrap()).unwrap();
+    let lamp = &run_file["luminaires"][0];
+    let given = dir.path().join("a/lamp.ldt");
+    assert_eq!(lamp["light"], "Lamp", "{run_file:#}");
+    assert_eq!(lamp["file"], given.display().to_string(), "{run_file:#}");
+    let found = given.canonicalize().unwrap();
+    assert_eq!(lamp["path"], found.display().to_string(), "{run_file:#}");
+    assert_eq!(lamp["multiplier"], 1.0, "{run_file:#}");
+
+    let rows_before = rows(&out);
+    let mut other = with("b");
+    other.resume = true;
+    let err = run(other).unwrap_err();
+    let text = format!("{err:#}");
+    assert!(crate::is_input(&err), "{text}");
+    assert!(
+        text.contains("cannot resume")
+            && text.contains("luminaires")
+            && text.contains("b/lamp.ldt"),
+        "{text}"
+    );
+    assert_eq!(rows(&out), rows_before, "a refused resume leaves the rows");
+    let mut same = with("a");
+    same.resume = true;
+    same.iterations = Some(60);
+    assert_eq!(run(same).unwrap(), ExitCode::SUCCESS);
+}
+
+/// The command lines of `text` that follow "…: invlight ", cut at " (" or at "," as
+/// the message puts its remarks after them, split into words.
+fn commands(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter_map(|l| l.split_once(": invlight ").map(|(_, c)| c))
+        .map(|c| {
+            let c = c.split(" (").next().unwrap().split(", ").next().unwrap();
+            std::iter::once("invlight")
+                .chain(c.split(' '))
+                .map(|w| w.replace("#K", "#1").replace("-K", "-1"))
+                .collect()
+        })
+        .collect()
+}
+
+/// A second Ctrl-C while the pictures are written says which files the folder holds,
+/// which were left, and commands that finish the job, which the program accepts as
+/// written (with the solve's report flags passed on); during the search it says how to
+/// go on; while writing report.html only the report is left.
+#[test]
+fn a_second_ctrl_c_says_what_is_left_and_how_to_finish() {
+    let state = |phase| finishing::Finishing {
+        phase,
+        problem: "rooms/problem.xml".into(),
+        dir: "rooms/out".into(),
+        pictures: 3,
+        report: true,
+        report_flags: vec!["--task".into(), "office".into()],
+        scene_flags: false,
+    };
+    let folder: Vec<String> = ["run.json", "solutions.csv", "result.json", "isoc-01.png"]
+        .map(String::from)
+        .to_vec();
+    let text = state(Phase::Pictures).second_ctrl_c(&folder);
+    for words in [
+        "while writing the ISOC pictures",
+        "written in rooms/out: solutions.csv, result.json, run.json, isoc-01.png",
+        "not written: isoc-02.png, isoc-03.png, the search plots (search.png), report.html",
+        "invlight report rooms/out --task office",
+        "invlight render rooms/problem.xml --config rooms/out/result.json#K",
+    ] {
+        assert!(text.contains(words), "{words:?} in\n{text}");
+    }
+    assert!(!text.contains("--resume"), "{text}");
+    let found = commands(&text);
+    assert_eq!(found.len(), 2, "{text}");
+    for command in &found {
+        if let Err(e) = crate::Cli::try_parse_from(command) {
+            panic!("{command:?} is not a command the program takes: {e}");
+        }
+    }
+
+    let text = state(Phase::Searching).second_ctrl_c(&folder);
+    assert!(text.contains("during the search"), "{text}");
+    assert!(
+        text.contains("written in rooms/out: solutions.csv, result.json, run.json ("),
+        "an earlier run's pictures are not this one's: {text}"
+    );
+    assert!(
+        text.contains("invlight solve rooms/problem.xml --output rooms/out --resume"),
+        "{text}"
+    );
+    for command in &commands(&text) {
+        if let Err(e) = crate::Cli::try_parse_from(command) {
+            panic!("{command:?} is not a command the program takes: {e}");
+        }
+    }
+
+    let mut all = folder.clone();
+    all.extend(["isoc-02.png", "isoc-03.png", "search.png"].map(String::from));
+    let text = state(Phase::Report).second_ctrl_c(&all);
+    assert!(text.contains("not written: report.html\n"), "{text}");
+    assert!(!text.contains("invlight render"), "{text}");
+
+    let mut quiet = state(Phase::Report);
+    quiet.dir = "my rooms/out".into();
+    quiet.scene_flags = true;
+    let text = quiet.second_ctrl_c(&all);
+    assert!(
+        text.contains("invlight report 'my rooms/out' --task office, with the scene flags"),
+        "{text}"
+    );
+    assert_eq!(state(Phase::Searching).first_ctrl_c(), None);
+    let first = state(Phase::Pictures).first_ctrl_c().unwrap();
+    assert!(first.contains("Ctrl-C again"), "{first}");
 }

@@ -113,7 +113,8 @@ impl Luminaire {
                 )
                 .with_hint(relative_to));
         }
-        read_photometry_in(&path, &files)
+        let read = read_photometry_in(&path, &files)?;
+        Ok(read.read_from(&self.file.to_string_lossy(), &path))
     }
 }
 

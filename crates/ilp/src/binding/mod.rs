@@ -130,8 +130,19 @@ pub struct Binding {
 pub struct LuminaireUse {
     /// The light's name.
     pub light: String,
-    /// The IES or EULUMDAT file's name.
+    /// The IES or EULUMDAT file as it was given (`--luminaire`, `<luminaire file>`, a
+    /// glTF `uri`); its name alone for a profile inside a glTF, and in folders written
+    /// before the path was recorded.
     pub file: String,
+    /// The file read, canonical; `None` for a profile inside a glTF and in folders
+    /// written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<std::path::PathBuf>,
+    /// The factor on the file's candela as authored (a problem file's `multiplier`, a
+    /// glTF light's colour × intensity); `None` in folders written before it was
+    /// recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplier: Option<f64>,
     /// The light's flux as authored (the table's times its multiplier), lm.
     pub lm: f64,
 }
@@ -233,9 +244,18 @@ impl Binding {
                 .lights
                 .iter()
                 .filter_map(|l| match &l.kind {
-                    LightKind::Goniometric { photometry, .. } => Some(LuminaireUse {
+                    LightKind::Goniometric {
+                        photometry,
+                        multiplier,
+                        ..
+                    } => Some(LuminaireUse {
                         light: l.name.clone(),
-                        file: photometry.file.clone(),
+                        file: match &photometry.source {
+                            Some(s) => s.given.clone(),
+                            None => photometry.file.clone(),
+                        },
+                        path: photometry.source.as_ref().map(|s| s.path.clone()),
+                        multiplier: Some(f64::from(invlight_scene::luminance(*multiplier))),
                         lm: f64::from(invlight_scene::luminance(l.kind.flux())),
                     }),
                     _ => None,

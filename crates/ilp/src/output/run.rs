@@ -10,8 +10,9 @@ use invlight_scene::Diagnostic;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// The version of `run.json`'s layout.
-pub const RUN_SCHEMA: u32 = 1;
+/// The version of `run.json`'s layout: 2 records each luminaire's file as given, the
+/// file read and its multiplier, where 1 recorded the file's name alone.
+pub const RUN_SCHEMA: u32 = 2;
 
 /// `run.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -42,6 +43,28 @@ pub struct RunFile {
     /// were recorded, and in scenes without one).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub luminaires: Vec<LuminaireUse>,
+}
+
+impl LuminaireUse {
+    /// `LIGHT=FILE`, with `whole` the file read and its multiplier (`LIGHT=PATH ×M`),
+    /// else the file's name alone.
+    fn described(&self, whole: bool) -> String {
+        if !whole {
+            let name = Path::new(&self.file)
+                .file_name()
+                .map(|n| n.to_string_lossy());
+            return format!("{}={}", self.light, name.unwrap_or_default());
+        }
+        let file = match &self.path {
+            Some(p) => p.display().to_string(),
+            None => self.file.clone(),
+        };
+        // Shown as the f32 it was, so that a value read back from JSON prints alike.
+        let m = self
+            .multiplier
+            .map_or("?".into(), |m| (m as f32).to_string());
+        format!("{}={file} ×{m}", self.light)
+    }
 }
 
 /// The estimator of a folder written before it was recorded.
@@ -99,23 +122,33 @@ impl RunFile {
             self.estimator.to_string(),
             old.estimator.to_string(),
         );
+        // A folder of schema 1 named each file alone: only the names can be compared.
+        let whole = old.schema_version >= 2;
         let files = |l: &[LuminaireUse]| {
-            let named: Vec<String> = l
-                .iter()
-                .map(|l| format!("{}={}", l.light, l.file))
-                .collect();
+            let named: Vec<String> = l.iter().map(|l| l.described(whole)).collect();
             if named.is_empty() {
                 "no luminaire files".into()
             } else {
                 named.join(" ")
             }
         };
-        if !old.luminaires.is_empty() {
+        if whole || !old.luminaires.is_empty() {
             check(
                 "luminaires",
                 files(&self.luminaires),
                 files(&old.luminaires),
             );
+        }
+        // The same files with other tables: a file edited in place.
+        if whole && differ.is_empty() {
+            for (new, was) in self.luminaires.iter().zip(&old.luminaires) {
+                if (new.lm - was.lm).abs() > 1e-6 * new.lm.abs().max(was.lm.abs()) {
+                    differ.push(format!(
+                        "the flux of {} {:.1} lm (the folder has {:.1} lm: its file {} changed)",
+                        new.light, new.lm, was.lm, new.file
+                    ));
+                }
+            }
         }
         if differ.is_empty() {
             Ok(())

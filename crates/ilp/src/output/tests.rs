@@ -165,6 +165,8 @@ fn resume_checks_the_luminaire_files() {
     let lamp = |file: &str| LuminaireUse {
         light: "Desk".into(),
         file: file.into(),
+        path: None,
+        multiplier: Some(1.0),
         lm: 3000.0,
     };
     let dir = Path::new("/out");
@@ -184,21 +186,65 @@ fn resume_checks_the_luminaire_files() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("luminaires Desk=batwing.ldt (the folder has Desk=downlight.ies)"),
+        e.contains("luminaires Desk=batwing.ldt ×1 (the folder has Desk=downlight.ies ×1)"),
         "{e}"
     );
     let e = RunFile::new(&settings(), 7, &[])
         .check_resume(&old, dir)
         .unwrap_err();
     assert!(e.to_string().contains("no luminaire files"), "{e}");
-    let before: RunFile =
-        serde_json::from_str(&serde_json::to_string(&RunFile::new(&settings(), 7, &[])).unwrap())
-            .unwrap();
+    let mut before = RunFile::new(&settings(), 7, &[]);
+    before.schema_version = 1;
     assert!(
         RunFile::new(&settings(), 7, &[lamp("downlight.ies")])
             .check_resume(&before, dir)
             .is_ok()
     );
+}
+
+/// The same file name is not the same lamp: a resume is refused when the file read is
+/// another one (a same-named file in another folder), its multiplier differs, or the
+/// file was edited (its flux differs), naming what differs; a folder of schema 1, which
+/// recorded names alone, resumes on the names.
+#[test]
+fn resume_checks_the_luminaires_path_multiplier_and_flux() {
+    let lamp = |path: &str, multiplier: f64, lm: f64| LuminaireUse {
+        light: "Lamp".into(),
+        file: "lamp.ldt".into(),
+        path: Some(path.into()),
+        multiplier: Some(multiplier),
+        lm,
+    };
+    let dir = Path::new("/out");
+    let old = RunFile::new(&settings(), 7, &[lamp("/a/lamp.ldt", 2.0, 3000.0)]);
+    let old: RunFile = serde_json::from_str(&serde_json::to_string(&old).unwrap()).unwrap();
+    assert_eq!(
+        old.luminaires[0].path.as_deref(),
+        Some(Path::new("/a/lamp.ldt"))
+    );
+    let resume = |l: LuminaireUse| RunFile::new(&settings(), 7, &[l]).check_resume(&old, dir);
+    assert!(resume(lamp("/a/lamp.ldt", 2.0, 3000.0)).is_ok());
+    for (new, says) in [
+        (
+            lamp("/b/lamp.ldt", 2.0, 3000.0),
+            "luminaires Lamp=/b/lamp.ldt ×2 (the folder has Lamp=/a/lamp.ldt ×2)",
+        ),
+        (
+            lamp("/a/lamp.ldt", 1.5, 2250.0),
+            "luminaires Lamp=/a/lamp.ldt ×1.5 (the folder has Lamp=/a/lamp.ldt ×2)",
+        ),
+        (
+            lamp("/a/lamp.ldt", 2.0, 2000.0),
+            "the flux of Lamp 2000.0 lm (the folder has 3000.0 lm: its file lamp.ldt changed)",
+        ),
+    ] {
+        let e = resume(new).unwrap_err().to_string();
+        assert!(e.contains(says), "{e}");
+    }
+    let mut names_only = old.clone();
+    names_only.schema_version = 1;
+    let other = RunFile::new(&settings(), 7, &[lamp("/b/lamp.ldt", 1.0, 1.0)]);
+    assert!(other.check_resume(&names_only, dir).is_ok());
 }
 
 /// A folder traced by an invlight whose estimator gave other numbers for the same seed

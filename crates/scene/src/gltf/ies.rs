@@ -152,7 +152,8 @@ impl Builder<'_> {
         };
         let referenced = self.referenced(uri, view, &here)?;
         let photometry = match &referenced.file {
-            Some(file) => parse_ies_in(&referenced.bytes, file, self.files)?,
+            Some(file) => parse_ies_in(&referenced.bytes, file, self.files)?
+                .read_from(uri.unwrap_or_default(), file),
             None => {
                 // Embedded: errors point into the glTF, a TILT=<file> beside it.
                 let beside = self

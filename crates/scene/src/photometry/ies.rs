@@ -235,6 +235,7 @@ pub(crate) fn parse_ies_in(
     warnings.extend(shape_warning);
     let mut p = Photometry {
         file: file_name(path),
+        source: None,
         format,
         keywords,
         lamps: lamps as u32,

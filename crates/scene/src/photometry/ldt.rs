@@ -208,6 +208,7 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     warnings.extend(shape);
     let mut p = Photometry {
         file: file_name(path),
+        source: None,
         format: PhotometryFormat::Eulumdat,
         keywords,
         lamps,

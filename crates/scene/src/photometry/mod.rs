@@ -38,7 +38,7 @@ use crate::files::Files;
 use crate::load::LoadOptions;
 use glam::{Vec2, Vec3};
 use invlight_stats::PiecewiseConstant2D;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub use ies::parse_ies;
 pub(crate) use ies::parse_ies_in;
@@ -170,12 +170,27 @@ impl Tilt {
     }
 }
 
+/// Where a photometric file came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhotometrySource {
+    /// The path as written: on the command line, in a problem file's `<luminaire file>`
+    /// or a glTF's `EXT_lights_ies` `uri`.
+    pub given: String,
+    /// The file read, canonical (absolute, links followed) so that the same file named
+    /// from another folder is recognised as the same.
+    pub path: PathBuf,
+}
+
 /// A photometric file read: its intensity table over the whole sphere, in candela after
 /// every multiplier the file gives, and what it says about the luminaire.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Photometry {
     /// The file's name (no folder), for reports.
     pub file: String,
+    /// The file as it was asked for and where that was found, when it was read from a
+    /// file of its own (not a table given in code, nor a profile inside a glTF): a run
+    /// records both, since two files of one name in two folders are two lamps.
+    pub source: Option<PhotometrySource>,
     /// What it was read from.
     pub format: PhotometryFormat,
     /// Its keywords in file order: IES `[MANUFAC]`, `[LUMCAT]`… (`[MORE]` joined to the
@@ -267,6 +282,7 @@ impl Photometry {
     ) -> Result<Photometry, String> {
         Ok(Photometry {
             file: String::new(),
+            source: None,
             format: PhotometryFormat::Table,
             keywords: Vec::new(),
             lamps: 1,
@@ -400,13 +416,28 @@ impl Photometry {
     }
 }
 
+impl Photometry {
+    /// This photometry as read from `path`, asked for as `given`.
+    pub(crate) fn read_from(self, given: &str, path: &Path) -> Photometry {
+        let path = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+        Photometry {
+            source: Some(PhotometrySource {
+                given: given.to_string(),
+                path,
+            }),
+            ..self
+        }
+    }
+}
+
 /// Reads an IES (`.ies`) or EULUMDAT (`.ldt`) file, by extension; a file with another
 /// extension is read as IES when it starts like one (`IES`, or a `TILT=` line), else
 /// as EULUMDAT. The file is read as a scene file is (a regular file, within the default
 /// memory budget), and an IES `TILT=<file>` from its folder or below.
 pub fn read_photometry(path: &Path) -> Result<Photometry, LoadError> {
     let files = Files::new(path, &LoadOptions::default());
-    read_photometry_in(path, &files)
+    let read = read_photometry_in(path, &files)?;
+    Ok(read.read_from(&path.to_string_lossy(), path))
 }
 
 /// [`read_photometry`] within the references and budget of `files`.
