@@ -338,6 +338,16 @@ impl<'a> SolveReport<'a> {
                 for l in b.layouts(&best.config) {
                     s += &format!("<p>As laid out: {}.</p>", escape(&l.description));
                 }
+                if let Some((have, need)) = f
+                    .result
+                    .closest
+                    .first()
+                    .and_then(|m| m.lamps_needed(&f.result.constraints, |n| b.lit_only_by(n)))
+                {
+                    s += &format!(
+                        "<p>Every one of the {have} lamps is at full output: by the lumen method (illuminance in proportion to the lamps' count at the layout's utilisation factor), about {need} such lamps would give the minimum.</p>"
+                    );
+                }
                 if let Some(r) = &f.result.best_regular_array
                     && r.variables != f.result.isoc.first().map_or(Default::default(), |m| m.variables.clone())
                 {

@@ -123,6 +123,9 @@ pub struct Binding {
     /// The least-power levels' program and the variables it chooses, when the
     /// evaluator solves the dimming instead of the search ([`Binding::level_solver`]).
     level_solver: Option<(Vec<usize>, crate::dimming::LevelSolver)>,
+    /// How many lights the scene has, and whether anything else emits (an emissive
+    /// surface, a sky): what [`Binding::lit_only_by`] asks.
+    sources: (usize, bool),
 }
 
 /// A light that emits a photometric file's candela table, as a run used it.
@@ -262,10 +265,20 @@ impl Binding {
                 })
                 .collect(),
             level_solver: None,
+            sources: (
+                scene.lights.len(),
+                scene.sky.is_some() || scene.materials.iter().any(|m| m.is_emissive()),
+            ),
         };
         (binding.electric_power, binding.power_unit) = binding.component_power(scene);
         binding.solve_levels(problem.confidence);
         Ok(binding)
+    }
+
+    /// Whether the scene's light comes from `lamps` lights alone (no other light, no
+    /// emissive surface, no sky): then a count of them is a count of all its lamps.
+    pub fn lit_only_by(&self, lamps: usize) -> bool {
+        self.sources == (lamps, false)
     }
 
     /// The number of components the lights' light is kept apart in: one for the lights

@@ -395,6 +395,39 @@ fn yes() -> bool {
 }
 
 impl ResultMember {
+    /// For a configuration that misses an illuminance minimum with every placed lamp at
+    /// full output: the lamps it has and, by the lumen method, about how many of them
+    /// it would take — E = N·Φ·UF·MF/A, so at the layout's utilisation factor the
+    /// illuminance grows with the lamps' count, and the count needed is N × the
+    /// largest ratio of a minimum (`minLux`, `minPointLux`) to its estimate. A first
+    /// count to try, as DIALux's lumen method gives one, not a bound: more lamps also
+    /// change the layout and its uniformity. `alone`: whether those lamps are the
+    /// scene's only light ([`Binding::lit_only_by`]); other light would not grow.
+    pub fn lamps_needed(
+        &self,
+        constraints: &[ConstraintInfo],
+        alone: impl Fn(usize) -> bool,
+    ) -> Option<(u32, u32)> {
+        let levels: Vec<f64> = self
+            .layouts
+            .iter()
+            .flat_map(|l| l.levels.iter().copied())
+            .collect();
+        if levels.is_empty() || levels.iter().any(|&l| l < 0.999) || !alone(levels.len()) {
+            return None;
+        }
+        let ratio = self
+            .constraints
+            .iter()
+            .zip(constraints)
+            .filter(|(_, i)| matches!(i.bound.as_str(), "minLux" | "minPointLux"))
+            .filter(|(c, i)| c.estimate.mean > 0.0 && c.estimate.mean < i.limit)
+            .map(|(c, i)| i.limit / c.estimate.mean)
+            .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))))?;
+        let have = levels.len() as u32;
+        Some((have, (f64::from(have) * ratio).ceil() as u32))
+    }
+
     /// The member `m` as `binding`'s variables give it, intervals at `z`, verdicts at
     /// the one-sided `z_one_sided`.
     pub fn new(binding: &Binding, m: &Member, (z, z_one_sided): (f64, f64)) -> ResultMember {
@@ -622,6 +655,14 @@ impl ResultFile {
             }
             if let Some(v) = m.violation {
                 out += &format!("       short by {} %\n", significant(100.0 * v));
+            }
+            if let (0, Some((have, need))) = (
+                k,
+                m.lamps_needed(&self.constraints, |n| binding.lit_only_by(n)),
+            ) {
+                out += &format!(
+                    "       every one of the {have} lamps is at full output: by the lumen method, about {need} such lamps would give the minimum\n"
+                );
             }
         }
         if let (Some(r), Some(best)) = (&self.best_regular_array, self.isoc.first())

@@ -3,12 +3,13 @@
 
 use super::*;
 use crate::Configuration;
-use crate::binding::LuminaireUse;
+use crate::binding::{Layout, LuminaireUse};
 use crate::problem::Problem;
 use crate::vns::{Evaluate, Evaluation, Search, Sense, Settings, Strategy, Verdict};
 use glam::{Mat4, Vec3};
 use invlight_scene::{Light, LightKind, Material, Mesh, Scene};
 use invlight_stats::{Confidence, Estimate};
+use std::collections::BTreeMap;
 use std::io::Write;
 
 struct Bowl;
@@ -606,5 +607,70 @@ fn damaged_rows_are_errors_naming_the_line() {
         e.message.starts_with("times -1 s and ")
             && e.message.contains("expected non-negative seconds"),
         "{e}"
+    );
+}
+
+/// Eight lamps all at full output giving 490 lx where 625 lx is needed: the lumen
+/// method asks for ⌈8 × 625/490⌉ = 11; one lamp dimmed, or the minimum met, asks for
+/// nothing, and a uniformity short is not a count of lamps.
+#[test]
+fn a_layout_at_full_output_short_of_its_minimum_gets_a_lamp_count() {
+    let estimate = |mean: f64| ResultEstimate {
+        mean,
+        low: mean - 5.0,
+        high: mean + 5.0,
+        std_error: 2.5,
+        photons: 200_000,
+    };
+    let info = |bound: &str, limit: f64| ConstraintInfo {
+        label: format!("Desks.{bound}"),
+        surface: "Desks".into(),
+        side: "front".into(),
+        bound: bound.into(),
+        limit,
+        unit: "lx".into(),
+        maintenance_factor: None,
+        maintained_limit: None,
+    };
+    let constraints = [info("minLux", 625.0), info("minUniformity", 0.6)];
+    let member = |levels: Vec<f64>, lux: f64, u0: f64| ResultMember {
+        variables: BTreeMap::new(),
+        estimate: estimate(296.0),
+        constraints: [("minLux", lux), ("minUniformity", u0)]
+            .iter()
+            .map(|&(b, mean)| ResultConstraint {
+                label: format!("Desks.{b}"),
+                estimate: estimate(mean),
+                verdict: "infeasible".into(),
+            })
+            .collect(),
+        violation: Some(0.2),
+        layouts: vec![Layout {
+            lights: (1..=levels.len()).map(|k| format!("Lamp{k}")).collect(),
+            surface: "Zone".into(),
+            array: None,
+            levels,
+            description: String::new(),
+        }],
+    };
+    assert_eq!(
+        member(vec![1.0; 8], 490.0, 0.5).lamps_needed(&constraints, |n| n == 8),
+        Some((8, 11))
+    );
+    let mut dimmed = vec![1.0; 8];
+    dimmed[3] = 0.8;
+    let alone = |n| n == 8;
+    assert_eq!(
+        member(dimmed, 490.0, 0.5).lamps_needed(&constraints, alone),
+        None
+    );
+    assert_eq!(
+        member(vec![1.0; 8], 630.0, 0.5).lamps_needed(&constraints, alone),
+        None
+    );
+    // Other light in the scene (fixed lamps, a sky) would not grow with the count.
+    assert_eq!(
+        member(vec![1.0; 8], 490.0, 0.5).lamps_needed(&constraints, |_| false),
+        None
     );
 }
