@@ -710,12 +710,11 @@ impl<'s> Search<'s> {
                     _ => {}
                 }
             }
-            if !matches!(
-                rec.verdict,
-                Verdict::Refine | Verdict::Screened | Verdict::Final
-            ) {
-                self.note_start(rec.iteration, &config, &cell, &rec.evaluation);
-            }
+            let snapped = Record {
+                config: config.clone(),
+                ..rec.clone()
+            };
+            self.note_last_look(&snapped, &cell);
             if rec.iteration == 0 {
                 self.start = config;
             }
@@ -922,17 +921,23 @@ impl<'s> Search<'s> {
         }
     }
 
-    /// Keeps a structured start's decisive evaluation as [`Standing::best_start`] when
-    /// it is feasible and scores above the one kept.
-    fn note_start(&mut self, iteration: u64, config: &Configuration, cell: &Cell, e: &Evaluation) {
-        if iteration == 0
-            || iteration > self.starts.len() as u64
+    /// Keeps a structured start's last look (the row that decided it, whether after
+    /// its decisive evaluation or an earlier look) as [`Standing::best_start`] when it
+    /// is feasible and scores above the one kept. The search and a replay of its rows
+    /// see the same rows, so they keep the same start.
+    fn note_last_look(&mut self, record: &Record, cell: &Cell) {
+        let e = &record.evaluation;
+        if matches!(
+            record.verdict,
+            Verdict::Refine | Verdict::Screened | Verdict::Final
+        ) || record.iteration == 0
+            || record.iteration > self.starts.len() as u64
             || self.invalid(e)
             || self.feasibility(e) != Feasibility::Feasible
         {
             return;
         }
-        let member = self.member(config.clone(), cell.clone(), e);
+        let member = self.member(record.config.clone(), cell.clone(), e);
         if self
             .best_start
             .as_ref()
@@ -1202,7 +1207,6 @@ impl<'s> Search<'s> {
             (photons, full, lead),
         )?;
         let verdict = self.decide(&config, &cell, &evaluation, false);
-        self.note_start(iteration, &config, &cell, &evaluation);
         let record = Record {
             iteration,
             config,
@@ -1290,6 +1294,7 @@ impl<'s> Search<'s> {
         }
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
         self.lit |= self.lights(&record.evaluation);
+        self.note_last_look(&record, &cell);
         if verdict != Verdict::Screened {
             self.cache
                 .insert(cell, Entry::Evaluated { estimate, verdict });

@@ -761,9 +761,10 @@ fn the_best_regular_array_is_kept_beside_the_answer() {
         assert!(answer.estimate.mean > kept.estimate.mean, "{strategy:?}");
         let mut replayed = Search::new(&space, settings(200, strategy), &start);
         replayed.replay(&log.records);
+        let again = replayed.standing().best_start.expect("replayed");
         assert_eq!(
-            replayed.standing().best_start.map(|m| &m.cell),
-            Some(&kept.cell),
+            (&again.cell, again.estimate.mean, &again.config.coords),
+            (&kept.cell, kept.estimate.mean, &kept.config.coords),
             "{strategy:?}"
         );
     }
