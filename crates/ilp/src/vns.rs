@@ -710,11 +710,7 @@ impl<'s> Search<'s> {
                     _ => {}
                 }
             }
-            let snapped = Record {
-                config: config.clone(),
-                ..rec.clone()
-            };
-            self.note_last_look(&snapped, &cell);
+            self.note_last_look(rec, &config, &cell);
             if rec.iteration == 0 {
                 self.start = config;
             }
@@ -925,7 +921,7 @@ impl<'s> Search<'s> {
     /// its decisive evaluation or an earlier look) as [`Standing::best_start`] when it
     /// is feasible and scores above the one kept. The search and a replay of its rows
     /// see the same rows, so they keep the same start.
-    fn note_last_look(&mut self, record: &Record, cell: &Cell) {
+    fn note_last_look(&mut self, record: &Record, config: &Configuration, cell: &Cell) {
         let e = &record.evaluation;
         if matches!(
             record.verdict,
@@ -937,7 +933,7 @@ impl<'s> Search<'s> {
         {
             return;
         }
-        let member = self.member(record.config.clone(), cell.clone(), e);
+        let member = self.member(config.clone(), cell.clone(), e);
         if self
             .best_start
             .as_ref()
@@ -1294,7 +1290,7 @@ impl<'s> Search<'s> {
         }
         let (estimate, verdict) = (record.evaluation.goal, record.verdict);
         self.lit |= self.lights(&record.evaluation);
-        self.note_last_look(&record, &cell);
+        self.note_last_look(&record, &record.config, &cell);
         if verdict != Verdict::Screened {
             self.cache
                 .insert(cell, Entry::Evaluated { estimate, verdict });
