@@ -335,7 +335,7 @@ impl<'a> SolveReport<'a> {
                     );
                 }
                 s += "</ul>";
-                for l in b.layouts(&best.config) {
+                for l in f.result.answer().iter().flat_map(|m| &m.layouts) {
                     s += &format!("<p>As laid out: {}.</p>", escape(&l.description));
                 }
                 if let Some((have, need)) = f
@@ -348,9 +348,7 @@ impl<'a> SolveReport<'a> {
                         "<p>Every one of the {have} lamps is at full output: by the lumen method (illuminance in proportion to the lamps' count at the layout's utilisation factor), about {need} such lamps would give the minimum.</p>"
                     );
                 }
-                if let Some(r) = &f.result.best_regular_array
-                    && r.variables != f.result.isoc.first().map_or(Default::default(), |m| m.variables.clone())
-                {
+                if let Some(r) = f.result.regular_beside() {
                     let e = &r.estimate;
                     let layouts: Vec<&str> = r.layouts.iter().map(|l| l.description.as_str()).collect();
                     s += &format!(

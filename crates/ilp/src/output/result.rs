@@ -501,6 +501,19 @@ impl ResultFile {
         (isoc, closest)
     }
 
+    /// The answer: the best ISOC member, else the configuration closest to feasible.
+    pub fn answer(&self) -> Option<&ResultMember> {
+        self.isoc.first().or(self.closest.first())
+    }
+
+    /// The best regular array tried, when the answer is not that array (then it is
+    /// worth printing beside it).
+    pub fn regular_beside(&self) -> Option<&ResultMember> {
+        let r = self.best_regular_array.as_ref()?;
+        let answer = self.isoc.first()?;
+        (r.variables != answer.variables).then_some(r)
+    }
+
     /// Reads a `result.json`.
     pub fn read(path: &Path) -> Result<ResultFile, Diagnostic> {
         let text = std::fs::read_to_string(path)
@@ -665,9 +678,7 @@ impl ResultFile {
                 );
             }
         }
-        if let (Some(r), Some(best)) = (&self.best_regular_array, self.isoc.first())
-            && r.variables != best.variables
-        {
+        if let (Some(r), Some(best)) = (self.regular_beside(), self.isoc.first()) {
             let e = &r.estimate;
             out += &format!(
                 "The best regular array tried: {}{unit} [{}, {}] ({} photons)",
