@@ -49,8 +49,7 @@ impl Reader<'_, '_> {
                 continue;
             }
             let Some(parsed) = self.goal(o)? else {
-                let w = self.unknown_element(o, "objective", GOALS, ", or <constraint>");
-                self.warnings.borrow_mut().push(w);
+                self.push_warning(self.unknown_element(o, "objective", GOALS, ", or <constraint>"));
                 unknown.get_or_insert(o);
                 continue;
             };

@@ -447,7 +447,10 @@ impl<'a, 'i> Reader<'a, 'i> {
     }
 
     fn warn(&self, node: Node, message: String) {
-        let w = Diagnostic::at_line(self.path, self.line(node), message);
+        self.push_warning(self.error(node, message));
+    }
+
+    fn push_warning(&self, w: Diagnostic) {
         self.warnings.borrow_mut().push(w);
     }
 
@@ -455,9 +458,8 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn check_attributes(&self, node: Node, known: &[&str]) {
         for a in node.attributes() {
             if !known.contains(&a.name()) {
-                let w = Diagnostic::at_line(
-                    self.path,
-                    self.line(node),
+                let w = self.error(
+                    node,
                     format!(
                         "unknown attribute '{}' of <{}> ignored (expected one of: {})",
                         a.name(),
@@ -465,11 +467,10 @@ impl<'a, 'i> Reader<'a, 'i> {
                         known.join(", ")
                     ),
                 );
-                let w = match nearest(a.name(), known) {
+                self.push_warning(match nearest(a.name(), known) {
                     Some(k) => w.with_hint(format!("did you mean '{k}'?")),
                     None => w,
-                };
-                self.warnings.borrow_mut().push(w);
+                });
             }
         }
     }
@@ -478,9 +479,8 @@ impl<'a, 'i> Reader<'a, 'i> {
     /// (expected one of: …)", with the nearest known element as its hint.
     fn unknown_element(&self, node: Node, what: &str, known: &[&str], more: &str) -> Diagnostic {
         let name = node.tag_name().name();
-        let d = Diagnostic::at_line(
-            self.path,
-            self.line(node),
+        let d = self.error(
+            node,
             format!(
                 "unknown {what} <{name}> ignored (expected one of: {}{more})",
                 known.join(", ")
@@ -585,8 +585,7 @@ impl<'a, 'i> Reader<'a, 'i> {
         self.check_attributes(root, &[]);
         for e in self.elements(root) {
             if !TOP.contains(&e.tag_name().name()) {
-                let w = self.unknown_element(e, "element", TOP, "");
-                self.warnings.borrow_mut().push(w);
+                self.push_warning(self.unknown_element(e, "element", TOP, ""));
             }
         }
         let dir = self.path.parent().unwrap_or(Path::new("."));

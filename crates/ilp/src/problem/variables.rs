@@ -172,8 +172,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             "color" => self.colour(v)?,
             "lightPower" => self.light_power(v)?,
             _ => {
-                let w = self.unknown_element(v, "variable", VARIABLES, "");
-                self.warnings.borrow_mut().push(w);
+                self.push_warning(self.unknown_element(v, "variable", VARIABLES, ""));
                 return Ok(None);
             }
         };
