@@ -43,14 +43,14 @@ pub fn en12464_rule(a: f64, b: f64) -> String {
     } else {
         "the longer side"
     };
-    let capped = if 0.2 * 5f64.powf(d.log10()) > 10.0 {
+    let p = en12464_spacing(a, b);
+    let capped = if p < 0.2 * 5f64.powf(d.log10()) {
         ", at most 10 m"
     } else {
         ""
     };
     format!(
-        "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {:.2} m{capped}, d = {d:.2} m ({side})",
-        en12464_spacing(a, b)
+        "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {p:.2} m{capped}, d = {d:.2} m ({side})"
     )
 }
 
