@@ -1501,6 +1501,63 @@ mod first_hour {
         path
     }
 
+    /// `map PROBLEM -s SURFACE` reads the surface as the problem's constraint on it
+    /// does — its side and grid, so that the answer's U0 is the one the search
+    /// decided — and says so; `--side` and `--grid` choose others.
+    #[test]
+    fn a_problem_is_mapped_as_its_constraint_reads_the_surface() {
+        let dir = tempfile::tempdir().unwrap();
+        let problem = lamp_room(
+            dir.path(),
+            |_| {},
+            (
+                "<maximizeRadiance surface=\"Desk\"/>",
+                "<maximizeRadiance surface=\"Desk\"/>\n    <constraint surface=\"Floor\" side=\"front\" minUniformity=\"0.1\" grid=\"1.5\"/>",
+            ),
+        );
+        let map = |extra: &[&str]| {
+            let mut args = vec![
+                "map",
+                problem.to_str().unwrap(),
+                "-s",
+                "Floor",
+                "-n",
+                "20000",
+                "-o",
+                dir.path().join("m").to_str().unwrap(),
+                "--json",
+            ]
+            .into_iter()
+            .map(String::from)
+            .collect::<Vec<_>>();
+            args.extend(extra.iter().map(|s| s.to_string()));
+            let out = invlight(&args);
+            assert!(out.status.success(), "{}", text(&out.stderr));
+            let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+            (v, text(&out.stderr))
+        };
+        let (as_the_problem, note) = map(&[]);
+        assert_eq!(as_the_problem["side"], "front", "{as_the_problem}");
+        assert!(
+            note.contains("side front and grid 1.5 m of") && note.contains("problem.xml:12"),
+            "{note}"
+        );
+        let (chosen, note) = map(&["--side", "both", "--grid", "0.25"]);
+        assert_eq!(chosen["side"], "both");
+        assert!(!note.contains("note:"), "{note}");
+        let cells = |v: &Value| {
+            v["cells"]
+                .as_array()
+                .map_or(0, |c| c.iter().map(|n| n.as_u64().unwrap_or(1)).product())
+        };
+        assert!(
+            cells(&chosen) > 4 * cells(&as_the_problem),
+            "{} cells at 0.25 m, {} at 1.5 m",
+            cells(&chosen),
+            cells(&as_the_problem)
+        );
+    }
+
     /// `invlight … --json | head -c 10` ends quietly when the pipe closes, as ripgrep
     /// does, instead of panicking with "failed printing to stdout" (exit 101).
     #[test]

@@ -159,9 +159,22 @@ def open_office(r, again):
     m = again(["measure", "--config", "RESULT#1", "--side", "front", "-s", "TaskArea",
                "--photons", "1000000", "--seed", "7", "--json"])
     task = m["surfaces"][0]
-    ok = power <= regular and task["high"] >= 500
-    return ok, "%.1f W against the regular array's %.1f W; measured again: task area %.1f lx [%.1f, %.1f]" % (
-        power, regular, task["mean"], task["low"], task["high"])
+    # The same six lamps as one <lightArray> at one level (array.xml): an array it
+    # reads back as one, no more power than grid.xml's, and 500 lx measured again.
+    array = again(["solve", "--output", "ARRAY", "--json", "--no-images", "--no-report"],
+                  os.path.join("examples", "open-office", "array.xml"))
+    member = array["isoc"][0]
+    shape = member["layouts"][0].get("array")
+    m = again(["measure", "--config", "ARRAY/result.json#1", "--side", "front", "-s", "TaskArea",
+               "--photons", "1000000", "--seed", "7", "--json"],
+              os.path.join("examples", "open-office", "array.xml"))
+    array_task = m["surfaces"][0]
+    ok = (power <= regular and task["high"] >= 500 and shape is not None
+          and member["estimate"]["mean"] <= regular and array_task["high"] >= 500)
+    return ok, ("%.1f W against the regular array's %.1f W; measured again: task area %.1f lx [%.1f, %.1f]; "
+                "as one <lightArray>: %.1f W, %s; measured again %.1f lx") % (
+        power, regular, task["mean"], task["low"], task["high"], member["estimate"]["mean"],
+        member["layouts"][0]["description"], array_task["mean"])
 
 
 # name: (check, reduced-budget arguments)
@@ -224,7 +237,8 @@ def main():
                 # or on the file `on`): RESULT stands for this run's result.json, GRID
                 # for a folder beside this run's.
                 extra = [a.replace("RESULT", os.path.join(out, "result.json")) for a in extra]
-                extra = [a.replace("GRID", out + "-grid") for a in extra]
+                extra = [a.replace("GRID", out + "-grid").replace("ARRAY", out + "-array")
+                         for a in extra]
                 cmd = command + [extra[0], on or problem] + extra[1:]
                 done = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                       check=True)

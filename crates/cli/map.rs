@@ -23,13 +23,15 @@ pub struct MapArgs {
     #[arg(long, short = 's', value_name = "NAME")]
     pub surface: String,
     /// Largest cell side, m: a side of length L gets ⌈L/grid⌉ equal cells; `auto` spaces
-    /// them as EN 12464-1 does, p = 0.2·5^log10(d) for the surface's side d.
-    #[arg(long, default_value = "0.25", value_name = "M|auto")]
-    pub grid: GridSpacing,
+    /// them as EN 12464-1 does, p = 0.2·5^log10(d) for the surface's side d [default: a
+    /// problem file's constraint on the surface's grid, else 0.25].
+    #[arg(long, value_name = "M|auto")]
+    pub grid: Option<GridSpacing>,
     /// The side of the surface that counts: the front (the side its area-weighted
-    /// counter-clockwise normal faces, a floor's top), the back, or both.
-    #[arg(long, default_value = "both", value_name = "front|back|both")]
-    pub side: Side,
+    /// counter-clockwise normal faces, a floor's top), the back, or both [default: a
+    /// problem file's constraint on the surface's side, else both].
+    #[arg(long, value_name = "front|back|both")]
+    pub side: Option<Side>,
     #[command(flatten)]
     pub trace: TraceArgs,
     /// Count only the photons' arrivals in the cells. By default every photon departure
@@ -70,9 +72,10 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let requirement = args.require.requirement(1.0)?;
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
+    let (spacing, side) = as_the_problem_reads(&args)?;
     let settings = MapSettings {
-        spacing: args.grid,
-        side: args.side,
+        spacing,
+        side,
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
     };
@@ -112,4 +115,57 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         crate::print(&(report.summary() + &written))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The grid and side to map: those given, else those of the first constraint on the
+/// surface in a problem file — `map` of a solve's answer then reads it as the search
+/// did (a uniformity on EN 12464-1's grid of the task area's front is not the one on a
+/// finer grid of both sides), and says so — else a 0.25 m grid of both sides.
+fn as_the_problem_reads(args: &MapArgs) -> anyhow::Result<(GridSpacing, Side)> {
+    let (mut grid, mut side) = (args.grid, args.side);
+    let path = &args.scene.scene;
+    let xml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    if xml && (grid.is_none() || side.is_none()) {
+        let problem = invlight_ilp::Problem::read(path)?;
+        let on = |c: &&invlight_ilp::Constraint| c.surface.name == args.surface;
+        let constraint = problem
+            .constraints
+            .iter()
+            .filter(on)
+            .find(|c| c.bound.grid().is_some())
+            .or_else(|| problem.constraints.iter().find(on));
+        if let Some(c) = constraint {
+            let mut taken = Vec::new();
+            if side.is_none() {
+                side = Some(c.surface.side);
+                taken.push(format!("side {}", c.surface.side.name()));
+            }
+            if let (None, Some(g)) = (grid, c.bound.grid()) {
+                let g = match g {
+                    invlight_ilp::Grid::Auto => GridSpacing::Auto,
+                    invlight_ilp::Grid::Spacing(m) => GridSpacing::Metres(m as f32),
+                };
+                grid = Some(g);
+                taken.push(match g {
+                    GridSpacing::Auto => "grid auto (EN 12464-1's rule)".to_string(),
+                    GridSpacing::Metres(m) => format!("grid {m} m"),
+                });
+            }
+            if !taken.is_empty() {
+                eprintln!(
+                    "note: {} of {}:{}'s constraint on {} (--side, --grid to choose others)",
+                    taken.join(" and "),
+                    path.display(),
+                    c.line,
+                    args.surface
+                );
+            }
+        }
+    }
+    Ok((
+        grid.unwrap_or(GridSpacing::Metres(0.25)),
+        side.unwrap_or(Side::Both),
+    ))
 }

@@ -106,10 +106,63 @@ impl LevelSolver {
                 };
             }
         }
+        let levels = if m.photons < full {
+            self.meeting_what_can_be_met(&rows, (reading, bounds), m, &most)
+        } else {
+            None
+        };
         Levels {
-            levels: most,
+            levels: levels.unwrap_or(most),
             feasible: false,
         }
+    }
+
+    /// A look's least-power levels for the constraints that some levels meet at its
+    /// means, when they are no worse than the most light for the others: a
+    /// constraint no dimming can meet and no dimming changes — a uniformity under one
+    /// common level, which scales every cell alike — says nothing of the power, and
+    /// the most light there is would make a look of few photons, whose uniformity
+    /// reads low (the least of noisy cells is biased down), lose to the walk's
+    /// incumbent on a power it would not need. The constraint left out reads as it
+    /// does at the most light: decided against when it is, else undecided and traced
+    /// on. `None` when no such levels exist (a constraint left out would read worse
+    /// at them, as a uniformity does when some lamps are dimmed and others not).
+    fn meeting_what_can_be_met(
+        &self,
+        rows: &Rows,
+        (reading, bounds): (&Reading, &[Bound]),
+        m: &Measurement,
+        most: &[f64],
+    ) -> Option<Vec<f64>> {
+        let none = vec![0.0; bounds.len()];
+        let only = |keep: &dyn Fn(usize) -> bool| {
+            Rows(
+                rows.0
+                    .iter()
+                    .filter(|r| keep(r.constraint))
+                    .cloned()
+                    .collect(),
+            )
+        };
+        let met: Vec<bool> = (0..bounds.len())
+            .map(|i| self.program(&only(&|c| c == i), &none).is_some())
+            .collect();
+        if met.iter().all(|&m| m) {
+            return None;
+        }
+        let levels = self.program(&only(&|c| met[c]), &none)?;
+        let at = |y: &[f64]| reading.read(m, &self.weights(y), 0.0).constraints;
+        let (there, brightest) = (at(&levels), at(most));
+        let no_worse = (0..bounds.len()).filter(|&i| !met[i]).all(|i| {
+            let (a, b) = (there[i].mean, brightest[i].mean);
+            let slack = 1e-9 * b.abs().max(1.0);
+            if bounds[i].is_lower() {
+                a >= b - slack
+            } else {
+                a <= b + slack
+            }
+        });
+        no_worse.then_some(levels)
     }
 
     /// The least-power levels with every bound moved inward by `scale` times its
@@ -195,6 +248,7 @@ impl LevelSolver {
 /// One linear inequality over the levels, Σ a_j y_j ≥ rhs (or ≤), from constraint
 /// `constraint`, whose margin δ moves rhs by δ; a uniformity row E_i − u·Eavg ≥ 0
 /// keeps Eavg's coefficients and constant part in `ratio` instead, for δ to raise u.
+#[derive(Clone)]
 struct Row {
     constraint: usize,
     a: Vec<f64>,

@@ -99,6 +99,14 @@ pub fn visits(
             Axes::Value { min, max },
             [(max - min) / cells[first] as f64, 0.0],
         ),
+        // An array is drawn by the lamps it sets out.
+        Domain::Array(a) => (
+            Axes::Value {
+                min: f64::from(a.columns.0 * a.rows.0),
+                max: f64::from((a.columns.1 * a.rows.1).min(a.lamps)),
+            },
+            [1.0, 0.0],
+        ),
     };
     let mut points: Vec<Visit> = Vec::new();
     let mut index: HashMap<Vec<u64>, usize> = HashMap::new();
@@ -152,5 +160,6 @@ fn coords(domain: &Domain, x: &[f64]) -> [f64; 2] {
         Domain::Parallelogram(r) => [x[0] * r.e1.length(), x[1] * r.e2.length()],
         Domain::Hemisphere(h) => [x[1] * h.max_zenith.to_degrees(), x[0] * 360.0],
         Domain::Segment { min, max } | Domain::Turn { min, max } => [min + x[0] * (max - min), 0.0],
+        Domain::Array(a) => [f64::from(a.shape(x).lamps()), 0.0],
     }
 }

@@ -100,7 +100,8 @@ pub use problem::{
 };
 pub use reading::{GridSpec, Quantity, Reading};
 pub use space::{
-    Cell, Configuration, Domain, Hemisphere, Parallelogram, ParallelogramError, Space, Variable,
+    ArrayDomain, ArrayShape, Cell, Configuration, Domain, Hemisphere, Parallelogram,
+    ParallelogramError, Space, Variable,
 };
 pub use vns::{
     Evaluate, Evaluation, Observer, Outcome, Record, Search, SearchError, Sense, Settings,

@@ -20,6 +20,10 @@ use invlight_stats::SplitMix64;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt;
 
+mod array;
+
+pub use array::{ArrayDomain, ArrayShape};
+
 /// A placement parallelogram: P(s, t) = A + s·e1 + t·e2, (s, t) ∈ \[0, 1\]² (thesis §4.4.1).
 ///
 /// Its neighbourhood of radius r is the disc of radius r·diagonal around the current
@@ -256,6 +260,9 @@ pub enum Domain {
         /// `min` + 360, degrees.
         max: f64,
     },
+    /// A regular array of lamps (4 dimensions: columns, rows and the two wall
+    /// fractions, [`ArrayDomain`]).
+    Array(ArrayDomain),
 }
 
 impl Domain {
@@ -264,6 +271,16 @@ impl Domain {
         match self {
             Domain::Parallelogram(_) | Domain::Hemisphere(_) => 2,
             Domain::Segment { .. } | Domain::Turn { .. } => 1,
+            Domain::Array(_) => 4,
+        }
+    }
+
+    /// The cells of dimension `d` when the domain fixes them (an array's counts and
+    /// wall fractions), else `None` and the mesh decides.
+    fn fixed_cells(&self, d: usize) -> Option<u32> {
+        match self {
+            Domain::Array(a) => Some(a.cells()[d]),
+            _ => None,
         }
     }
 
@@ -284,6 +301,11 @@ impl Domain {
             }
             Domain::Turn { .. } => {
                 out[0] = (x[0] + rng.uniform(-0.5 * r, 0.5 * r)).rem_euclid(1.0);
+            }
+            Domain::Array(_) => {
+                for (o, &x) in out.iter_mut().zip(x) {
+                    *o = rng.uniform((x - r).max(0.0), (x + r).min(1.0));
+                }
             }
         }
     }
@@ -339,7 +361,8 @@ impl Space {
         for v in &variables {
             offsets.push(cells.len());
             for d in 0..v.domain.dimensions() {
-                cells.push(mesh[d % mesh.len()].max(1));
+                let c = v.domain.fixed_cells(d).unwrap_or(mesh[d % mesh.len()]);
+                cells.push(c.max(1));
             }
         }
         Space {
@@ -555,10 +578,24 @@ impl Space {
     /// (½ is the usual "half a spacing from the walls"). Every other coordinate is
     /// `x`'s. The configurations are snapped to their cells and distinct; the search
     /// starts from them as well as from `x`, so a regular layout is always among what
-    /// it compares.
+    /// it compares. A `<lightArray>` variable ([`Domain::Array`]) starts from every
+    /// count of columns and rows its lamps can fill, at a spread of wall distances
+    /// ([`ArrayDomain::starts`]).
     pub fn regular_arrays(&self, x: &Configuration) -> Vec<Configuration> {
         const WALL_FRACTIONS: [f64; 3] = [0.5, 0.75, 1.0];
         let mut out: Vec<Configuration> = Vec::new();
+        for (i, v) in self.variables.iter().enumerate() {
+            let Domain::Array(a) = &v.domain else {
+                continue;
+            };
+            for shape in a.starts() {
+                let mut config = x.clone();
+                if let Some(c) = a.coords(&shape) {
+                    self.slice_mut(&mut config, i).copy_from_slice(&c);
+                    out.push(self.snap(&config));
+                }
+            }
+        }
         for group in &self.exchangeable {
             let m = group.len();
             let placed = group.iter().all(|member| {

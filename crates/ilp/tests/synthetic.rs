@@ -5,9 +5,9 @@
 
 use glam::DVec3;
 use invlight_ilp::{
-    Bound, Cell, Confidence, Configuration, Domain, Estimate, Evaluate, Evaluation, Hemisphere,
-    Isoc, Observer, Outcome, Parallelogram, Record, Search, Sense, Settings, Space, Standing,
-    Strategy, Variable, Verdict,
+    ArrayDomain, ArrayShape, Bound, Cell, Confidence, Configuration, Domain, Estimate, Evaluate,
+    Evaluation, Hemisphere, Isoc, Observer, Outcome, Parallelogram, Record, Search, Sense,
+    Settings, Space, Standing, Strategy, Variable, Verdict,
 };
 use invlight_stats::{SplitMix64, mix};
 use std::collections::HashSet;
@@ -767,5 +767,58 @@ fn the_best_regular_array_is_kept_beside_the_answer() {
             (&kept.cell, kept.estimate.mean, &kept.config.coords),
             "{strategy:?}"
         );
+    }
+}
+
+/// A `<lightArray>`'s space (columns, rows, two wall fractions) under a function whose
+/// best is 3 columns × 2 rows with the outer lamps 0.6 and 0.8 of a spacing from the
+/// walls, away from every start (each start is half a spacing from the walls or a
+/// spread of 0.3, 0.5, 0.7): the search reaches that shape from the starts.
+#[test]
+fn an_array_search_finds_the_best_shape() {
+    let domain = ArrayDomain {
+        rect: Parallelogram::from_corners(
+            DVec3::ZERO,
+            [
+                DVec3::new(6.0, 0.0, 0.0),
+                DVec3::new(6.0, 4.0, 0.0),
+                DVec3::new(0.0, 4.0, 0.0),
+            ],
+        )
+        .unwrap(),
+        columns: (1, 4),
+        rows: (1, 3),
+        lamps: 12,
+    };
+    let d = domain.clone();
+    let f = move |x: &[f64]| {
+        let s = d.shape(x);
+        let (c, r) = (f64::from(s.columns), f64::from(s.rows));
+        100.0
+            - 5.0 * ((c - 3.0).powi(2) + (r - 2.0).powi(2))
+            - 40.0 * ((s.walls[0] - 0.6).powi(2) + (s.walls[1] - 0.8).powi(2))
+    };
+    let space = Space::new(
+        vec![Variable {
+            id: "Grid".into(),
+            domain: Domain::Array(domain.clone()),
+        }],
+        &[20],
+    );
+    let best = ArrayShape {
+        columns: 3,
+        rows: 2,
+        walls: [0.6, 0.8],
+    };
+    let optimum = domain.coords(&best).unwrap();
+    for strategy in [Strategy::Paired, Strategy::RaceOnEnd] {
+        let mut eval = Noisy::new(&f, 0.5);
+        let (isoc, _, _) = run(
+            &space,
+            settings(300, strategy),
+            vec![0.1, 0.1, 0.5, 0.5],
+            &mut eval,
+        );
+        check_optimum(&space, &isoc, &optimum, &f);
     }
 }

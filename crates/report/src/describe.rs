@@ -48,6 +48,7 @@ pub fn subject(spec: &VariableSpec) -> String {
         VariableKind::LightAim { .. } => format!("the aim of {}", spec.id),
         VariableKind::HoleSize { .. } => format!("the size of hole {}", spec.id),
         VariableKind::ObjectRotation { .. } => format!("the turn of {}", spec.id),
+        VariableKind::LightArray(_) => format!("the array {}", spec.id),
         VariableKind::SunTime { date, .. } => {
             format!("the time of day of the sun {} on {date}", spec.id)
         }
@@ -69,6 +70,13 @@ pub fn value(value: &VariableValue, compass: Option<&Compass>) -> String {
         VariableValue::Power(level) => format!("at {} %", significant(100.0 * level)),
         VariableValue::Scale(k) => format!("× {} of its authored size", significant(k)),
         VariableValue::Angle(a) => format!("turned {}°", significant(a)),
+        VariableValue::Array(a) => format!(
+            "{} rows of {}, the outer ones {} and {} of a spacing from the edges",
+            a.rows,
+            a.columns,
+            significant(a.walls[0]),
+            significant(a.walls[1])
+        ),
         VariableValue::Time { minutes, direction } => {
             let at = TimeOfDay::from_minutes(minutes);
             match compass {
@@ -102,6 +110,24 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
         (VariableValue::Scale(a), VariableValue::Scale(b)) => {
             format!("scaled by {}", significant(b / a))
         }
+        (VariableValue::Array(a), VariableValue::Array(b)) if a.lamps() != b.lamps() => {
+            format!("{} lamps instead of {}", b.lamps(), a.lamps())
+        }
+        (VariableValue::Array(a), VariableValue::Array(b))
+            if (a.rows, a.columns) != (b.rows, b.columns) =>
+        {
+            format!(
+                "{} × {} instead of {} × {}",
+                b.rows, b.columns, a.rows, a.columns
+            )
+        }
+        (VariableValue::Array(a), VariableValue::Array(b)) => format!(
+            "set out {} and {} of a spacing from the walls instead of {} and {}",
+            significant(b.walls[0]),
+            significant(b.walls[1]),
+            significant(a.walls[0]),
+            significant(a.walls[1])
+        ),
         (VariableValue::Angle(a), VariableValue::Angle(b)) => {
             format!("turned {}°", significant(b - a))
         }
@@ -145,6 +171,16 @@ pub fn range(binding: &Binding, i: usize) -> String {
             "any direction from above the horizon, in {} × {} cells of azimuth and zenith angle",
             cells[first],
             cells[first + 1]
+        ),
+        Domain::Array(a) => format!(
+            "{} to {} columns and {} to {} rows of at most {} lamps on a {} m × {} m rectangle, the outer ones 0 to 1 spacing from its edges in tenths",
+            a.columns.0,
+            a.columns.1,
+            a.rows.0,
+            a.rows.1,
+            a.lamps,
+            significant(a.rect.e1.length()),
+            significant(a.rect.e2.length())
         ),
         Domain::Segment { min, max } | Domain::Turn { min, max } => {
             let hs = match &binding.specs[i].kind {

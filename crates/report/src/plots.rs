@@ -197,6 +197,8 @@ pub fn search_plot(
                 VariableKind::LightPower { .. } => "dimming level (1 = as authored)",
                 VariableKind::HoleSize { .. } => "scale of the authored size",
                 VariableKind::ObjectRotation { .. } => "turn (°)",
+                VariableKind::SunTime { .. } => "minutes after local midnight",
+                VariableKind::LightArray(_) => "lamps set out (columns × rows)",
                 _ => "HSV value V",
             };
             let kind = PlotKind::Value {

@@ -6,7 +6,7 @@
 //! array is what a DIALux user draws and an installer sets out, so the answer says
 //! which it is instead of leaving six coordinates to be read.
 
-use super::{Binding, Target, power::Dimmed};
+use super::{Binding, Target, VariableValue};
 use crate::problem::VariableKind;
 use crate::space::{Configuration, Domain};
 use glam::DVec3;
@@ -25,6 +25,9 @@ pub struct Layout {
     /// Each lamp's dimming level (its output over its authored output), in `lights`'
     /// order; 1 for a lamp no variable dims.
     pub levels: Vec<f64>,
+    /// The lamps a `<lightArray>` leaves off (beyond its columns × rows).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub off: Vec<String>,
     /// The layout in a sentence.
     pub description: String,
 }
@@ -111,12 +114,12 @@ pub fn regular_array(
 }
 
 impl Binding {
-    /// The layout of each group of interchangeable lamps at `config` (the groups of
-    /// [`crate::space::Space::exchangeable`]).
+    /// The layout of each `<lightArray>` and of each group of interchangeable lamps at
+    /// `config` (the groups of [`crate::space::Space::exchangeable`]).
     pub fn layouts(&self, config: &Configuration) -> Vec<Layout> {
         let values = self.values(config);
         let variables = self.space.variables();
-        let mut out = Vec::new();
+        let mut out = self.array_layouts(&values);
         for group in self.space.exchangeable() {
             let first = group[0][0];
             let (Domain::Parallelogram(rect), VariableKind::LightInSurface(spec)) =
@@ -165,12 +168,80 @@ impl Binding {
                 }
             });
             let lights: Vec<String> = group.iter().map(|m| variables[m[0]].id.clone()).collect();
-            let description = describe(&lights, &spec.surface, array.as_ref(), &levels);
+            let description = describe(&lights, &spec.surface, array.as_ref(), &levels, &[]);
             out.push(Layout {
                 lights,
                 surface: spec.surface.clone(),
                 array,
                 levels,
+                off: Vec::new(),
+                description,
+            });
+        }
+        out
+    }
+
+    /// The layout of each `<lightArray>` at `values`: its shape in metres, its lamps'
+    /// levels and the lamps it leaves off.
+    fn array_layouts(&self, values: &[VariableValue]) -> Vec<Layout> {
+        let mut out = Vec::new();
+        for ((value, target), spec) in values.iter().zip(&self.targets).zip(&self.specs) {
+            let (VariableValue::Array(shape), Target::Array(lamps), VariableKind::LightArray(a)) =
+                (value, target, &spec.kind)
+            else {
+                continue;
+            };
+            let rect = &lamps.rect;
+            let on = (shape.lamps() as usize).min(lamps.lamps.len());
+            let name = |&(l, _, _): &(invlight_scene::LightId, DVec3, _)| {
+                self.light_names[l.index()].clone()
+            };
+            let lights: Vec<String> = lamps.lamps[..on].iter().map(name).collect();
+            let off: Vec<String> = lamps.lamps[on..].iter().map(name).collect();
+            let places: Vec<DVec3> = (0..on as u32)
+                .map(|k| {
+                    let (s, t) = shape.place(k);
+                    rect.point(s, t) + lamps.lamps[k as usize].1
+                })
+                .collect();
+            let spacing = |n: u32, f: f64, edge: DVec3| match n {
+                1 => 0.0,
+                n => edge.length() / (f64::from(n) - 1.0 + 2.0 * f),
+            };
+            let (u, v) = (
+                rect.e1.normalize(),
+                rect.e1.cross(rect.e2).cross(rect.e1).normalize(),
+            );
+            let array = ArrayLayout {
+                columns: shape.columns,
+                rows: shape.rows,
+                spacing: [
+                    spacing(shape.columns, shape.walls[0], rect.e1),
+                    spacing(shape.rows, shape.walls[1], rect.e2),
+                ],
+                deviation: 0.0,
+                from_walls: self.bounds.and_then(|b| {
+                    Some([
+                        wall_distance(&b, &places, u)?,
+                        wall_distance(&b, &places, v)?,
+                    ])
+                }),
+            };
+            let levels: Vec<f64> = lamps.lamps[..on]
+                .iter()
+                .map(|&(l, _, _)| self.light_level(l, values))
+                .collect();
+            let description = format!(
+                "{}: {}",
+                spec.id,
+                describe(&lights, &a.surface, Some(&array), &levels, &off)
+            );
+            out.push(Layout {
+                lights,
+                surface: a.surface.clone(),
+                array: Some(array),
+                levels,
+                off,
                 description,
             });
         }
@@ -179,30 +250,28 @@ impl Binding {
 
     /// The level of an interchangeable member's lamp: its own `lightPower`, else its
     /// `<lightGroup>`'s, else 1.
-    fn level_of(&self, member: &[usize], values: &[super::VariableValue]) -> f64 {
-        let power = |i: usize| match values[i] {
-            super::VariableValue::Power(p) => Some(p),
-            _ => None,
-        };
-        if let Some(p) = member.get(1).and_then(|&i| power(i)) {
+    fn level_of(&self, member: &[usize], values: &[VariableValue]) -> f64 {
+        if let Some(&VariableValue::Power(p)) = member.get(1).map(|&i| &values[i]) {
             return p;
         }
-        let Target::Move(m) = &self.targets[member[0]] else {
-            return 1.0;
-        };
-        let Some(&(light, _)) = m.lights.first() else {
-            return 1.0;
-        };
+        match &self.targets[member[0]] {
+            Target::Move(m) => m
+                .lights
+                .first()
+                .map_or(1.0, |&(light, _)| self.light_level(light, values)),
+            _ => 1.0,
+        }
+    }
+
+    /// The level of `light` at `values`: its `lightPower`'s or its group's, else 1.
+    fn light_level(&self, light: invlight_scene::LightId, values: &[VariableValue]) -> f64 {
         self.targets
             .iter()
-            .position(|t| match t {
-                Target::Power {
-                    dimmed: Dimmed::Group(g),
-                    ..
-                } => g.iter().any(|(l, _)| *l == light),
-                _ => false,
+            .position(|t| matches!(t, Target::Power { dimmed, .. } if dimmed.holds(light)))
+            .and_then(|i| match values[i] {
+                VariableValue::Power(p) => Some(p),
+                _ => None,
             })
-            .and_then(power)
             .unwrap_or(1.0)
     }
 }
@@ -226,6 +295,7 @@ fn describe(
     surface: &str,
     array: Option<&ArrayLayout>,
     levels: &[f64],
+    off: &[String],
 ) -> String {
     let who = match lights {
         [one] => one.clone(),
@@ -279,7 +349,13 @@ fn describe(
                 .join(", ")
         )
     };
-    format!("{who} on {surface}: {shape}{dimmed}")
+    let off = match off {
+        [] => String::new(),
+        [one] => format!("; {one} off"),
+        [a, b] => format!("; {a} and {b} off"),
+        [first, .., last] => format!("; {first} … {last} off"),
+    };
+    format!("{who} on {surface}: {shape}{dimmed}{off}")
 }
 
 #[cfg(test)]
@@ -349,11 +425,11 @@ mod tests {
             from_walls: Some([1.2, 1.2]),
         };
         assert_eq!(
-            describe(&lights, "LampZone", Some(&array), &[0.72; 6]),
+            describe(&lights, "LampZone", Some(&array), &[0.72; 6], &[]),
             "Lamp1 … Lamp6 on LampZone: a 2 × 3 array (2 rows of 3), 2.40 m × 2.40 m apart, 1.20 m × 1.20 m from the walls; all at 72 %"
         );
         assert_eq!(
-            describe(&lights[..2], "LampZone", None, &[0.5, 1.0]),
+            describe(&lights[..2], "LampZone", None, &[0.5, 1.0], &[]),
             "Lamp1 … Lamp2 on LampZone: 2 lamps at irregular positions, not a regular array; at 50 %–100 % (50 %, 100 %)"
         );
     }

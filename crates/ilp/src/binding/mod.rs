@@ -10,6 +10,7 @@
 //! back, `layout.rs` reads interchangeable lamps as the array a designer would draw.
 
 mod aim;
+mod array;
 mod colour;
 mod hole;
 mod layout;
@@ -79,6 +80,8 @@ enum Target {
     },
     /// A directional light set where the sun stands at a time.
     SunTime(SunClock),
+    /// A `<lightArray>`'s lamps, set out as its shape and the rest off.
+    Array(array::Lamps),
     /// An object's instances, or a light as authored, turned about `axis` (unit)
     /// through `centre` (the box's centre, the light's position).
     Rotate {
@@ -114,6 +117,9 @@ pub struct Binding {
     /// The electric lights' authored power per component, in `power_unit` (daylight
     /// costs nothing).
     electric_power: Vec<f64>,
+    /// Each light's own share of `electric_power`, by light index: what an array's
+    /// lamp left off does not draw.
+    light_power: Vec<f64>,
     /// What `electric_power` and [`Binding::power`] count.
     pub power_unit: PowerUnit,
     /// The lights that emit a photometric file's table (`--luminaire`, `<luminaire>`,
@@ -126,6 +132,8 @@ pub struct Binding {
     /// How many lights the scene has, and whether anything else emits (an emissive
     /// surface, a sky): what [`Binding::lit_only_by`] asks.
     sources: (usize, bool),
+    /// The scene's lights' names, by light index.
+    light_names: Vec<String>,
 }
 
 /// A light that emits a photometric file's candela table, as a run used it.
@@ -216,6 +224,7 @@ impl Binding {
             });
             targets.push(target);
         }
+        placed_once(&targets, &problem.variables, scene, path)?;
         let reading = Reading::new(problem, scene)?;
         let bounds = reachable_bounds(scene, &targets);
         let cheap: Vec<usize> = targets
@@ -242,6 +251,7 @@ impl Binding {
             targets,
             bounds,
             electric_power: Vec::new(),
+            light_power: Vec::new(),
             power_unit: PowerUnit::Lumens,
             luminaires: scene
                 .lights
@@ -265,12 +275,17 @@ impl Binding {
                 })
                 .collect(),
             level_solver: None,
+            light_names: scene.lights.iter().map(|l| l.name.clone()).collect(),
             sources: (
                 scene.lights.len(),
                 scene.sky.is_some() || scene.materials.iter().any(|m| m.is_emissive()),
             ),
         };
-        (binding.electric_power, binding.power_unit) = binding.component_power(scene);
+        (
+            binding.electric_power,
+            binding.light_power,
+            binding.power_unit,
+        ) = binding.component_power(scene);
         binding.solve_levels(problem.confidence);
         Ok(binding)
     }
@@ -312,13 +327,15 @@ impl Binding {
 
     /// Each component's electric power as authored, every light but the sun: watts
     /// when every electric light has them ([`PowerUnit`]), else lumens.
-    fn component_power(&self, scene: &Scene) -> (Vec<f64>, PowerUnit) {
+    fn component_power(&self, scene: &Scene) -> (Vec<f64>, Vec<f64>, PowerUnit) {
         let emitters = Emitters::new(scene);
         let components = self.components(scene);
         let (mut flux, mut watts) = (
             vec![0.0; self.component_count()],
             Some(vec![0.0; self.component_count()]),
         );
+        let (mut light_flux, mut light_watts) =
+            (vec![0.0; scene.lights.len()], vec![0.0; scene.lights.len()]);
         let mut counted = vec![false; scene.lights.len()];
         let of = components.of_sources(&emitters);
         for (s, &k) in of.iter().enumerate() {
@@ -330,10 +347,14 @@ impl Binding {
                     // A light drawn as several sources draws its watts once.
                     if !std::mem::replace(&mut counted[l.index()], true) {
                         match (scene.lights[l].kind.watts(), &mut watts) {
-                            (Some(w), Some(sum)) => sum[k] += w,
+                            (Some(w), Some(sum)) => {
+                                sum[k] += w;
+                                light_watts[l.index()] = w;
+                            }
                             _ => watts = None,
                         }
                     }
+                    light_flux[l.index()] += emitters.flux(s);
                 }
                 SourceOrigin::Instance(_) => watts = None,
                 // Daylight costs no power.
@@ -342,8 +363,8 @@ impl Binding {
             flux[k] += emitters.flux(s);
         }
         match watts {
-            Some(w) if counted.iter().any(|&c| c) => (w, PowerUnit::Watts),
-            _ => (flux, PowerUnit::Lumens),
+            Some(w) if counted.iter().any(|&c| c) => (w, light_watts, PowerUnit::Watts),
+            _ => (flux, light_flux, PowerUnit::Lumens),
         }
     }
 
@@ -366,6 +387,19 @@ impl Binding {
                 w[*component] = min + self.space.slice(config, i)[0] * (max - min);
             }
         }
+        // A lamp an array leaves off and that has a level of its own is at 0.
+        for light in self.lamps_off(config) {
+            for t in &self.targets {
+                if let Target::Power {
+                    dimmed: Dimmed::Light { light: l, .. },
+                    component,
+                } = t
+                    && *l == light
+                {
+                    w[*component] = 0.0;
+                }
+            }
+        }
         w
     }
 
@@ -374,11 +408,14 @@ impl Binding {
     /// dimmed to a level is taken to draw that share, as a driver's rated curve is not
     /// in the file; daylight is not counted).
     pub fn power(&self, config: &Configuration) -> f64 {
-        self.levels(config)
-            .iter()
-            .zip(&self.electric_power)
-            .map(|(w, f)| w * f)
-            .sum()
+        let w = self.levels(config);
+        let on: f64 = w.iter().zip(&self.electric_power).map(|(w, f)| w * f).sum();
+        let off: f64 = self
+            .lamps_off(config)
+            .into_iter()
+            .map(|l| w[self.component_of(l)] * self.light_power[l.index()])
+            .sum();
+        on - off
     }
 
     /// The part of `config` that changes the scene's geometry or materials (everything
@@ -429,6 +466,21 @@ impl Binding {
     pub fn refusal(&self, config: &Configuration) -> Option<String> {
         if let Some(id) = self.leaves_scene(config) {
             return Some(format!("it puts '{id}' outside the scene"));
+        }
+        for (i, v) in self.space.variables().iter().enumerate() {
+            if let Domain::Array(a) = &v.domain {
+                let shape = a.shape(self.space.slice(config, i));
+                if shape.lamps() > a.lamps {
+                    return Some(format!(
+                        "it sets out {} × {} = {} lamps and '{}' has {}",
+                        shape.columns,
+                        shape.rows,
+                        shape.lamps(),
+                        v.id,
+                        a.lamps
+                    ));
+                }
+            }
         }
         let cell = self.space.cell(config);
         let place = |v: usize| {
@@ -502,7 +554,7 @@ impl Binding {
                 .iter()
                 .any(|t| matches!(t, Target::Move(m) if m.instances.iter().any(|&(j, _)| j == i)))
         };
-        for (value, target) in values.into_iter().zip(&self.targets) {
+        for (&value, target) in values.iter().zip(&self.targets) {
             match (value, target) {
                 (
                     VariableValue::Angle(a),
@@ -576,6 +628,13 @@ impl Binding {
                 _ => {}
             }
         }
+        // After the levels: an array's lamps beyond its shape are off whatever their
+        // level.
+        for (value, target) in values.iter().zip(&self.targets) {
+            if let (VariableValue::Array(shape), Target::Array(lamps)) = (value, target) {
+                array::apply(scene, lamps, shape, |l| self.is_dimmed(l));
+            }
+        }
         moved
     }
 
@@ -643,10 +702,24 @@ fn bind(
             rotation::variable(problem, scene, spec, *min, *max, err)
         }
         VariableKind::LightAim { max_tilt } => {
-            aim::variable(scene, spec, *max_tilt, &problem.groups, err)
+            aim::variable(scene, spec, *max_tilt, &problem.lamp_groups(), err)
         }
-        VariableKind::LightPower { min, max } => {
-            power::variable(scene, spec, (*min, *max), targets, &problem.groups, err)
+        VariableKind::LightPower { min, max } => power::variable(
+            scene,
+            spec,
+            (*min, *max),
+            targets,
+            &problem.lamp_groups(),
+            err,
+        ),
+        VariableKind::LightArray(a) => {
+            if let Some(g) = problem.groups.iter().find(|g| g.id == spec.id) {
+                return Err(err(format!(
+                    "<lightArray id=\"{}\"> has the id of the <lightGroup> on line {}, expected an id of its own",
+                    spec.id, g.line
+                )));
+            }
+            array::variable(scene, spec, a, err)
         }
         VariableKind::Color {
             hue,
@@ -696,6 +769,43 @@ fn surface_materials(scene: &Scene, s: SurfaceId) -> Vec<MaterialId> {
     out
 }
 
+/// Refuses a light that two variables place (a `<lightInSurface>` and a
+/// `<lightArray>`, or two arrays): each would undo the other.
+fn placed_once(
+    targets: &[Target],
+    specs: &[VariableSpec],
+    scene: &Scene,
+    path: &std::path::Path,
+) -> Result<(), Diagnostic> {
+    let mut by: Vec<Option<usize>> = vec![None; scene.lights.len()];
+    for (i, t) in targets.iter().enumerate() {
+        let lights: Vec<LightId> = match t {
+            Target::Move(m) => m.lights.iter().map(|&(l, _)| l).collect(),
+            Target::Array(a) => a.lamps.iter().map(|&(l, _, _)| l).collect(),
+            _ => continue,
+        };
+        for l in lights {
+            if let Some(first) = by[l.index()].replace(i) {
+                let (a, b) = (&specs[first], &specs[i]);
+                return Err(Diagnostic::at_line(
+                    path,
+                    b.line,
+                    format!(
+                        "'{}' is placed by <{} id=\"{}\"> (line {}) and by <{} id=\"{}\">, expected one placement per lamp",
+                        scene.lights[l].name,
+                        a.kind.name(),
+                        a.id,
+                        a.line,
+                        b.kind.name(),
+                        b.id
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The box everything may occupy: the scene's instances no variable moves, the lights
 /// no placement moves, and each moved thing as authored (`None` for an empty scene).
 fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
@@ -704,14 +814,26 @@ fn reachable_bounds(scene: &Scene, targets: &[Target]) -> Option<Bounds> {
     let mut out: Option<Bounds> = None;
     let mut add = |b: Bounds| out = Some(out.map_or(b, |o: Bounds| o.union(b)));
     for t in targets {
-        if let Target::Move(m) = t {
-            m.instances
-                .iter()
-                .for_each(|&(i, _)| moved_instances[i.index()] = true);
-            m.lights
-                .iter()
-                .for_each(|&(l, _)| moved_lights[l.index()] = true);
-            add(m.bounds);
+        match t {
+            Target::Move(m) => {
+                m.instances
+                    .iter()
+                    .for_each(|&(i, _)| moved_instances[i.index()] = true);
+                m.lights
+                    .iter()
+                    .for_each(|&(l, _)| moved_lights[l.index()] = true);
+                add(m.bounds);
+            }
+            Target::Array(lamps) => {
+                lamps
+                    .lamps
+                    .iter()
+                    .for_each(|&(l, _, _)| moved_lights[l.index()] = true);
+                if let Some(b) = lamps.bounds() {
+                    add(b);
+                }
+            }
+            _ => {}
         }
     }
     let fixed: Vec<InstanceId> = (0..scene.instances.len())
@@ -767,6 +889,12 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
             };
             vec![x.clamp(0.0, 1.0)]
         }
+        // An array starts as the one of most lamps, half a spacing from the walls.
+        (Domain::Array(a), _) => a
+            .starts()
+            .first()
+            .and_then(|shape| a.coords(shape))
+            .map_or_else(|| vec![0.5; 4], |c| c.to_vec()),
         (d, _) => vec![0.5; d.dimensions()],
     }
 }

@@ -37,6 +37,15 @@ pub enum Dimmed {
 }
 
 impl Dimmed {
+    /// Whether it dims `light`.
+    pub fn holds(&self, light: LightId) -> bool {
+        match self {
+            Dimmed::Light { light: l, .. } => *l == light,
+            Dimmed::Group(g) => g.iter().any(|(l, _)| *l == light),
+            Dimmed::Emissive { .. } => false,
+        }
+    }
+
     /// Whether two dim the same light or object.
     pub fn same(&self, other: &Dimmed) -> bool {
         match (self, other) {

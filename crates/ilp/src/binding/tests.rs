@@ -793,3 +793,155 @@ fn interchangeable_lamps_read_as_the_array_they_form() {
     let layout = &b.layouts(&moved)[0];
     assert!(layout.array.is_none() && layout.description.contains("irregular"));
 }
+
+/// The test scene with six identical point lamps L1 … L6 2.5 m above the floor.
+fn scene_with_six_lamps() -> Scene {
+    let mut s = scene();
+    for k in 1..=6 {
+        s.lights.push(Light {
+            name: format!("L{k}"),
+            kind: LightKind::Point {
+                position: Vec3::new(0.5 * k as f32, 0.5, 2.5),
+                intensity: Vec3::splat(100.0),
+            },
+        });
+    }
+    s
+}
+
+#[test]
+fn an_array_sets_out_its_lamps_and_leaves_the_rest_off() {
+    let mut s = scene_with_six_lamps();
+    let b = Binding::new(
+        &problem(
+            "<lightArray id=\"Grid\" lights=\"L1 … L6\" surface=\"Floor__Geometry\" columns=\"1..3\" rows=\"1..2\"/>",
+        ),
+        &mut s,
+    )
+    .unwrap();
+    let shape = |columns, rows| {
+        b.configuration(&[VariableValue::Array(crate::space::ArrayShape {
+            columns,
+            rows,
+            walls: [0.5, 0.5],
+        })])
+        .unwrap()
+    };
+    let two_by_two = shape(2, 2);
+    b.apply(&mut s, &two_by_two);
+    // The rectangle runs 1–3 m along x and 1–2 m along y: half a spacing from its
+    // edges, two columns stand at x = 1.5, 2.5 and two rows at y = 1.25, 1.75, each
+    // lamp at its authored 2.5 m.
+    let at = |name: &str| s.lights[s.light(name).unwrap()].kind.position().unwrap();
+    for (name, x, y) in [
+        ("L1", 1.5, 1.25),
+        ("L2", 2.5, 1.25),
+        ("L3", 1.5, 1.75),
+        ("L4", 2.5, 1.75),
+    ] {
+        assert!(
+            at(name).distance(Vec3::new(x, y, 2.5)) < 1e-5,
+            "{name} at {}",
+            at(name)
+        );
+    }
+    // L5 and L6 emit nothing, so a trace spends no photon on them, and draw nothing.
+    let lamp_flux = 4.0 * std::f64::consts::PI * 100.0;
+    let emitted = |s: &Scene| {
+        let e = Emitters::new(s);
+        (0..e.len() as u32)
+            .filter(|&i| {
+                matches!(e.origin(i), SourceOrigin::Light(l) if s.lights[l].name.starts_with("L")
+                && s.lights[l].name != "Lamp")
+            })
+            .map(|i| e.flux(i))
+            .sum::<f64>()
+    };
+    // The scene's own "Lamp" (1 cd) is the rest of the power.
+    let other = 4.0 * std::f64::consts::PI;
+    assert!((emitted(&s) - 4.0 * lamp_flux).abs() < 1e-3 * lamp_flux);
+    assert!((b.power(&two_by_two) - 4.0 * lamp_flux - other).abs() < 1e-3 * lamp_flux);
+    // A larger array turns them back on.
+    let three_by_two = shape(3, 2);
+    b.apply(&mut s, &three_by_two);
+    assert!((emitted(&s) - 6.0 * lamp_flux).abs() < 1e-3 * lamp_flux);
+    assert!((b.power(&three_by_two) - 6.0 * lamp_flux - other).abs() < 1e-3 * lamp_flux);
+    let [layout] = &b.layouts(&two_by_two)[..] else {
+        panic!("one array: {:?}", b.layouts(&two_by_two));
+    };
+    assert_eq!(layout.lights, ["L1", "L2", "L3", "L4"]);
+    assert_eq!(layout.off, ["L5", "L6"]);
+    assert_eq!(
+        layout.description,
+        "Grid: L1 … L4 on Floor__Geometry: a 2 × 2 array (2 rows of 2), 1.00 m × 0.50 m apart, 1.50 m × 1.25 m from the walls; all at 100 %; L5 and L6 off"
+    );
+    // The value goes to the outputs and back to the same cell.
+    let values = b.values(&two_by_two);
+    assert_eq!(b.configuration(&values).unwrap(), two_by_two);
+    assert_eq!(b.refusal(&two_by_two), None);
+}
+
+#[test]
+fn an_array_larger_than_its_lamps_is_refused_and_its_id_dims_them_all() {
+    let mut s = scene_with_six_lamps();
+    let b = Binding::new(
+        &problem(
+            "<lightArray id=\"Grid\" lights=\"L1 L2 L3 L4\" surface=\"Floor__Geometry\" columns=\"1..3\" rows=\"2\"/>\n<lightPower id=\"Grid\" min=\"0.1\" max=\"1\"/>",
+        ),
+        &mut s,
+    )
+    .unwrap();
+    let config = |columns, level: f64| {
+        b.configuration(&[
+            VariableValue::Array(crate::space::ArrayShape {
+                columns,
+                rows: 2,
+                walls: [0.5, 0.5],
+            }),
+            VariableValue::Power(level),
+        ])
+        .unwrap()
+    };
+    let refusal = b.refusal(&config(3, 1.0)).expect("6 lamps of 4");
+    assert!(
+        refusal.contains("3 × 2 = 6 lamps and 'Grid' has 4"),
+        "{refusal}"
+    );
+    // One level for the array: four lamps at 0.595 (a cell's centre) draw 0.595 of four lamps' flux; L5,
+    // L6 and the scene's 1 cd "Lamp", in no array, stay at full output.
+    let lamp = 4.0 * std::f64::consts::PI * 100.0;
+    let others = 2.0 * lamp + 4.0 * std::f64::consts::PI;
+    let dimmed = config(2, 0.595);
+    let expected = 0.595 * 4.0 * lamp + others;
+    assert!(
+        (b.power(&dimmed) - expected).abs() < 1e-3 * lamp,
+        "{}",
+        b.power(&dimmed)
+    );
+    // One column of two lamps: the two others off, neither drawing at any level.
+    let one_column = config(1, 0.595);
+    assert!((b.power(&one_column) - (0.595 * 2.0 * lamp + others)).abs() < 1e-3 * lamp);
+    assert!(
+        b.layouts(&dimmed)[0]
+            .levels
+            .iter()
+            .all(|&l| (l - 0.595).abs() < 1e-12)
+    );
+}
+
+#[test]
+fn a_lamp_placed_twice_is_refused_at_the_second_placement() {
+    let mut s = scene_with_six_lamps();
+    let err = Binding::new(
+        &problem(
+            "<lightArray id=\"Grid\" lights=\"L1 … L4\" surface=\"Floor__Geometry\" columns=\"2\" rows=\"2\"/>\n<lightInSurface id=\"L3\" surface=\"Floor__Geometry\"/>",
+        ),
+        &mut s,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("x.xml:4") && err.contains("'L3' is placed by <lightArray id=\"Grid\"> (line 3) and by <lightInSurface id=\"L3\">"),
+        "{err}"
+    );
+}

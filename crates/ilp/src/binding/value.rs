@@ -2,7 +2,7 @@
 //! the outputs write, and the one way back from them to a configuration.
 
 use super::{Binding, Target, hsv_to_rgb};
-use crate::space::{Configuration, Domain};
+use crate::space::{ArrayShape, Configuration, Domain};
 use glam::DVec3;
 use std::fmt;
 
@@ -41,6 +41,8 @@ pub enum VariableValue {
         /// The sunlight's travel direction.
         direction: DVec3,
     },
+    /// A `<lightArray>`: its columns, rows and wall fractions.
+    Array(ArrayShape),
 }
 
 /// Why world values make no configuration of a binding ([`Binding::configuration`]).
@@ -96,6 +98,7 @@ impl Binding {
                         }
                     }
                     (Domain::Hemisphere(h), _) => VariableValue::Direction(h.direction(x[0], x[1])),
+                    (Domain::Array(a), _) => VariableValue::Array(a.shape(x)),
                     (Domain::Segment { min, max }, Target::Power { .. }) => {
                         VariableValue::Power(min + x[0] * (max - min))
                     }
@@ -163,6 +166,9 @@ impl Binding {
                         return Err(outside());
                     }
                     coords.extend([s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]);
+                }
+                (Domain::Array(a), VariableValue::Array(shape)) => {
+                    coords.extend(a.coords(shape).ok_or_else(outside)?);
                 }
                 (Domain::Hemisphere(h), VariableValue::Direction(d)) => {
                     let (phi, theta) = h.coords(*d);

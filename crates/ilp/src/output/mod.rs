@@ -313,8 +313,10 @@ impl<'b> Output<'b> {
             feasible: !isoc.is_empty() || closest.is_empty(),
             isoc,
             closest,
+            // Only beside free positions: under a <lightArray> every answer is one.
             best_regular_array: standing
                 .best_start
+                .filter(|_| !self.binding.space.exchangeable().is_empty())
                 .map(|m| ResultMember::new(self.binding, m, (self.z, self.z_one_sided))),
         }
     }

@@ -55,7 +55,7 @@ impl<'b, F: FnMut(Progress<'_>)> Recorder<'b, F> {
         let mut lines = Vec::new();
         if self.refused > 0 {
             lines.push(format!(
-                "{} candidates put an object or light outside the scene, or two identical lamps in one cell, and were not traced",
+                "{} candidates were not traced: they put an object or light outside the scene, two identical lamps in one cell, or more lamps in an array than it has",
                 self.refused
             ));
         }

@@ -261,6 +261,18 @@ pub enum ResultValue {
         /// The unit vector the sunlight travels along.
         direction: [f64; 3],
     },
+    /// `lightArray`: the lamps set out, as columns × rows, and how far the outer
+    /// ones stand from the rectangle's edges (the member's `layouts` give the metres).
+    #[serde(rename = "lightArray")]
+    LightArray {
+        /// Lamps along the rectangle's first edge.
+        columns: u32,
+        /// Lamps along the other.
+        rows: u32,
+        /// The distance from the outer columns and rows to the edges, each a fraction
+        /// of its spacing.
+        walls: [f64; 2],
+    },
 }
 
 impl ResultValue {
@@ -294,6 +306,11 @@ impl ResultValue {
                 minutes,
                 direction: direction.to_array(),
             },
+            (VariableValue::Array(a), _) => ResultValue::LightArray {
+                columns: a.columns,
+                rows: a.rows,
+                walls: a.walls,
+            },
         }
     }
 
@@ -319,6 +336,15 @@ impl ResultValue {
                 minutes,
                 direction: DVec3::from_array(direction),
             },
+            ResultValue::LightArray {
+                columns,
+                rows,
+                walls,
+            } => VariableValue::Array(crate::space::ArrayShape {
+                columns,
+                rows,
+                walls,
+            }),
         }
     }
 }
@@ -385,7 +411,8 @@ pub struct ResultFile {
     pub closest: Vec<ResultMember>,
     /// The best regular array of the interchangeable lamps the search tried and found
     /// feasible ([`crate::Standing::best_start`]), as looked at: what an answer of
-    /// free positions saves against the layout a designer would draw first.
+    /// free positions saves against the layout a designer would draw first. Absent
+    /// without free interchangeable lamps (a `<lightArray>`'s answer is an array).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub best_regular_array: Option<ResultMember>,
 }
@@ -629,6 +656,15 @@ impl ResultFile {
                     ResultValue::ObjectRotation { degrees } => {
                         format!("{id} turned {}°", significant(degrees))
                     }
+                    ResultValue::LightArray {
+                        columns,
+                        rows,
+                        walls,
+                    } => format!(
+                        "{id} {rows} × {columns} ({} × {} of a spacing from the walls)",
+                        significant(walls[0]),
+                        significant(walls[1])
+                    ),
                 })
                 .collect();
             let e = &m.estimate;

@@ -650,6 +650,7 @@ fn a_layout_at_full_output_short_of_its_minimum_gets_a_lamp_count() {
             surface: "Zone".into(),
             array: None,
             levels,
+            off: Vec::new(),
             description: String::new(),
         }],
     };

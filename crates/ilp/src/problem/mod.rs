@@ -137,6 +137,24 @@ pub enum VariableKind {
         /// Highest V.
         max: f64,
     },
+    /// `lightArray` (invlight): lamps set out as a regular array on a rectangle, its
+    /// columns, rows and wall distances searched, the lamps beyond columns × rows off.
+    LightArray(ArraySpec),
+}
+
+/// A `<lightArray id lights surface columns rows>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArraySpec {
+    /// The lamps, in the order they fill the array (row by row).
+    pub lights: Vec<String>,
+    /// The placement rectangle.
+    pub surface: String,
+    /// Indices of A, B, C, D among its distinct vertices.
+    pub vertices: [usize; 4],
+    /// The least and greatest number of columns (along A→B).
+    pub columns: (u32, u32),
+    /// The least and greatest number of rows.
+    pub rows: (u32, u32),
 }
 
 impl VariableKind {
@@ -153,6 +171,7 @@ impl VariableKind {
             VariableKind::Color { .. } => "color",
             VariableKind::LightPower { .. } => "lightPower",
             VariableKind::SunTime { .. } => "sunTime",
+            VariableKind::LightArray(_) => "lightArray",
         }
     }
 
@@ -285,6 +304,23 @@ const TOP: &[&str] = &[
 ];
 
 impl Problem {
+    /// The `<lightGroup>`s and, as groups of their own, the `<lightArray>`s: a
+    /// `<lightPower>` or `<lightAim>` of an array's id dims or aims all its lamps as
+    /// one, as of a group's.
+    pub fn lamp_groups(&self) -> Vec<LightGroup> {
+        let mut out = self.groups.clone();
+        for v in &self.variables {
+            if let VariableKind::LightArray(a) = &v.kind {
+                out.push(LightGroup {
+                    id: v.id.clone(),
+                    lights: a.lights.clone(),
+                    line: v.line,
+                });
+            }
+        }
+        out
+    }
+
     /// Reads a problem file.
     pub fn read(path: &Path) -> Result<Problem, Diagnostic> {
         let text = std::fs::read_to_string(path)

@@ -628,3 +628,82 @@ mod files {
         assert_eq!(p.goal.surface().unwrap().name, "Suzzane");
     }
 }
+
+/// `<lightArray>`: lamps by name or by a numbered run, columns and rows as a count or
+/// a range; mistakes name their line and say what was expected.
+#[test]
+fn a_light_array_reads_its_lamps_and_ranges() {
+    let with = |array: &str| {
+        parse(&format!(
+            "<input><scene path=\"s.gltf\"/><conditions>\n{array}\n</conditions><objectives><minimizePower/></objectives></input>"
+        ))
+    };
+    let p = with(
+        r#"<lightArray id="Grid" lights="L1 … L4 Spare" surface="Ceiling" columns="2..4" rows="2"/>"#,
+    )
+    .unwrap();
+    let VariableKind::LightArray(a) = &p.variables[0].kind else {
+        panic!("{:?}", p.variables);
+    };
+    assert_eq!(a.lights, ["L1", "L2", "L3", "L4", "Spare"]);
+    assert_eq!(
+        (a.columns, a.rows, a.surface.as_str()),
+        ((2, 4), (2, 2), "Ceiling")
+    );
+    // The array's id stands for its lamps to <lightPower> and <lightAim>.
+    let groups = p.lamp_groups();
+    assert_eq!((groups[0].id.as_str(), groups[0].lights.len()), ("Grid", 5));
+    // A zero-padded run keeps its width; "..." is read as "…".
+    let p = with(r#"<lightArray id="G" lights="D08 ... D11" surface="C" columns="2" rows="2"/>"#)
+        .unwrap();
+    let VariableKind::LightArray(a) = &p.variables[0].kind else {
+        panic!();
+    };
+    assert_eq!(a.lights, ["D08", "D09", "D10", "D11"]);
+    for (array, what) in [
+        (
+            r#"<lightArray id="G" lights="L1 L2 L3" surface="C" columns="2" rows="2"/>"#,
+            "needs at least 2 × 2 = 4 lamps and names 3",
+        ),
+        (
+            r#"<lightArray id="G" lights="L1 L2" surface="C" columns="3..2" rows="1"/>"#,
+            "'columns' of <lightArray> is '3..2'",
+        ),
+        (
+            r#"<lightArray id="G" lights="L1 L2" surface="C" columns="0" rows="1"/>"#,
+            "expected a count of lamps",
+        ),
+        (
+            r#"<lightArray id="G" lights="… L2" surface="C" columns="1" rows="1"/>"#,
+            "a run of numbered lamps",
+        ),
+        (
+            r#"<lightArray id="G" lights="L1 … Lamp4" surface="C" columns="1" rows="1"/>"#,
+            "a run of numbered lamps",
+        ),
+        (
+            r#"<lightArray id="G" lights="L1 L2 L1" surface="C" columns="1" rows="1"/>"#,
+            "'L1' is named twice",
+        ),
+        (
+            r#"<lightArray id="G" lights="L1 L2" columns="1" rows="1"/>"#,
+            "surface",
+        ),
+    ] {
+        let e = with(array).unwrap_err();
+        assert_eq!(e.line, Some(2), "{array}: {e}");
+        assert!(e.to_string().contains(what), "{array}: {e}");
+    }
+    // An array and a placement of the same id are one mistake; a misspelt attribute
+    // is named with the one meant.
+    let e = with(
+        "<lightArray id=\"G\" lights=\"L1 L2\" surface=\"C\" columns=\"2\" rows=\"1\"/>\n<lightInSurface id=\"G\" surface=\"C\"/>",
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("a second variable with id 'G'"),
+        "{e}"
+    );
+    let p = with(r#"<lightArray id="G" lights="L1 L2" surface="C" columns="2" row="1"/>"#);
+    assert!(p.is_err(), "rows is required");
+}

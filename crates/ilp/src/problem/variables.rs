@@ -2,7 +2,9 @@
 //! on rectangles, a sun's direction, a hole's size, an object's turn, a lamp's aim and
 //! dimming, a material's colour; `<sunTime>` is read in `sun_time.rs`.
 
-use super::{Anchor, LightGroup, Node, PlacementSpec, Reader, VariableKind, VariableSpec};
+use super::{
+    Anchor, ArraySpec, LightGroup, Node, PlacementSpec, Reader, VariableKind, VariableSpec,
+};
 use invlight_scene::Diagnostic;
 use invlight_scene::daylight::SunSchedule;
 
@@ -17,6 +19,7 @@ const VARIABLES: &[&str] = &[
     "color",
     "lightPower",
     "sunTime",
+    "lightArray",
 ];
 const VERTEX_ATTRS: [&str; 4] = [
     "vertexAIndex",
@@ -113,7 +116,7 @@ impl<'a, 'i> Reader<'a, 'i> {
         let turned = |w: &VariableSpec| matches!(w.kind, VariableKind::ObjectRotation { .. });
         let aimed = |w: &VariableSpec| matches!(w.kind, VariableKind::LightAim { .. });
         let light_part = |w: &VariableSpec| match w.kind {
-            VariableKind::LightInSurface(_) => Some((0, 0)),
+            VariableKind::LightInSurface(_) | VariableKind::LightArray(_) => Some((0, 0)),
             VariableKind::LightPower { .. } => Some((0, 1)),
             VariableKind::LightAim { .. } => Some((0, 2)),
             VariableKind::HoleInSurface(_) => Some((1, 0)),
@@ -171,6 +174,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             "lightAim" => self.light_aim(v)?,
             "color" => self.colour(v)?,
             "lightPower" => self.light_power(v)?,
+            "lightArray" => self.light_array(v)?,
             _ => {
                 self.push_warning(self.unknown_element(v, "variable", VARIABLES, ""));
                 return Ok(None);
@@ -208,6 +212,51 @@ impl<'a, 'i> Reader<'a, 'i> {
             "lightInSurface" => VariableKind::LightInSurface(spec),
             _ => VariableKind::HoleInSurface(spec),
         })
+    }
+
+    /// `<lightArray id lights surface columns rows vertex…Index>`: `lights` the lamps'
+    /// names (white space between; "Lamp1 … Lamp6" names the numbered lamps between),
+    /// `columns` and `rows` a count ("3") or a range ("2..4"). The least array must fit
+    /// the lamps named; a larger columns × rows than there are lamps is refused by the
+    /// search, not here, so that "2..4" × "2..6" over six lamps means every array of
+    /// six or fewer.
+    fn light_array(&self, v: Node) -> Result<VariableKind, Diagnostic> {
+        let mut known = vec!["id", "lights", "surface", "columns", "rows"];
+        known.extend(VERTEX_ATTRS);
+        self.check_attributes(v, &known);
+        let id = self.required(v, "id")?;
+        let lights = self.lamp_names(v, "lights", &format!("<lightArray id=\"{id}\">"))?;
+        let range = |attr: &str| -> Result<(u32, u32), Diagnostic> {
+            let text = self.required(v, attr)?;
+            parse_count_range(&text).ok_or_else(|| {
+                self.error(
+                    v,
+                    format!("'{attr}' of <lightArray> is '{text}', expected a count of lamps (\"3\") or a range (\"2..4\"), each at least 1"),
+                )
+            })
+        };
+        let (columns, rows) = (range("columns")?, range("rows")?);
+        let least = columns.0 * rows.0;
+        if least as usize > lights.len() {
+            return Err(self
+                .error(
+                    v,
+                    format!(
+                        "<lightArray id=\"{id}\"> needs at least {} × {} = {least} lamps and names {}",
+                        columns.0,
+                        rows.0,
+                        lights.len()
+                    ),
+                )
+                .with_hint("name more lamps in 'lights', or lower the least 'columns' or 'rows'"));
+        }
+        Ok(VariableKind::LightArray(ArraySpec {
+            lights,
+            surface: self.required(v, "surface")?,
+            vertices: self.vertices(v)?,
+            columns,
+            rows,
+        }))
     }
 
     /// `<holeSize id minScale maxScale>`.
@@ -313,6 +362,17 @@ impl<'a, 'i> Reader<'a, 'i> {
         }
         Ok(VariableKind::LightPower { min, max })
     }
+}
+
+/// `"3"` → (3, 3); `"2..4"` → (2, 4); counts of at least 1, the first not above the
+/// second.
+pub(super) fn parse_count_range(s: &str) -> Option<(u32, u32)> {
+    let count = |p: &str| p.trim().parse::<u32>().ok().filter(|&n| n >= 1);
+    let (lo, hi) = match s.split_once("..") {
+        Some((a, b)) => (count(a)?, count(b)?),
+        None => (count(s)?, count(s)?),
+    };
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// `"20"` → [20]; `"20x6"` → [20, 6].
