@@ -113,10 +113,20 @@ pub fn visits(
     let key = |r: &Record| -> Vec<u64> { r.config.coords.iter().map(|c| c.to_bits()).collect() };
     for r in records.iter().filter(|r| r.verdict != Verdict::Refine) {
         let interval = r.evaluation.goal.interval(isoc.z());
+        // A screened row is only looked at, but one whose look breaks a constraint is
+        // as infeasible as a decided one, and drawn so.
+        let breaks = || {
+            binding
+                .constraints
+                .iter()
+                .zip(&r.evaluation.constraints)
+                .any(|(c, e)| c.verdict(e, isoc.z()) == crate::Feasibility::Infeasible)
+        };
         let role = match r.verdict {
             Verdict::Initial => Role::Start,
             Verdict::Better => Role::Improvement,
             Verdict::Invalid | Verdict::Infeasible => Role::Invalid,
+            Verdict::Screened if breaks() => Role::Invalid,
             _ => Role::Visited,
         };
         let point = Visit {

@@ -105,7 +105,9 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
             format!("V changed by {}", significant(b - a))
         }
         (VariableValue::Power(a), VariableValue::Power(b)) => {
-            format!("dimmed by {} points", significant(100.0 * (a - b)))
+            let pct = |x: f64| format!("{} %", significant(100.0 * x));
+            let how = if b <= a { "dimmed" } else { "brightened" };
+            format!("{how} from {} to {}", pct(a), pct(b))
         }
         (VariableValue::Scale(a), VariableValue::Scale(b)) => {
             format!("scaled by {}", significant(b / a))

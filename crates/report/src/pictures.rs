@@ -98,7 +98,8 @@ impl Pictures {
     /// `dir/isoc-NN.png` after removing every picture of an earlier run, each captioned
     /// with its number, its estimate and where what moved is (circled on the picture),
     /// and plots the search over `records` into `search.png` (the first variable) and
-    /// `search-<id>.png`. All members share the first one's exposure, so a brighter
+    /// `search-<id>.png` (`search-<id>-<element>.png` when two variables share the id,
+    /// as a lamp's placement and dimming do). All members share the first one's exposure, so a brighter
     /// configuration looks brighter. `progress(done, total)` counts rows of the ISOC
     /// pictures. Returns what was written, in words, with the seconds it took.
     pub fn write(
@@ -192,9 +193,17 @@ impl Pictures {
                 captioned(&tone_map(&image, &tone), &lines, &marks).map_err(|e| chart(&path, e))?;
             save(picture, path)?;
         }
-        for (i, v) in binding.space.variables().iter().enumerate() {
+        let variables = binding.space.variables();
+        for (i, v) in variables.iter().enumerate() {
+            // A lamp placed and dimmed has two variables of one id: each its own file.
+            let shared = variables.iter().filter(|w| w.id == v.id).count() > 1;
             let name = match i {
                 0 => "search.png".to_string(),
+                _ if shared => format!(
+                    "search-{}-{}.png",
+                    file_safe(&v.id),
+                    binding.specs[i].kind.name()
+                ),
                 _ => format!("search-{}.png", file_safe(&v.id)),
             };
             let path = dir.join(name);

@@ -5,7 +5,9 @@
 
 use crate::describe::{compass, subject};
 use glam::DVec3;
-use invlight_ilp::{Axes, Binding, Domain, Isoc, Record, Role, VariableKind, Verdict, visits};
+use invlight_ilp::{
+    Axes, Binding, Domain, Goal, Isoc, Record, Role, VariableKind, Verdict, visits,
+};
 use invlight_render::{
     ConvergencePlot, ConvergencePoint, Mark, PlanAxis, PlanFrame, PlotKind, PlotPoint, SearchPlot,
 };
@@ -219,14 +221,73 @@ pub fn search_plot(
             (kind, Vec::new())
         }
     };
+    let value_plot = matches!(kind, PlotKind::Value { .. });
     SearchPlot {
         title,
         kind,
         unit: goal_unit(binding),
         quantity: binding.goal.quantity().into(),
         cap,
-        points,
+        points: summarised(points, &binding.goal, value_plot),
     }
+}
+
+/// Bins along a value plot's axis: the points of one bin are drawn as one.
+const VALUE_BINS: f64 = 120.0;
+
+/// The points drawn: the start and every improvement as they are (the line through
+/// them is the walk), and of the other evaluations one per place — the best mean
+/// found there, feasible before infeasible, in the ISOC when any was — so that a
+/// plot, and the report holding it, stays the same size however long the search
+/// ran (a place is a cell of the variable's own mesh, or a 1/120 of a value plot's
+/// axis).
+fn summarised(points: Vec<PlotPoint>, goal: &Goal, value_plot: bool) -> Vec<PlotPoint> {
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.at[0]), hi.max(p.at[0]))
+        });
+    let width = (hi - lo).max(1e-12);
+    let place = |p: &PlotPoint| -> [u64; 2] {
+        if value_plot {
+            [((p.at[0] - lo) / width * VALUE_BINS).round() as u64, 0]
+        } else {
+            [p.at[0].to_bits(), p.at[1].to_bits()]
+        }
+    };
+    // Lower is better.
+    let key = |p: &PlotPoint| {
+        let worse = match goal {
+            Goal::Minimize { .. } | Goal::MinimizePower => p.mean,
+            Goal::Target { lux, .. } => (p.mean - lux).abs(),
+            _ => -p.mean,
+        };
+        (matches!(p.mark, Mark::Invalid), worse)
+    };
+    let mut out: Vec<PlotPoint> = Vec::new();
+    let mut at: std::collections::HashMap<[u64; 2], usize> = std::collections::HashMap::new();
+    for p in points {
+        if matches!(p.mark, Mark::Start | Mark::Improvement) {
+            out.push(p);
+            continue;
+        }
+        match at.get(&place(&p)) {
+            Some(&k) => {
+                let isoc = out[k].isoc || p.isoc;
+                if key(&p).0 < key(&out[k]).0
+                    || (key(&p).0 == key(&out[k]).0 && key(&p).1 < key(&out[k]).1)
+                {
+                    out[k] = p;
+                }
+                out[k].isoc = isoc;
+            }
+            None => {
+                at.insert(place(&p), out.len());
+                out.push(p);
+            }
+        }
+    }
+    out
 }
 
 /// The best configuration so far against the photons traced: the search's start and
@@ -266,5 +327,81 @@ pub fn goal_unit(binding: &Binding) -> String {
     match binding.goal_unit() {
         "" => "U0".into(),
         u => u.into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(at: [f64; 2], mean: f64, mark: Mark) -> PlotPoint {
+        PlotPoint {
+            at,
+            cell: Vec::new(),
+            mean,
+            low: mean - 1.0,
+            high: mean + 1.0,
+            mark,
+            isoc: false,
+        }
+    }
+
+    /// However many evaluations land on a place, the plot draws one there: the best
+    /// by the goal's sense, a feasible one before an infeasible one, in the ISOC if
+    /// any was; the start and the improvements stay as they are.
+    #[test]
+    fn a_plot_draws_one_point_per_place_whatever_the_rows() {
+        let mut points = vec![point([0.0, 0.0], 300.0, Mark::Start)];
+        for k in 0..2_000 {
+            let place = [f64::from(k % 10), 1.0];
+            let mark = if k % 3 == 0 {
+                Mark::Invalid
+            } else {
+                Mark::Visited
+            };
+            points.push(point(place, 100.0 + f64::from(k % 97), mark));
+        }
+        points.push(point([5.0, 1.0], 400.0, Mark::Improvement));
+        points[7].isoc = true;
+        let least = Goal::MinimizePower;
+        let drawn = summarised(points.clone(), &least, false);
+        assert_eq!(drawn.len(), 1 + 10 + 1);
+        assert!(matches!(drawn[0].mark, Mark::Start));
+        assert!(matches!(drawn[11].mark, Mark::Improvement));
+        for p in &drawn[1..11] {
+            let here: Vec<&PlotPoint> = points[1..2001].iter().filter(|q| q.at == p.at).collect();
+            let best = here
+                .iter()
+                .filter(|q| matches!(q.mark, Mark::Visited))
+                .map(|q| q.mean)
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                matches!(p.mark, Mark::Visited) && p.mean == best,
+                "{:?}",
+                p.at
+            );
+            assert_eq!(p.isoc, here.iter().any(|q| q.isoc));
+        }
+        // Under a maximisation the best is the largest.
+        let most = Goal::Maximize {
+            surface: invlight_ilp::SurfaceRef {
+                name: "Desk".into(),
+                side: invlight_photon::Side::Both,
+            },
+            cap: None,
+        };
+        let drawn = summarised(points, &most, false);
+        assert!(drawn[1..11].iter().all(|p| p.mean >= 195.0), "{drawn:?}");
+        // A value plot bins its axis.
+        let values: Vec<PlotPoint> = (0..5_000)
+            .map(|k| {
+                point(
+                    [f64::from(k) / 5_000.0, 0.0],
+                    f64::from(k % 13),
+                    Mark::Visited,
+                )
+            })
+            .collect();
+        assert!(summarised(values, &least, true).len() <= VALUE_BINS as usize + 1);
     }
 }

@@ -476,11 +476,23 @@ impl<'a> SolveReport<'a> {
 
         // 4. The search.
         let mut search = String::new();
-        for i in 0..b.specs.len() {
+        // Levels the evaluator solves are not searched: a plot of them would show
+        // the arrangements' answers, not a walk.
+        let solved: Vec<&str> = (0..b.specs.len())
+            .filter(|&i| b.space.is_solved(i))
+            .map(|i| b.specs[i].id.as_str())
+            .collect();
+        if !solved.is_empty() {
+            search += &format!(
+                "<p>The levels of {} are not searched: for every arrangement traced, the least-power levels that meet the constraints are solved exactly from its trace.</p>",
+                escape(&solved.join(", "))
+            );
+        }
+        for i in (0..b.specs.len()).filter(|&i| !b.space.is_solved(i)) {
             let plot = search_plot(self.scene, b, goal.cap, i, &f.records, &f.isoc);
             search += &figure(
                 &plot.svg()?,
-                "Every evaluated cell in the colour of its mean (viridis over the evaluated range); the start (square), the improvements in order (line), the ISOC (red rings).",
+                "Each cell tried in the colour of the best mean found there (viridis over the evaluated range; grey: never feasible); the start (square), the improvements in order (line), the ISOC (red rings).",
             );
         }
         let conv = convergence(&f.records, &f.isoc, b);
