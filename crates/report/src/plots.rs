@@ -274,9 +274,7 @@ fn summarised(points: Vec<PlotPoint>, goal: &Goal, value_plot: bool) -> Vec<Plot
         match at.get(&place(&p)) {
             Some(&k) => {
                 let isoc = out[k].isoc || p.isoc;
-                if key(&p).0 < key(&out[k]).0
-                    || (key(&p).0 == key(&out[k]).0 && key(&p).1 < key(&out[k]).1)
-                {
+                if key(&p) < key(&out[k]) {
                     out[k] = p;
                 }
                 out[k].isoc = isoc;
