@@ -1556,6 +1556,24 @@ mod first_hour {
             cells(&chosen),
             cells(&as_the_problem)
         );
+        // The terminal states the verdict the page would.
+        for (em, says) in [("0.001", "the grid meets"), ("1e9", "the grid fails")] {
+            let out = invlight([
+                "map",
+                problem.to_str().unwrap(),
+                "-s",
+                "Floor",
+                "-n",
+                "20000",
+                "-o",
+                dir.path().join("m").to_str().unwrap(),
+                "--em",
+                em,
+            ]);
+            let stdout = text(&out.stdout);
+            assert!(out.status.success() && stdout.contains(says), "{stdout}");
+            assert!(stdout.contains("  Em "), "{stdout}");
+        }
     }
 
     /// `invlight … --json | head -c 10` ends quietly when the pipe closes, as ripgrep

@@ -8,7 +8,7 @@ use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, Side};
 use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
-use invlight_report::{MapPage, Progress, file_safe};
+use invlight_report::{MapPage, Progress, compliance_text, file_safe};
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -69,10 +69,12 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     // Nothing moves: one world-space tree, as `measure` builds.
     let accel = Accel::with_movable(&scene, &[]);
-    let requirement = args.require.requirement(1.0)?;
+    let problem = problem_of(&args)?;
+    let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
+    let requirement = args.require.requirement(mf)?;
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
-    let (spacing, side) = as_the_problem_reads(&args)?;
+    let (spacing, side) = as_the_problem_reads(&args, problem.as_ref());
     let settings = MapSettings {
         spacing,
         side,
@@ -112,7 +114,12 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         crate::print_json(&report)?;
     } else {
         let written = format!("wrote {} and {}\n", csv_path.display(), png_path.display());
-        crate::print(&(report.summary() + &written))?;
+        // The verdict the page states, with the page's confidence.
+        let verdict = requirement.as_ref().map_or(String::new(), |r| {
+            let confidence = invlight_ilp::Confidence::new(report.confidence).unwrap_or_default();
+            compliance_text(&map.compliance(r, confidence))
+        });
+        crate::print(&(report.summary() + &verdict + &written))?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -121,14 +128,13 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
 /// surface in a problem file — `map` of a solve's answer then reads it as the search
 /// did (a uniformity on EN 12464-1's grid of the task area's front is not the one on a
 /// finer grid of both sides), and says so — else a 0.25 m grid of both sides.
-fn as_the_problem_reads(args: &MapArgs) -> anyhow::Result<(GridSpacing, Side)> {
+fn as_the_problem_reads(
+    args: &MapArgs,
+    problem: Option<&invlight_ilp::Problem>,
+) -> (GridSpacing, Side) {
     let (mut grid, mut side) = (args.grid, args.side);
     let path = &args.scene.scene;
-    let xml = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-    if xml && (grid.is_none() || side.is_none()) {
-        let problem = invlight_ilp::Problem::read(path)?;
+    if let Some(problem) = problem.filter(|_| grid.is_none() || side.is_none()) {
         let on = |c: &&invlight_ilp::Constraint| c.surface.name == args.surface;
         let constraint = problem
             .constraints
@@ -164,8 +170,21 @@ fn as_the_problem_reads(args: &MapArgs) -> anyhow::Result<(GridSpacing, Side)> {
             }
         }
     }
-    Ok((
+    (
         grid.unwrap_or(GridSpacing::Metres(0.25)),
         side.unwrap_or(Side::Both),
-    ))
+    )
+}
+
+/// The problem file mapped, if the scene given is one.
+fn problem_of(args: &MapArgs) -> anyhow::Result<Option<invlight_ilp::Problem>> {
+    let path = &args.scene.scene;
+    let xml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    Ok(if xml {
+        Some(invlight_ilp::Problem::read(path)?)
+    } else {
+        None
+    })
 }

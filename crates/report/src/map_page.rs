@@ -46,6 +46,44 @@ pub fn requirement_words(r: &Requirement) -> String {
     }
 }
 
+/// The compliance as the terminal prints it, the same verdicts as the page's
+/// ([`compliance_html`]): the grid's sentence, then a line per criterion.
+pub fn compliance_text(c: &Compliance) -> String {
+    let pct = format!("{} %", plain(c.confidence * 100.0));
+    let what = requirement_words(&c.requirement);
+    let mut out = match c.verdict {
+        Verdict::Meets => format!("the grid meets {what} with {pct} confidence\n"),
+        Verdict::Fails => format!("the grid fails {what} with {pct} confidence\n"),
+        Verdict::CannotTell => {
+            format!(
+                "cannot tell at this photon count whether the grid meets {what}: trace more photons\n"
+            )
+        }
+    };
+    for k in &c.criteria {
+        let (value, bounds) = match k.name {
+            "Em" => (
+                format!("{} lx", significant(k.value)),
+                format!(
+                    "[{}, {}] lx",
+                    significant(k.bounds.0),
+                    significant(k.bounds.1)
+                ),
+            ),
+            _ => (
+                format!("{:.3}", k.value),
+                format!("[{:.3}, {:.3}]", k.bounds.0, k.bounds.1),
+            ),
+        };
+        out += &format!(
+            "  {} {value} {bounds}: {}\n",
+            k.name,
+            k.sentence(c.confidence)
+        );
+    }
+    out
+}
+
 /// The compliance as HTML: the grid's sentence, then a row per criterion.
 pub fn compliance_html(c: &Compliance) -> String {
     let pct = format!("{} %", plain(c.confidence * 100.0));
