@@ -2131,6 +2131,26 @@ mod luminaires {
         }
     }
 
+    /// `--luminaire NAME=FILE*M` scales the file's candela by M, as `<luminaire
+    /// multiplier>` does: with one lamp and one seed the photons' paths are the same
+    /// and every value is M times the file's alone.
+    #[test]
+    fn a_multiplier_after_a_star_scales_the_file() {
+        let desk = |m: &str| {
+            let mut args = lamp_room_with("photometry/cosine.ies", &[]);
+            args[2] += m;
+            let file = PathBuf::from(&args[0]);
+            let mut extra: Vec<&str> = args[1..].iter().map(String::as_str).collect();
+            extra.extend(["--photons", "20000", "--seed", "3"]);
+            f64_of(&named(&measure(&file, &["Desk"], &extra)["surfaces"], "Desk")["mean"])
+        };
+        let (one, scaled) = (desk(""), desk("*2.5"));
+        assert!(
+            (scaled / one - 2.5).abs() < 1e-4,
+            "{scaled} lx against {one} lx"
+        );
+    }
+
     /// `scene` shows the luminaire's file, its table's flux beside the file's figure,
     /// watts and aim; the point lamp becomes a goniometric light aimed down (−up), C0
     /// along +X.

@@ -44,7 +44,8 @@ pub struct LoadArgs {
     /// pipes are never read.
     #[arg(long)]
     pub allow_outside_paths: bool,
-    /// NAME=FILE: light NAME emits an IES or EULUMDAT file's table (repeatable; wins over <luminaire>)
+    /// NAME=FILE or NAME=FILE*M: light NAME emits an IES or EULUMDAT file's table, times M
+    /// (> 0, default 1, as <luminaire multiplier>) (repeatable; wins over <luminaire>)
     #[arg(long)]
     pub luminaire: Vec<Luminaire>,
     /// NAME: surface NAME receives light without touching it: photons pass it unchanged,

@@ -35,22 +35,37 @@ pub struct Luminaire {
     pub origin: Option<(PathBuf, u32)>,
 }
 
-/// `NAME=FILE`, the value of `--luminaire` (multiplier 1).
+/// `NAME=FILE` or `NAME=FILE*M`, the value of `--luminaire`: the multiplier M (> 0,
+/// default 1) as a problem file's `<luminaire multiplier>`, so that a lamp of two
+/// tubes, or a file in klm, is given on the command line as in a problem. A `*` not
+/// followed by a number is part of the file's name.
 impl FromStr for Luminaire {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Luminaire, String> {
         match s.split_once('=') {
             Some((light, file)) if !light.trim().is_empty() && !file.trim().is_empty() => {
+                let (file, multiplier) = match file.rsplit_once('*') {
+                    Some((f, m)) if m.trim().parse::<f32>().is_ok() => {
+                        let m: f32 = m.trim().parse().unwrap_or(f32::NAN);
+                        if !(m.is_finite() && m > 0.0) {
+                            return Err(format!(
+                                "'{s}': the multiplier after '*' is {m}, expected a number > 0 (NAME=FILE*2 doubles the file's candela)"
+                            ));
+                        }
+                        (f, m)
+                    }
+                    _ => (file, 1.0),
+                };
                 Ok(Luminaire {
                     light: light.trim().to_string(),
                     file: PathBuf::from(file.trim()),
-                    multiplier: 1.0,
+                    multiplier,
                     origin: None,
                 })
             }
             _ => Err(format!(
-                "'{s}' is not NAME=FILE: the light's name (`invlight scene` lists them), '=', and its IES or EULUMDAT file"
+                "'{s}' is not NAME=FILE: the light's name (`invlight scene` lists them), '=', and its IES or EULUMDAT file, optionally '*' and a multiplier (NAME=FILE*2)"
             )),
         }
     }
@@ -61,6 +76,12 @@ impl Luminaire {
     /// `<luminaire>` element.
     fn asked(&self) -> String {
         match self.origin {
+            None if self.multiplier != 1.0 => format!(
+                "--luminaire {}={}*{}",
+                self.light,
+                self.file.display(),
+                self.multiplier
+            ),
             None => format!("--luminaire {}={}", self.light, self.file.display()),
             Some(_) => "<luminaire>".into(),
         }
@@ -178,6 +199,29 @@ mod tests {
         for bad in ["Lamp", "=x.ies", "Lamp=", ""] {
             let e = bad.parse::<Luminaire>().unwrap_err();
             assert!(e.contains("NAME=FILE"), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_multiplier_follows_a_star() {
+        let l: Luminaire = "Lamp1=downlight.ldt*2".parse().unwrap();
+        assert_eq!(
+            (l.file, l.multiplier),
+            (PathBuf::from("downlight.ldt"), 2.0)
+        );
+        assert_eq!(
+            "L=a.ies * 0.5".parse::<Luminaire>().unwrap().multiplier,
+            0.5
+        );
+        // A star not followed by a number is the file's.
+        let odd: Luminaire = "L=odd*name.ies".parse().unwrap();
+        assert_eq!(
+            (odd.file, odd.multiplier),
+            (PathBuf::from("odd*name.ies"), 1.0)
+        );
+        for bad in ["L=a.ies*0", "L=a.ies*-2", "L=a.ies*inf", "L=a.ies*NaN"] {
+            let e = bad.parse::<Luminaire>().unwrap_err();
+            assert!(e.contains("a number > 0"), "{bad}: {e}");
         }
     }
 }
