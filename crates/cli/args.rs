@@ -148,11 +148,20 @@ pub struct SceneArgs {
 impl SceneArgs {
     /// Loads the scene, configured as `--config` says.
     pub fn load(&self) -> anyhow::Result<Scene> {
+        Ok(self.load_with_problem()?.0)
+    }
+
+    /// Loads the scene as [`SceneArgs::load`] does, with the problem file it came from
+    /// (read once for both), if it came from one.
+    pub fn load_with_problem(&self) -> anyhow::Result<(Scene, Option<Problem>)> {
         let (path, options, lum) = (&self.scene, self.load.options(), &self.load.luminaire);
         let file = || self.load.fits(load_with(path, &options, lum)?, path, true);
-        configured_scene(path, self.config.as_deref(), file, |p| {
+        let mut read = None;
+        let scene = configured_scene(path, self.config.as_deref(), file, |p| {
+            read = Some(p.clone());
             self.load.load_problem(&mut p.clone())
-        })
+        })?;
+        Ok((scene, read))
     }
 }
 

@@ -61,7 +61,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let trace = args.trace.settings(4_000_000)?;
     let confidence = args.trace.confidence.unwrap_or_default();
     let path = &args.scene.scene;
-    let scene = args.scene.load()?;
+    let (scene, problem) = args.scene.load_with_problem()?;
     let surface = scene.find_surface(path, &args.surface)?;
     crate::warn(scene.reception_warning(surface));
     scene.require_light(path)?;
@@ -69,7 +69,6 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     // Nothing moves: one world-space tree, as `measure` builds.
     let accel = Accel::with_movable(&scene, &[]);
-    let problem = problem_of(&args)?;
     let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
     let requirement = args.require.requirement(mf)?;
     let (file, name) = (path.display(), &args.surface);
@@ -174,17 +173,4 @@ fn as_the_problem_reads(
         grid.unwrap_or(GridSpacing::Metres(0.25)),
         side.unwrap_or(Side::Both),
     )
-}
-
-/// The problem file mapped, if the scene given is one.
-fn problem_of(args: &MapArgs) -> anyhow::Result<Option<invlight_ilp::Problem>> {
-    let path = &args.scene.scene;
-    let xml = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-    Ok(if xml {
-        Some(invlight_ilp::Problem::read(path)?)
-    } else {
-        None
-    })
 }

@@ -114,7 +114,9 @@ pub fn visits(
     for r in records.iter().filter(|r| r.verdict != Verdict::Refine) {
         let interval = r.evaluation.goal.interval(isoc.z());
         // A screened row is only looked at, but one whose look breaks a constraint is
-        // as infeasible as a decided one, and drawn so.
+        // as infeasible as a decided one, and drawn so. The intervals' two-sided z is
+        // stricter than the search's one-sided verdicts: a row drawn grey is one every
+        // verdict calls infeasible.
         let breaks = || {
             binding
                 .constraints

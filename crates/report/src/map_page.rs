@@ -5,7 +5,7 @@
 use crate::html::{Page, escape, figure, table};
 use invlight_photon::Side;
 use invlight_render::{
-    Compliance, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
+    Compliance, Criterion, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
 };
 use invlight_scene::Vec3;
 use invlight_stats::{Confidence, significant};
@@ -61,27 +61,37 @@ pub fn compliance_text(c: &Compliance) -> String {
         }
     };
     for k in &c.criteria {
-        let (value, bounds) = match k.name {
-            "Em" => (
-                format!("{} lx", significant(k.value)),
-                format!(
-                    "[{}, {}] lx",
-                    significant(k.bounds.0),
-                    significant(k.bounds.1)
-                ),
-            ),
-            _ => (
-                format!("{:.3}", k.value),
-                format!("[{:.3}, {:.3}]", k.bounds.0, k.bounds.1),
-            ),
-        };
+        let (value, low, high, unit) = figures(k);
         out += &format!(
-            "  {} {value} {bounds}: {}\n",
+            "  {} {value} [{low}, {high}]{unit}: {}\n",
             k.name,
             k.sentence(c.confidence)
         );
     }
     out
+}
+
+/// A criterion's value and one-sided bounds as both forms print them, and the unit
+/// after the bounds: lx for Em, none for U0 (whose upper bound may be unbounded, ∞).
+fn figures(k: &Criterion) -> (String, String, String, &'static str) {
+    match k.name {
+        "Em" => (
+            format!("{} lx", significant(k.value)),
+            significant(k.bounds.0),
+            significant(k.bounds.1),
+            " lx",
+        ),
+        _ => (
+            format!("{:.3}", k.value),
+            format!("{:.3}", k.bounds.0),
+            if k.bounds.1.is_finite() {
+                format!("{:.3}", k.bounds.1)
+            } else {
+                "∞".into()
+            },
+            "",
+        ),
+    }
 }
 
 /// The compliance as HTML: the grid's sentence, then a row per criterion.
@@ -105,28 +115,8 @@ pub fn compliance_html(c: &Compliance) -> String {
         .criteria
         .iter()
         .map(|k| {
-            let (value, bounds) = match k.name {
-                "Em" => (
-                    format!("{} lx", significant(k.value)),
-                    format!(
-                        "{} to {} lx",
-                        significant(k.bounds.0),
-                        significant(k.bounds.1)
-                    ),
-                ),
-                _ => (
-                    format!("{:.3}", k.value),
-                    format!(
-                        "{:.3} to {}",
-                        k.bounds.0,
-                        if k.bounds.1.is_finite() {
-                            format!("{:.3}", k.bounds.1)
-                        } else {
-                            "∞".into()
-                        }
-                    ),
-                ),
-            };
+            let (value, low, high, unit) = figures(k);
+            let bounds = format!("{low} to {high}{unit}");
             vec![
                 k.name.to_string(),
                 if k.name == "Em" {

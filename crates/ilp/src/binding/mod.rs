@@ -380,6 +380,11 @@ impl Binding {
     /// The weight of each component at `config`: 1 for the undimmed lights, each
     /// `lightPower` variable's level for its own.
     pub fn levels(&self, config: &Configuration) -> Vec<f64> {
+        self.levels_and_off(config).0
+    }
+
+    /// [`Binding::levels`] and the lamps the arrays leave off, found once for both.
+    fn levels_and_off(&self, config: &Configuration) -> (Vec<f64>, Vec<LightId>) {
         let mut w = vec![1.0; self.component_count()];
         for (i, (t, v)) in self.targets.iter().zip(self.space.variables()).enumerate() {
             if let (Target::Power { component, .. }, Domain::Segment { min, max }) = (t, &v.domain)
@@ -388,19 +393,18 @@ impl Binding {
             }
         }
         // A lamp an array leaves off and that has a level of its own is at 0.
-        for light in self.lamps_off(config) {
-            for t in &self.targets {
-                if let Target::Power {
-                    dimmed: Dimmed::Light { light: l, .. },
-                    component,
-                } = t
-                    && *l == light
-                {
-                    w[*component] = 0.0;
-                }
+        let off = self.lamps_off(config);
+        for t in &self.targets {
+            if let Target::Power {
+                dimmed: Dimmed::Light { light, .. },
+                component,
+            } = t
+                && off.contains(light)
+            {
+                w[*component] = 0.0;
             }
         }
-        w
+        (w, off)
     }
 
     /// The electric lights' power at `config` in [`Binding::power_unit`]: each
@@ -408,10 +412,9 @@ impl Binding {
     /// dimmed to a level is taken to draw that share, as a driver's rated curve is not
     /// in the file; daylight is not counted).
     pub fn power(&self, config: &Configuration) -> f64 {
-        let w = self.levels(config);
+        let (w, off) = self.levels_and_off(config);
         let on: f64 = w.iter().zip(&self.electric_power).map(|(w, f)| w * f).sum();
-        let off: f64 = self
-            .lamps_off(config)
+        let off: f64 = off
             .into_iter()
             .map(|l| w[self.component_of(l)] * self.light_power[l.index()])
             .sum();
