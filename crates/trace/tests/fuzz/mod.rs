@@ -159,7 +159,40 @@ pub struct Tally {
 /// Runs `cases` mutants of `samples` through `check`, which returns whether the input
 /// was accepted and panics on any broken promise. Prints the tally (runs, accepted,
 /// panics, hangs, slowest) and fails on any panic or hang, naming the case to replay.
+///
+/// A target that refuses everything would pass that alone, and so would one that checks
+/// nothing: every sample as it is must be accepted first, and of [`DECIDING`] mutants
+/// or more some must be accepted and some refused.
 pub fn run(target: &str, samples: &[Vec<u8>], mut check: impl FnMut(&[u8]) -> bool) -> Tally {
+    for (i, sample) in samples.iter().enumerate() {
+        let accepted = catch_unwind(AssertUnwindSafe(|| check(sample)));
+        assert!(
+            matches!(accepted, Ok(true)),
+            "fuzz {target}: sample {i} as it is was not accepted: the target refuses valid input"
+        );
+    }
+    let tally = mutants(target, samples, check);
+    if tally.runs >= DECIDING {
+        assert!(
+            tally.accepted > 0,
+            "fuzz {target}: none of {} mutants accepted: the target refuses what it should read",
+            tally.runs
+        );
+        assert!(
+            tally.accepted < tally.runs,
+            "fuzz {target}: all {} mutants accepted: the target checks nothing",
+            tally.runs
+        );
+    }
+    tally
+}
+
+/// The number of mutants from which a target must have accepted some and refused some:
+/// the rarest acceptance, a GLB's binary chunk surviving a mutation, is about 1 in 60.
+const DECIDING: usize = 1000;
+
+/// The mutant loop of [`run`].
+fn mutants(target: &str, samples: &[Vec<u8>], mut check: impl FnMut(&[u8]) -> bool) -> Tally {
     let mut rng = Rng::new(
         seed()
             ^ target
