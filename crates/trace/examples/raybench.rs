@@ -256,46 +256,65 @@ fn movable_of(scene: &Scene, name: Option<&str>) -> Result<usize, String> {
         .ok_or_else(|| "no instance of 12 triangles or more to move".into())
 }
 
-fn main() -> Result<(), String> {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let mut option = |flag: &str| -> Result<Option<String>, String> {
-        let Some(at) = args.iter().position(|a| a == flag) else {
-            return Ok(None);
+/// The command line: a scene (or `cornell`), a ray count and the flags of the module doc.
+struct Options {
+    path: String,
+    rays: usize,
+    dump: Option<String>,
+    movable: Option<String>,
+    only: Option<String>,
+}
+
+impl Options {
+    fn parse() -> Result<Options, String> {
+        let mut args: Vec<String> = std::env::args().skip(1).collect();
+        let mut option = |flag: &str| -> Result<Option<String>, String> {
+            let Some(at) = args.iter().position(|a| a == flag) else {
+                return Ok(None);
+            };
+            if at + 1 >= args.len() {
+                return Err(format!("{flag} needs a value"));
+            }
+            let value = args.remove(at + 1);
+            args.remove(at);
+            Ok(Some(value))
         };
-        if at + 1 >= args.len() {
-            return Err(format!("{flag} needs a value"));
-        }
-        let value = args.remove(at + 1);
-        args.remove(at);
-        Ok(Some(value))
-    };
-    let dump_dir = option("--dump")?;
-    let movable_name = option("--movable")?;
-    let only = option("--only")?;
-    let arg = args.first().cloned().unwrap_or_else(|| "cornell".into());
-    let path = if arg == "cornell" { CORNELL } else { &arg };
-    let n: usize = args
-        .get(1)
-        .map_or(Ok(1_000_000), |s| s.parse())
-        .map_err(|_| "bad ray count")?;
-    // OBJ files through the minimal reader above (positions only, a group per
-    // instance); anything else (glTF, COLLADA) through the scene crate's loaders.
-    let per_group = if path.to_ascii_lowercase().ends_with(".obj") {
-        scene_of(read_obj(path)?)
+        let (dump, movable, only) = (option("--dump")?, option("--movable")?, option("--only")?);
+        let arg = args.first().cloned().unwrap_or_else(|| "cornell".into());
+        let rays = args
+            .get(1)
+            .map_or(Ok(1_000_000), |s| s.parse())
+            .map_err(|_| "bad ray count")?;
+        Ok(Options {
+            path: if arg == "cornell" {
+                CORNELL.into()
+            } else {
+                arg
+            },
+            rays,
+            dump,
+            movable,
+            only,
+        })
+    }
+}
+
+/// The scene as the file holds it: OBJ files through the minimal reader above
+/// (positions only, a group per instance); anything else (glTF, COLLADA) through the
+/// scene crate's loaders.
+fn scene_at(path: &str) -> Result<Scene, String> {
+    if path.to_ascii_lowercase().ends_with(".obj") {
+        Ok(scene_of(read_obj(path)?))
     } else {
         invlight_scene::load(std::path::Path::new(path), &Default::default())
-            .map_err(|e| e.to_string())?
-    };
-    let merged = flatten(&per_group);
-    println!(
-        "{path}: {} triangles in {} instances of {} meshes; {n} random rays",
-        merged.meshes[0].triangles.len(),
-        per_group.instances.len(),
-        per_group.meshes.len()
-    );
-    let rays = rays(&merged, n);
+            .map_err(|e| e.to_string())
+    }
+}
 
-    // Yardstick: obvhs's own traversal and Möller–Trumbore test over one flat BVH.
+/// The yardstick: obvhs's own traversal and Möller–Trumbore test over one flat BVH of
+/// `merged`'s one mesh. Returns its triangles and its closest-hit rate.
+fn yardstick(merged: &Scene, rays: &[Ray]) -> (Vec<Triangle>, (f64, f64, usize)) {
+    let n = rays.len();
     let tris: Vec<Triangle> = merged.meshes[0]
         .triangles
         .iter()
@@ -321,7 +340,7 @@ fn main() -> Result<(), String> {
         .map(|&i| tris[i as usize])
         .collect();
     let obvhs_ray = |r: &Ray| obvhs::ray::Ray::new_inf(r.origin.into(), r.dir.into());
-    let base = rate(&rays, |r| {
+    let base = rate(rays, |r| {
         let mut hit = RayHit::none();
         flat.ray_traverse(obvhs_ray(r), &mut hit, |ray, i| flat_tris[i].intersect(ray))
     });
@@ -330,12 +349,101 @@ fn main() -> Result<(), String> {
         flat.nodes.len()
     );
     report("obvhs flat: ray_traverse, Möller", base, base.0, n);
-    let occl = rate(&rays, |r| {
+    let occl = rate(rays, |r| {
         !flat.ray_traverse_miss(obvhs_ray(r), |ray, i| flat_tris[i].intersect(ray))
     });
     report("obvhs flat: ray_traverse_miss (any hit)", occl, base.0, n);
+    (tris, base)
+}
 
-    let movable = movable_of(&per_group, movable_name.as_deref())?;
+/// Builds one `Accel` variant (with `movable` instances baked when given), prints its
+/// build, update and size figures and its rates against `base`, and returns it.
+fn measure_accel(
+    label: &str,
+    scene: &Scene,
+    bake: Option<&[InstanceId]>,
+    rays: &[Ray],
+    base: f64,
+) -> Accel {
+    let start = Instant::now();
+    let accel = match bake {
+        Some(movable) => Accel::with_movable(scene, movable),
+        None => Accel::new(scene),
+    };
+    let build = start.elapsed().as_secs_f64();
+    let s = accel.stats();
+    let start = Instant::now();
+    let mut again = accel.clone();
+    let clone_time = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    again.update_instances(scene);
+    let update = start.elapsed().as_secs_f64();
+    println!(
+        "Accel, {label}: build {build:.3} s (BLAS {:.3} s), TLAS update {:.2} ms (clone {:.2} ms); {} instances, {} BLAS + {} TLAS nodes, depth {}, {:.1} MB",
+        s.blas_seconds,
+        update * 1e3,
+        clone_time * 1e3,
+        s.instances,
+        s.blas_nodes,
+        s.tlas_nodes,
+        s.max_depth,
+        s.bytes as f64 / 1e6
+    );
+    let n = rays.len();
+    report(
+        &format!("Accel, {label}: intersect"),
+        rate(rays, |r| accel.intersect(r).is_some()),
+        base,
+        n,
+    );
+    report(
+        &format!("Accel, {label}: occluded"),
+        rate(rays, |r| accel.occluded(r)),
+        base,
+        n,
+    );
+    accel
+}
+
+/// The files of `--dump DIR` for benches/embree_raybench.py.
+fn dump_all(dir: &str, tris: &[Triangle], rays: &[Ray], accel: &Accel) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
+    dump(
+        dir,
+        "tris.f32",
+        tris.iter()
+            .flat_map(|t| [t.v0, t.v1, t.v2])
+            .flat_map(|p| p.to_array()),
+    )?;
+    dump(
+        dir,
+        "rays.f32",
+        rays.iter()
+            .flat_map(|r| [r.origin, r.dir])
+            .flat_map(|p| p.to_array()),
+    )?;
+    dump(
+        dir,
+        "t.f32",
+        rays.iter()
+            .map(|r| accel.intersect(r).map_or(f32::INFINITY, |h| h.t)),
+    )
+}
+
+fn main() -> Result<(), String> {
+    let options = Options::parse()?;
+    let (path, n) = (&options.path, options.rays);
+    let per_group = scene_at(path)?;
+    let merged = flatten(&per_group);
+    println!(
+        "{path}: {} triangles in {} instances of {} meshes; {n} random rays",
+        merged.meshes[0].triangles.len(),
+        per_group.instances.len(),
+        per_group.meshes.len()
+    );
+    let rays = rays(&merged, n);
+    let (tris, base) = yardstick(&merged, &rays);
+    let movable = movable_of(&per_group, options.movable.as_deref())?;
     let moved = &per_group.instances[movable];
     println!(
         "movable instance: '{}', {} triangles",
@@ -350,69 +458,14 @@ fn main() -> Result<(), String> {
         ("instances baked (with_movable)", &per_group, Some(&[][..])),
         (&one_movable_label[..], &per_group, Some(&one_movable[..])),
     ] {
-        if only.as_deref().is_some_and(|o| !label.contains(o)) {
+        if options.only.as_deref().is_some_and(|o| !label.contains(o)) {
             continue;
         }
-        let start = Instant::now();
-        let accel = match bake {
-            Some(movable) => Accel::with_movable(scene, movable),
-            None => Accel::new(scene),
-        };
-        let build = start.elapsed().as_secs_f64();
-        let s = accel.stats();
-        let start = Instant::now();
-        let mut again = accel.clone();
-        let clone_time = start.elapsed().as_secs_f64();
-        let start = Instant::now();
-        again.update_instances(scene);
-        let update = start.elapsed().as_secs_f64();
-        println!(
-            "Accel, {label}: build {build:.3} s (BLAS {:.3} s), TLAS update {:.2} ms (clone {:.2} ms); {} instances, {} BLAS + {} TLAS nodes, depth {}, {:.1} MB",
-            s.blas_seconds,
-            update * 1e3,
-            clone_time * 1e3,
-            s.instances,
-            s.blas_nodes,
-            s.tlas_nodes,
-            s.max_depth,
-            s.bytes as f64 / 1e6
-        );
-        report(
-            &format!("Accel, {label}: intersect"),
-            rate(&rays, |r| accel.intersect(r).is_some()),
-            base.0,
-            n,
-        );
-        report(
-            &format!("Accel, {label}: occluded"),
-            rate(&rays, |r| accel.occluded(r)),
-            base.0,
-            n,
-        );
-        if let Some(dir) = dump_dir.as_deref()
+        let accel = measure_accel(label, scene, bake, &rays, base.0);
+        if let Some(dir) = options.dump.as_deref()
             && label == "one mesh"
         {
-            std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
-            dump(
-                dir,
-                "tris.f32",
-                tris.iter()
-                    .flat_map(|t| [t.v0, t.v1, t.v2])
-                    .flat_map(|p| p.to_array()),
-            )?;
-            dump(
-                dir,
-                "rays.f32",
-                rays.iter()
-                    .flat_map(|r| [r.origin, r.dir])
-                    .flat_map(|p| p.to_array()),
-            )?;
-            dump(
-                dir,
-                "t.f32",
-                rays.iter()
-                    .map(|r| accel.intersect(r).map_or(f32::INFINITY, |h| h.t)),
-            )?;
+            dump_all(dir, &tris, &rays, &accel)?;
         }
     }
     Ok(())
