@@ -2861,3 +2861,106 @@ mod calculation_surfaces {
         );
     }
 }
+
+mod glare {
+    use super::*;
+
+    fn lamp_room(extra: &[&str]) -> Vec<String> {
+        let mut args = vec![
+            "glare".to_string(),
+            data("ilp/lamp-room.gltf").display().to_string(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        args
+    }
+
+    /// An observer without --view looks the four horizontal ways; the two that face the
+    /// downlight see it, the two that face away see nothing, and the worst is the top
+    /// level. Each source's figures agree with each other as CIE 117 defines them
+    /// (L = I / projected area, ω = projected area / d²), the rating is the formula of
+    /// its own terms, and its interval holds it.
+    #[test]
+    fn an_observer_is_rated_the_four_ways_and_the_worst_reported() {
+        let r = json(lamp_room(&[
+            "--luminaire",
+            &format!("Lamp={}", data("photometry/downlight.ldt").display()),
+            "--observer",
+            "3,0.6,3",
+            "-n",
+            "20000",
+            "--seed",
+            "1",
+            "--json",
+        ]));
+        let observers = r["observers"].as_array().unwrap();
+        assert_eq!(observers.len(), 4);
+        let seen: Vec<&Value> = observers.iter().filter(|o| !o["ugr"].is_null()).collect();
+        assert_eq!(seen.len(), 2, "looking −Z and −X the lamp is in view: {r}");
+        for o in observers.iter().filter(|o| o["ugr"].is_null()) {
+            assert!(o["sources"].as_array().unwrap().is_empty());
+        }
+        let worst = seen
+            .iter()
+            .map(|o| f64_of(&o["ugr"]))
+            .fold(f64::MIN, f64::max);
+        assert_eq!(f64_of(&r["ugr"]), worst);
+        for o in seen {
+            let s = &o["sources"][0];
+            assert_eq!(s["name"], "Lamp");
+            let (l, w, d) = (
+                f64_of(&s["luminance"]),
+                f64_of(&s["solid_angle"]),
+                f64_of(&s["distance"]),
+            );
+            close(l * w * d * d, f64_of(&s["intensity"]), 1e-5, "L·ω·d² = I");
+            let p = f64_of(&s["position_index"]);
+            assert!(p > 1.0, "off the line of sight, p > 1: {p}");
+            let lb = f64_of(&o["background_luminance"]);
+            let ugr = 8.0 * (0.25 / lb * l * l * w / (p * p)).log10();
+            close(f64_of(&o["ugr"]), ugr, 1e-9, "UGR from its terms");
+            let [lo, hi] = [f64_of(&o["ugr_interval"][0]), f64_of(&o["ugr_interval"][1])];
+            assert!(lo < ugr && ugr < hi, "{lo} < {ugr} < {hi}");
+            close(
+                lb,
+                f64_of(&o["indirect_illuminance"]) / std::f64::consts::PI,
+                1e-9,
+                "Lb = E_ind/π",
+            );
+        }
+    }
+
+    /// What UGR cannot be computed from is refused with a message and exit 2: a point
+    /// light (no luminous area), a view of no length, an eye outside the room, views
+    /// that do not pair with the observers.
+    #[test]
+    fn what_glare_cannot_rate_is_refused() {
+        let args = |extra: &[&str]| lamp_room(extra);
+        input_error(
+            args(&["--observer", "3,0.6,3", "-n", "2000"]),
+            &["'Lamp'", "luminous area"],
+        );
+        input_error(
+            args(&["--observer", "3,0.6,3", "--view", "0,0,0", "-n", "2000"]),
+            &["no length"],
+        );
+        input_error(
+            args(&["--observer", "5,0.6,3", "--view", "1,0,0"]),
+            &["outside the scene", "4.000"],
+        );
+        input_error(
+            args(&[
+                "--observer",
+                "3,0.6,3",
+                "--observer",
+                "2,0.6,2",
+                "--view",
+                "1,0,0",
+                "--view",
+                "0,0,1",
+                "--view",
+                "-1,0,0",
+            ]),
+            &["2 --observer and 3 --view"],
+        );
+    }
+}

@@ -2,6 +2,7 @@
 //! reports. Everything that computes lives in the crates under `crates/`.
 
 mod args;
+mod glare;
 mod map;
 mod measure;
 mod render;
@@ -56,6 +57,9 @@ enum Command {
     Map(map::MapArgs),
     /// Where the sun stands at a site, date and time (NREL SPA), as a scene direction.
     Sun(sun::SunArgs),
+    /// Discomfort glare at observers: the Unified Glare Rating (CIE 117) with its
+    /// interval, and each luminaire's luminance, solid angle and position index.
+    Glare(glare::GlareArgs),
 }
 
 /// An error caused by what the user gave us (a file, a name, a value): exit code 2.
@@ -124,6 +128,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(args),
         Command::Map(args) => map::run(args),
         Command::Sun(args) => sun::run(args),
+        Command::Glare(args) => glare::run(args),
     };
     match result {
         Ok(code) => code,

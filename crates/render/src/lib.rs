@@ -17,6 +17,8 @@
 //! - [`assess`], [`Compliance`]: whether a grid meets Em and U0 (EN 12464-1:2021 tasks in
 //!   [`TASKS`], its grid rule `invlight_photon::en12464_spacing`) with a stated confidence: meets,
 //!   fails, or cannot tell at this photon count.
+//! - [`unified_glare_rating`]: discomfort glare at an observer (CIE 117 UGR), its
+//!   luminaires' terms exact and its background luminance traced, with its interval.
 //! - [`SearchPlot`], [`ConvergencePlot`], [`MapPlan`]: what a search visited (a plan in
 //!   world metres, a sun chart, a value plot), how it converged, and an illuminance grid
 //!   as a plan with isolux lines — drawn with `plotters` as SVG or as pictures, in the
@@ -28,6 +30,7 @@ mod chart;
 mod colour_map;
 mod compliance;
 mod false_colour;
+mod glare;
 mod integrator;
 mod map;
 mod photon_map;
@@ -43,6 +46,10 @@ pub use compliance::{
     Compliance, Criterion, Requirement, TASKS, Task, Verdict, assess, plain, task,
 };
 pub use false_colour::{auto_scale, false_colour, legend_width};
+pub use glare::{
+    GlareError, GlareSource, Observer, Ugr, eye_illuminance, glare_sources, position_index, ugr_of,
+    unified_glare_rating,
+};
 /// The `image` crate the pictures are made with, so callers can save them without
 /// depending on it themselves.
 pub use image;

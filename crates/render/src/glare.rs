@@ -1,0 +1,575 @@
+//! Discomfort glare at an observer by CIE 117:1995's Unified Glare Rating,
+//!
+//! UGR = 8·log10( 0.25/Lb · Σ L²·ω/p² ),
+//!
+//! over every luminaire the eye sees in front of it: L its luminance toward the eye (its
+//! intensity toward the eye over its luminous area projected on the line of sight), ω
+//! the solid angle of that projected area, p Guth's position index, and Lb the background
+//! luminance, the *indirect* illuminance at the eye on the plane facing the view over π
+//! (CIE 117 §3; evalglare's "CIE method" background, (Ev − Edir)/π).
+//!
+//! Everything but Lb is exact, from the luminaires' candela tables and luminous
+//! openings. Lb is traced: the illuminance at the eye is measured twice with the same
+//! photons, once with every bounce and once with the first hit only (the direct light);
+//! photon group g of both follows the same path up to its first hit, so the groups'
+//! differences are independent samples of the indirect light alone, and its standard
+//! error comes from their spread. UGR falls as Lb rises, so its interval is the UGR at
+//! Lb's upper and lower bounds.
+//!
+//! A luminaire counts when its photometric centre is in front of the eye (less than 90°
+//! from the line of sight) and nothing opaque lies between (calculation surfaces do not
+//! shade). An emissive surface (a glTF emissive material, a COLLADA or OBJ light panel)
+//! is a luminaire of known luminance, summed triangle by triangle. A light without a luminous area — a point or spot light, or a photometric
+//! file that gives no luminous dimensions — has no luminance, and UGR is refused rather
+//! than guessed. Directional light (the sun) and the sky are not luminaires: their
+//! reflected light is in the background, their glare is daylight glare's (DGP).
+
+use glam::{Mat4, Vec3};
+use invlight_photon::{Components, Estimator, Measurement, Request, Side, TraceSettings};
+use invlight_scene::{LightKind, Material, Mesh, Opening, Scene, SurfaceId, luminance};
+use invlight_stats::{Confidence, Estimate, Interval};
+use invlight_trace::{Accel, Ray};
+use serde::Serialize;
+use std::fmt;
+
+/// Where the eye is and where it looks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observer {
+    /// The eye, world metres.
+    pub eye: Vec3,
+    /// The line of sight (any length but zero).
+    pub view: Vec3,
+}
+
+/// Why no UGR can be given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GlareError {
+    /// The line of sight has no length or is not finite.
+    NoView,
+    /// The line of sight is along the scene's up axis: no vertical plane, no position
+    /// index.
+    ViewAlongUp,
+    /// The eye is not a finite point.
+    NoEye,
+    /// A luminaire in view has no luminous area to have a luminance.
+    NoLuminousArea {
+        /// The light's name.
+        light: String,
+        /// What it is.
+        kind: &'static str,
+    },
+}
+
+impl fmt::Display for GlareError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            GlareError::NoView => write!(
+                f,
+                "the view direction has no length, expected DX,DY,DZ along the line of sight"
+            ),
+            GlareError::ViewAlongUp => write!(
+                f,
+                "the view looks straight up or down, expected a line of sight with a horizontal part (UGR's position index needs the vertical plane through it)"
+            ),
+            GlareError::NoEye => write!(f, "the observer is not a finite point"),
+            GlareError::NoLuminousArea { light, kind } => write!(
+                f,
+                "the light '{light}' is in view but is {kind} without a luminous area: UGR needs each luminaire's luminance, its intensity over its luminous area; give it a photometric file with luminous dimensions (IES width and length, EULUMDAT luminous area)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for GlareError {}
+
+/// One luminaire's share of the glare.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GlareSource {
+    /// The light's name.
+    pub name: String,
+    /// Its luminance toward the eye, cd/m².
+    pub luminance: f64,
+    /// The solid angle its projected luminous area subtends at the eye, sr.
+    pub solid_angle: f64,
+    /// Guth's position index p.
+    pub position_index: f64,
+    /// Its term of the sum, L²·ω/p², cd²/m⁴·sr.
+    pub contribution: f64,
+    /// Its intensity toward the eye, cd.
+    pub intensity: f64,
+    /// The distance from the eye to its photometric centre, m.
+    pub distance: f64,
+    /// The angle between the line of sight and the direction to it, degrees.
+    pub off_axis: f64,
+}
+
+/// The Unified Glare Rating at one observer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Ugr {
+    /// UGR, when some luminaire is in view (none: no discomfort glare to rate).
+    pub ugr: Option<f64>,
+    /// Its interval at the run's confidence, from Lb's; the upper end is infinite when
+    /// Lb's lower bound is not above 0.
+    pub ugr_interval: Option<[f64; 2]>,
+    /// The background luminance Lb = E_indirect/π, cd/m².
+    pub background_luminance: f64,
+    /// Lb's interval, cd/m².
+    pub background_interval: [f64; 2],
+    /// The illuminance at the eye on the plane facing the view, every bounce, lx.
+    pub eye_illuminance: f64,
+    /// Its direct part (first hits), lx.
+    pub direct_illuminance: f64,
+    /// Its indirect part, lx.
+    pub indirect_illuminance: f64,
+    /// The indirect part's standard error, lx.
+    pub indirect_std_error: f64,
+    /// The luminaires in view, in the scene's order.
+    pub sources: Vec<GlareSource>,
+}
+
+/// Guth's position index of a source seen along the unit direction `to_source` by an
+/// eye looking along the unit `view` with the unit `up` (perpendicular to `view`) as its
+/// vertical.
+///
+/// Above the line of sight, Levin's closed form of Guth's table (IES Lighting
+/// Handbook; evalglare's `get_posindex`):
+/// p = exp[(35.2 − 0.31889τ − 1.22e^(−2τ/9))·10⁻³·σ + (21 + 0.26667τ − 0.002963τ²)·10⁻⁵·σ²],
+/// σ the angle from the line of sight and τ the angle, in the picture plane, between
+/// the vertical and the direction to the source, both in degrees. Below it, Iwata's
+/// model as evalglare has it: p = 1 + f·R with R = √(tan²φ + tan²θ) (φ, θ the vertical
+/// and horizontal angles, R at most 3), f = 0.8 up to R = 0.6 and 1.2 beyond. p is at
+/// most 16, where the table ends. On the line of sight p = 1.
+pub fn position_index(view: Vec3, up: Vec3, to_source: Vec3) -> f64 {
+    let (view, up, d) = (view.as_dvec3(), up.as_dvec3(), to_source.as_dvec3());
+    let right = view.cross(up);
+    let along = d.dot(view);
+    let sigma = along.clamp(-1.0, 1.0).acos().to_degrees();
+    let elevation = d.dot(up).clamp(-1.0, 1.0).asin();
+    let p = if elevation >= 0.0 {
+        let picture = d / along - view;
+        let tau = if picture.length() < 1e-12 {
+            0.0
+        } else {
+            picture.angle_between(up).to_degrees()
+        };
+        ((35.2 - 0.31889 * tau - 1.22 * (-2.0 * tau / 9.0).exp()) / 1000.0 * sigma
+            + (21.0 + 0.26667 * tau - 0.002963 * tau * tau) / 100_000.0 * sigma * sigma)
+            .exp()
+    } else {
+        let sideways = d.dot(right).clamp(-1.0, 1.0).asin();
+        let r = (elevation.tan().powi(2) + sideways.tan().powi(2)).sqrt();
+        let f = if r > 0.6 { 1.2 } else { 0.8 };
+        1.0 + f * r.min(3.0)
+    };
+    p.min(16.0)
+}
+
+/// The UGR of the sum Σ L²ω/p² over a background luminance `lb`, cd/m²: +∞ over a
+/// black background, none without sources.
+pub fn ugr_of(sum: f64, lb: f64) -> Option<f64> {
+    (sum > 0.0).then(|| {
+        if lb > 0.0 {
+            8.0 * (0.25 * sum / lb).log10()
+        } else {
+            f64::INFINITY
+        }
+    })
+}
+
+/// The line of sight and its vertical, unit vectors, for a scene whose zenith is `up`.
+fn sight(observer: &Observer, up: Vec3) -> Result<(Vec3, Vec3), GlareError> {
+    if !observer.eye.is_finite() {
+        return Err(GlareError::NoEye);
+    }
+    let view = observer.view.normalize_or_zero();
+    if view == Vec3::ZERO || !view.is_finite() {
+        return Err(GlareError::NoView);
+    }
+    let vertical = (up - view * up.dot(view)).normalize_or_zero();
+    if vertical.length() < 0.5 || view.dot(up).abs() > 0.9999 {
+        return Err(GlareError::ViewAlongUp);
+    }
+    Ok((view, vertical))
+}
+
+/// The luminous area of `opening` (raised by `height` at its sides) projected on the
+/// plane perpendicular to the unit local direction `w`, m²: its face seen from below
+/// (the opening faces local −Z) and its sides, as CIE 117 projects a luminaire.
+fn projected_area(opening: &Opening, height: f32, w: Vec3) -> f64 {
+    let (w, h) = (w.as_dvec3(), f64::from(height));
+    let face = f64::from(opening.area()) * (-w.z).max(0.0);
+    let sides = match *opening {
+        Opening::Point => 0.0,
+        Opening::Rectangle { length, width } => {
+            h * (f64::from(length) * w.y.abs() + f64::from(width) * w.x.abs())
+        }
+        Opening::Disk { diameter } => h * f64::from(diameter) * w.truncate().length(),
+    };
+    face + sides
+}
+
+/// Whether the segment from `from` to `to` is clear of opaque surfaces (calculation
+/// surfaces do not shade), a centimetre short of `to` so that a luminaire set into a
+/// ceiling is seen.
+fn clear(scene: &Scene, accel: &Accel, from: Vec3, to: Vec3) -> bool {
+    let calculation = scene.calculation_instances();
+    let (dir, length) = ((to - from).normalize(), (to - from).length());
+    let mut start = 0.0f32;
+    for _ in 0..64 {
+        let mut ray = Ray::new(from + dir * start, dir);
+        ray.t_max = length - 0.01 - start;
+        if ray.t_max <= 0.0 {
+            return true;
+        }
+        match accel.intersect(&ray) {
+            None => return true,
+            Some(hit) if calculation.get(hit.instance.index()).copied() == Some(true) => {
+                start += hit.t + 1e-4;
+            }
+            Some(_) => return false,
+        }
+    }
+    false
+}
+
+/// The luminaires `observer` sees, each with its luminance, solid angle and position
+/// index; refused when one in view has no luminous area.
+pub fn glare_sources(
+    scene: &Scene,
+    accel: &Accel,
+    observer: &Observer,
+) -> Result<Vec<GlareSource>, GlareError> {
+    let (view, vertical) = sight(observer, scene.up)?;
+    let mut sources = Vec::new();
+    for light in &scene.lights {
+        let Some(position) = light.kind.position() else {
+            continue;
+        };
+        let offset = position - observer.eye;
+        let distance = f64::from(offset.length());
+        let to_source = offset.normalize_or_zero();
+        if distance <= 0.0 || to_source.dot(view) <= 0.0 {
+            continue;
+        }
+        let intensity = f64::from(luminance(light.kind.intensity_toward(-to_source)));
+        if intensity <= 0.0 || !clear(scene, accel, observer.eye, position) {
+            continue;
+        }
+        let area = match &light.kind {
+            LightKind::Goniometric {
+                frame, photometry, ..
+            } => {
+                if photometry.opening == Opening::Point {
+                    return Err(no_area(&light.name, "a photometric file"));
+                }
+                let local = frame.transpose() * -to_source;
+                projected_area(&photometry.opening, photometry.opening_height, local)
+            }
+            LightKind::Point { .. } => return Err(no_area(&light.name, "a point light")),
+            LightKind::Spot { .. } => return Err(no_area(&light.name, "a spot light")),
+            LightKind::Directional { .. } => continue,
+        };
+        if area <= 0.0 {
+            continue;
+        }
+        let luminance = intensity / area;
+        let solid_angle = area / (distance * distance);
+        let p = position_index(view, vertical, to_source);
+        sources.push(GlareSource {
+            name: light.name.clone(),
+            luminance,
+            solid_angle,
+            position_index: p,
+            contribution: luminance * luminance * solid_angle / (p * p),
+            intensity,
+            distance,
+            off_axis: f64::from(to_source.dot(view).clamp(-1.0, 1.0).acos().to_degrees()),
+        });
+    }
+    sources.extend(emissive_sources(scene, accel, observer.eye, view, vertical));
+    Ok(sources)
+}
+
+/// The emissive surfaces the eye sees, one source per instance: each of its triangles
+/// whose front faces the eye and whose centroid is in front of the eye and unshaded adds
+/// L²·ω/p² at its centroid, with ω its area × cos θ / d² (the small-source form CIE 117
+/// assumes); the instance's luminance is the solid-angle-weighted mean, its p the one
+/// that gives its sum from that luminance and the total ω.
+fn emissive_sources(
+    scene: &Scene,
+    accel: &Accel,
+    eye: Vec3,
+    view: Vec3,
+    vertical: Vec3,
+) -> Vec<GlareSource> {
+    let calculation = scene.calculation_instances();
+    let mut by_instance: Vec<(usize, Term)> = Vec::new();
+    for (i, t) in scene.all_world_triangles() {
+        let emission = scene.materials[t.material].emission;
+        if calculation[i.index()] || emission.max_element() <= 0.0 || t.area() <= 0.0 {
+            continue;
+        }
+        let centroid = (t.corners[0] + t.corners[1] + t.corners[2]) / 3.0;
+        let offset = centroid - eye;
+        let d = offset.length();
+        let to_source = offset / d;
+        let cos = -t.normal().dot(to_source);
+        if d <= 0.0 || cos <= 0.0 || to_source.dot(view) <= 0.0 {
+            continue;
+        }
+        if !clear(scene, accel, eye, centroid) {
+            continue;
+        }
+        let l = f64::from(luminance(emission));
+        let omega = f64::from(t.area() * cos) / f64::from(d * d);
+        let p = position_index(view, vertical, to_source);
+        let term = Term {
+            omega,
+            l_omega: l * omega,
+            contribution: l * l * omega / (p * p),
+            d_omega: f64::from(d) * omega,
+            off_omega: f64::from(to_source.dot(view).clamp(-1.0, 1.0).acos().to_degrees()) * omega,
+        };
+        match by_instance.iter_mut().find(|(k, _)| *k == i.index()) {
+            Some((_, sum)) => sum.add(&term),
+            None => by_instance.push((i.index(), term)),
+        }
+    }
+    by_instance
+        .into_iter()
+        .map(|(i, t)| {
+            let l = t.l_omega / t.omega;
+            GlareSource {
+                name: scene.instances[i].name.clone(),
+                luminance: l,
+                solid_angle: t.omega,
+                position_index: (l * l * t.omega / t.contribution).sqrt(),
+                contribution: t.contribution,
+                intensity: l * t.omega * (t.d_omega / t.omega).powi(2),
+                distance: t.d_omega / t.omega,
+                off_axis: t.off_omega / t.omega,
+            }
+        })
+        .collect()
+}
+
+/// An emissive triangle's sums toward its instance's source.
+#[derive(Debug, Clone, Copy)]
+struct Term {
+    omega: f64,
+    l_omega: f64,
+    contribution: f64,
+    d_omega: f64,
+    off_omega: f64,
+}
+
+impl Term {
+    fn add(&mut self, t: &Term) {
+        self.omega += t.omega;
+        self.l_omega += t.l_omega;
+        self.contribution += t.contribution;
+        self.d_omega += t.d_omega;
+        self.off_omega += t.off_omega;
+    }
+}
+
+fn no_area(light: &str, kind: &'static str) -> GlareError {
+    GlareError::NoLuminousArea {
+        light: light.to_string(),
+        kind,
+    }
+}
+
+/// Half the side of the square that receives the light at the eye, m: small beside a
+/// room, large enough for the connected estimator to find it.
+const EYE_HALF_SIDE: f32 = 0.1;
+
+/// The scene with a calculation square at the eye facing the view (its front, the
+/// counter-clockwise side, toward what the eye sees), and that square's surface.
+fn with_eye(scene: &Scene, observer: &Observer) -> Result<(Scene, SurfaceId), GlareError> {
+    let (view, vertical) = sight(observer, scene.up)?;
+    let right = view.cross(vertical);
+    let (c, a) = (observer.eye, EYE_HALF_SIDE);
+    let mut scene = scene.clone();
+    let material = scene.add_material(Material::diffuse("eye (glare)", Vec3::ZERO));
+    let corners = [
+        c - a * right - a * vertical,
+        c - a * right + a * vertical,
+        c + a * right + a * vertical,
+        c + a * right - a * vertical,
+    ];
+    let mesh = scene.add_mesh(Mesh::quad(corners, material));
+    let name = "invlight eye";
+    scene.add_instance(name, mesh, Mat4::IDENTITY);
+    let s = scene.surface(name).expect("the surface just added");
+    scene.make_calculation_surface(s);
+    Ok((scene, s))
+}
+
+/// The illuminance at the eye on the plane facing the view, all of it and its
+/// indirect part, from `settings.photons` photons traced twice (every bounce, then the
+/// first hits only) with the same seed.
+pub fn eye_illuminance(
+    scene: &Scene,
+    observer: &Observer,
+    settings: &TraceSettings,
+) -> Result<(Estimate, Estimate), GlareError> {
+    let (scene, eye) = with_eye(scene, observer)?;
+    let accel = Accel::with_movable(&scene, &[]);
+    let components = Components::one(&scene);
+    let targets = [eye];
+    let mut request = Request::means(&targets, &components, Estimator::Connected);
+    request.keep_groups = true;
+    let all = invlight_photon::measure_with(&scene, &accel, &request, settings, None);
+    let first = TraceSettings {
+        max_bounces: 0,
+        ..*settings
+    };
+    let direct = invlight_photon::measure_with(&scene, &accel, &request, &first, None);
+    Ok((front(&all), indirect(&all, &direct)))
+}
+
+fn front(m: &Measurement) -> Estimate {
+    m.estimate_of(0, Side::Front, &[1.0])
+}
+
+/// The indirect illuminance from the groups' differences of two traces with the same
+/// photons.
+fn indirect(all: &Measurement, direct: &Measurement) -> Estimate {
+    let (a, d) = (
+        all.group_means(0, Side::Front, &[1.0]),
+        direct.group_means(0, Side::Front, &[1.0]),
+    );
+    let (sum, sum_sq) = a
+        .iter()
+        .zip(&d)
+        .map(|(a, d)| a - d)
+        .fold((0.0, 0.0), |(s, q), x| (s + x, q + x * x));
+    let groups = a.len() as u64;
+    Estimate {
+        samples: all.photons,
+        ..Estimate::from_groups(sum, sum_sq, groups, groups)
+    }
+}
+
+/// The UGR at `observer`: its sources exact, its background traced with `settings`, its
+/// interval at `confidence`.
+pub fn unified_glare_rating(
+    scene: &Scene,
+    accel: &Accel,
+    observer: &Observer,
+    settings: &TraceSettings,
+    confidence: Confidence,
+) -> Result<Ugr, GlareError> {
+    let sources = glare_sources(scene, accel, observer)?;
+    let (all, indirect) = eye_illuminance(scene, observer, settings)?;
+    let sum: f64 = sources.iter().map(|s| s.contribution).sum();
+    let pi = std::f64::consts::PI;
+    let lb = indirect.mean.max(0.0) / pi;
+    let Interval { low, high } = indirect.interval(confidence.z());
+    let (lb_low, lb_high) = (low.max(0.0) / pi, high.max(0.0) / pi);
+    let ugr = ugr_of(sum, lb);
+    let ugr_interval = ugr.map(|_| {
+        [
+            ugr_of(sum, lb_high).unwrap_or(f64::NEG_INFINITY),
+            ugr_of(sum, lb_low).unwrap_or(f64::INFINITY),
+        ]
+    });
+    Ok(Ugr {
+        ugr,
+        ugr_interval,
+        background_luminance: lb,
+        background_interval: [lb_low, lb_high],
+        eye_illuminance: all.mean,
+        direct_illuminance: all.mean - indirect.mean,
+        indirect_illuminance: indirect.mean,
+        indirect_std_error: indirect.std_error,
+        sources,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const VIEW: Vec3 = Vec3::X;
+    const UP: Vec3 = Vec3::Z;
+
+    fn toward(elevation: f32, azimuth: f32) -> Vec3 {
+        let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+        Vec3::new(e.cos() * a.cos(), -e.cos() * a.sin(), e.sin())
+    }
+
+    #[test]
+    fn position_index_is_one_on_the_line_of_sight_and_grows_away_from_it() {
+        assert!((position_index(VIEW, UP, VIEW) - 1.0).abs() < 1e-12);
+        let mut last = 1.0;
+        for e in [10.0, 20.0, 30.0, 45.0, 60.0] {
+            let p = position_index(VIEW, UP, toward(e, 0.0));
+            assert!(p > last, "{e}°: {p} after {last}");
+            last = p;
+        }
+        for e in [5.0, 30.0, 70.0] {
+            let (l, r) = (toward(e, 25.0), toward(e, -25.0));
+            let (pl, pr) = (position_index(VIEW, UP, l), position_index(VIEW, UP, r));
+            assert!((pl - pr).abs() < 1e-9, "left {pl} right {pr}");
+        }
+        assert_eq!(position_index(VIEW, UP, toward(89.0, 80.0)), 16.0);
+    }
+
+    #[test]
+    fn position_index_straight_above_follows_guths_closed_form() {
+        // τ = 0: p = exp((35.2 − 1.22)·10⁻³·σ + 21·10⁻⁵·σ²).
+        for sigma in [10.0f64, 30.0, 45.0] {
+            let want = ((35.2 - 1.22) / 1000.0 * sigma + 21.0 / 100_000.0 * sigma * sigma).exp();
+            let got = position_index(VIEW, UP, toward(sigma as f32, 0.0));
+            assert!(
+                (got - want).abs() < 1e-4 * want,
+                "σ {sigma}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn position_index_below_the_line_of_sight_is_iwatas() {
+        // 20° straight below: R = tan 20° = 0.364 ≤ 0.6, p = 1 + 0.8 R.
+        let got = position_index(VIEW, UP, toward(-20.0, 0.0));
+        let want = 1.0 + 0.8 * 20f64.to_radians().tan();
+        assert!((got - want).abs() < 1e-5, "{got} vs {want}");
+    }
+
+    #[test]
+    fn ugr_of_scales_by_eight_log_k_when_everything_is_dimmed_by_k() {
+        let (sum, lb) = (3.0e5, 40.0);
+        for k in [0.5, 2.0, 10.0] {
+            // L scales by k, so L²ω/p² by k²; Lb by k.
+            let shift = ugr_of(sum * k * k, lb * k).unwrap() - ugr_of(sum, lb).unwrap();
+            assert!((shift - 8.0 * f64::log10(k)).abs() < 1e-12);
+        }
+        assert_eq!(ugr_of(0.0, 10.0), None);
+        assert_eq!(ugr_of(1.0, 0.0), Some(f64::INFINITY));
+    }
+
+    #[test]
+    fn a_panel_seen_from_below_projects_its_face_and_from_the_side_its_edge() {
+        let panel = Opening::Rectangle {
+            length: 0.6,
+            width: 0.3,
+        };
+        let below = projected_area(&panel, 0.05, -Vec3::Z);
+        assert!((below - 0.18).abs() < 1e-6);
+        let along_x = projected_area(&panel, 0.05, Vec3::X);
+        assert!((along_x - 0.05 * 0.3).abs() < 1e-6);
+        let flat = projected_area(&panel, 0.0, Vec3::Y);
+        assert_eq!(flat, 0.0);
+    }
+
+    #[test]
+    fn a_view_along_up_or_of_no_length_is_refused() {
+        let eye = Vec3::new(0.0, 0.0, 1.2);
+        let up = |view| sight(&Observer { eye, view }, UP);
+        assert_eq!(up(Vec3::Z), Err(GlareError::ViewAlongUp));
+        assert_eq!(up(Vec3::ZERO), Err(GlareError::NoView));
+        assert!(up(Vec3::new(1.0, 0.0, -0.2)).is_ok());
+    }
+}
