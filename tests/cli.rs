@@ -2964,3 +2964,67 @@ mod glare {
         );
     }
 }
+
+mod datasheet {
+    use super::*;
+
+    /// `invlight luminaire` reads what the file states and computes the rest from its
+    /// table: the downlight's integrated flux is its lamps' 2000 lm times its light
+    /// output ratio (0.85) to the table's interpolation, its efficacy that flux over its
+    /// 18.5 W, and a rotationally symmetric table has one beam in both planes.
+    #[test]
+    fn a_datasheet_is_the_files_statement_and_its_tables_integral() {
+        let r = json([
+            "luminaire".as_ref(),
+            data("photometry/downlight.ldt").as_os_str(),
+            data("photometry/batwing.ies").as_os_str(),
+            "--json".as_ref(),
+        ]);
+        let l = &r["luminaires"];
+        assert_eq!(l.as_array().unwrap().len(), 2);
+        let d = &l[0];
+        assert_eq!(d["format"], "EULUMDAT");
+        assert_eq!(d["manufacturer"], "Lumen & Co.");
+        close(f64_of(&d["flux"]), 2000.0 * 0.85, 2e-3, "flux");
+        close(f64_of(&d["cie_flux_code"][4]), 85.0, 1e-9, "N5 = LOR");
+        close(
+            f64_of(&d["efficacy"]),
+            f64_of(&d["flux"]) / 18.5,
+            1e-12,
+            "lm/W",
+        );
+        close(
+            f64_of(&d["beam_angle"][0]),
+            f64_of(&d["beam_angle"][1]),
+            1e-9,
+            "one beam",
+        );
+        let b = &l[1];
+        assert_eq!(b["format"], "IES LM-63-2019");
+        close3(
+            [
+                f64_of(&b["opening_size"][0]),
+                f64_of(&b["opening_size"][1]),
+                0.0,
+            ],
+            [0.6, 0.6, 0.0],
+            1e-5,
+            "600 × 600 mm (the file's feet, single precision)",
+        );
+        let n: Vec<f64> = (0..4).map(|i| f64_of(&b["cie_flux_code"][i])).collect();
+        assert!(
+            n.windows(2).all(|w| w[0] <= w[1]),
+            "cumulative zones: {n:?}"
+        );
+    }
+
+    /// A file that is not there, or not photometry, is refused with its name.
+    #[test]
+    fn a_datasheet_of_a_bad_file_is_refused() {
+        input_error(["luminaire", "no-such.ies"], &["no-such.ies"]);
+        input_error(
+            ["luminaire".as_ref(), data("ilp/lamp-room.xml").as_os_str()],
+            &["lamp-room.xml"],
+        );
+    }
+}

@@ -3,6 +3,7 @@
 
 mod args;
 mod glare;
+mod luminaire;
 mod map;
 mod measure;
 mod render;
@@ -60,6 +61,9 @@ enum Command {
     /// Discomfort glare at observers: the Unified Glare Rating (CIE 117) with its
     /// interval, and each luminaire's luminance, solid angle and position index.
     Glare(glare::GlareArgs),
+    /// A photometric file's datasheet: flux, watts, efficacy, beam and field angles,
+    /// the CIE flux code and the luminous opening with its axes.
+    Luminaire(luminaire::LuminaireArgs),
 }
 
 /// An error caused by what the user gave us (a file, a name, a value): exit code 2.
@@ -129,6 +133,7 @@ fn main() -> ExitCode {
         Command::Map(args) => map::run(args),
         Command::Sun(args) => sun::run(args),
         Command::Glare(args) => glare::run(args),
+        Command::Luminaire(args) => luminaire::run(args),
     };
     match result {
         Ok(code) => code,

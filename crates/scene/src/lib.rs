@@ -79,8 +79,8 @@ pub use model::{
     SurfaceId, TextureId, is_placement_name, placement_name,
 };
 pub use photometry::{
-    DirectionSample, Opening, PhotometricSystem, Photometry, PhotometryFormat, PhotometrySource,
-    Tilt, parse_ies, parse_ldt, read_photometry,
+    DirectionSample, LuminaireFacts, Opening, PhotometricSystem, Photometry, PhotometryFormat,
+    PhotometrySource, Tilt, parse_ies, parse_ldt, read_photometry,
 };
 pub use summary::{CameraSummary, LightSummary, LuminaireSummary, SceneSummary, SurfaceSummary};
 pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};

@@ -28,6 +28,7 @@
 //! cannot take, and `lidrs` (MIT) reports errors without the line and reads neither
 //! LM-63-1986 nor tilt data.
 
+mod facts;
 mod ies;
 mod ldt;
 mod symmetry;
@@ -40,6 +41,7 @@ use glam::{Vec2, Vec3};
 use invlight_stats::PiecewiseConstant2D;
 use std::path::{Path, PathBuf};
 
+pub use facts::LuminaireFacts;
 pub use ies::parse_ies;
 pub(crate) use ies::parse_ies_in;
 pub use ldt::parse_ldt;
