@@ -608,6 +608,7 @@ impl Binding {
                     {
                         *direction = d.as_vec3();
                         *illuminance = Vec3::splat(lux as f32);
+                        clock.draw_sky(scene, d);
                     }
                 }
                 (VariableValue::Direction(d), Target::Sun { light }) => {

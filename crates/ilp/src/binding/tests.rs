@@ -945,3 +945,32 @@ fn a_lamp_placed_twice_is_refused_at_the_second_placement() {
         "{err}"
     );
 }
+
+/// A CIE clear sky is drawn about the sun: under a `<sunTime>` variable it follows each
+/// time's sun, and with the sun below the horizon (the clear sky undefined, the beam 0)
+/// the scene has no sky.
+#[test]
+fn a_clear_sky_follows_the_sun_time() {
+    use invlight_scene::daylight::SkyKind;
+    let text = "<input><scene path=\"s.gltf\"/>\n<site latitude=\"0\" longitude=\"0\" timezone=\"0\"/><sky type=\"cie-clear\" horizontalLux=\"9000\"/>\n<conditions><sunTime id=\"Sun\" date=\"2026-03-20\" from=\"04:00\" to=\"12:00\" step=\"60\"/></conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>";
+    let p = Problem::parse(Path::new("/p/x.xml"), text).unwrap();
+    let mut s = scene();
+    let b = Binding::new(&p, &mut s).unwrap();
+    let sun = |s: &Scene| s.lights[1].kind.direction().unwrap();
+    // Nine cells, 04:00 … 12:00: 04:00 is night, 08:00 and 12:00 are two suns.
+    for (k, up) in [(0, false), (4, true), (8, true)] {
+        let config = Configuration {
+            coords: vec![(k as f64 + 0.5) / 9.0],
+        };
+        assert!(!b.apply(&mut s, &config), "no instance moves");
+        match (&s.sky, up) {
+            (Some(sky), true) => {
+                let to_sun = sky.sun().expect("a clear sky has a sun");
+                assert!((to_sun + sun(&s)).length() < 1e-5, "{to_sun} {}", sun(&s));
+                assert_eq!(sky.kind(), SkyKind::CieClear);
+            }
+            (None, false) => {}
+            (sky, _) => panic!("cell {k}: {:?}", sky.as_ref().map(|s| s.sun())),
+        }
+    }
+}

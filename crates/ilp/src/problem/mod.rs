@@ -367,13 +367,14 @@ impl Problem {
         scene.set_luminaires(path, luminaires, &options)?;
         scene.set_calculation(path, &self.scene.calculation)?;
         // A sun below the horizon was warned of with its line when the file was read.
-        self.daylight
-            .apply(&mut scene)
-            .map_err(|e| Diagnostic::new(&self.path, format!("daylight: {e}")))?;
+        let daylight = |e: DaylightError| Diagnostic::new(&self.path, format!("daylight: {e}"));
+        self.daylight.apply_sun(&mut scene).map_err(daylight)?;
+        let mut sky_drawn = false;
         for spec in &self.variables {
             if matches!(spec.kind, VariableKind::SunTime { .. }) {
-                SunClock::place(self, spec, &mut scene)
+                let clock = SunClock::place(self, spec, &mut scene)
                     .map_err(|e| Diagnostic::at_line(&self.path, spec.line, e.to_string()))?;
+                sky_drawn |= clock.draws_sky();
             }
         }
         if let (Some((id, schedule, line)), Some(site)) = (&self.sun_schedule, self.daylight.site) {
@@ -381,6 +382,11 @@ impl Problem {
             schedule
                 .apply(id, &site, lux, &mut scene)
                 .map_err(|e| Diagnostic::at_line(&self.path, *line, format!("<sunTime>: {e}")))?;
+        }
+        // A clear sky follows a sunTime's sun, which drew it above; any other sky is put
+        // on after the suns, so that a clear one finds the sun it is drawn about.
+        if !sky_drawn {
+            self.daylight.apply_sky(&mut scene).map_err(daylight)?;
         }
         Ok(scene)
     }

@@ -8,11 +8,12 @@ use super::variables::Conditions;
 use super::{Node, Problem, Reader, VariableKind, VariableSpec};
 use glam::{DVec3, Vec3};
 use invlight_scene::daylight::{
-    Compass, Date, Daylight, DaylightError, Site, SkyKind, SunOptions, SunPosition, SunSchedule,
-    TimeOfDay,
+    Compass, Date, Daylight, DaylightError, Site, Sky, SkyKind, SunOptions, SunPosition,
+    SunSchedule, TimeOfDay,
 };
 use invlight_scene::{Diagnostic, LightId, LightKind, Scene};
 use std::fmt;
+use std::sync::Arc;
 
 impl Reader<'_, '_> {
     /// `<sunTime id days|date from to [step] [dayStep] objective="mean">`: the instants
@@ -153,9 +154,10 @@ impl Reader<'_, '_> {
         Ok((from, to, step))
     }
 
-    /// Refuses a `<sunTime>` of `conditions` without a `<site>` or under a clear sky: a
-    /// sun by the time of day needs the place it shines on; a clear sky is drawn about
-    /// one sun, and would not follow it.
+    /// Refuses a `<sunTime>` of `conditions` without a `<site>`, and a mean over a
+    /// schedule of suns under a clear sky: a sun by the time of day needs the place it
+    /// shines on; a clear sky is drawn about one sun (a `<sunTime>` variable redraws it
+    /// about each of its suns, [`SunClock::draw_sky`]).
     pub(super) fn check_sun_times(
         &self,
         conditions: &Conditions,
@@ -166,15 +168,16 @@ impl Reader<'_, '_> {
             .iter()
             .filter(|s| matches!(s.kind, VariableKind::SunTime { .. }))
             .map(|s| s.line);
-        for line in timed.chain(conditions.sun_schedule.as_ref().map(|s| s.2)) {
+        let schedule = conditions.sun_schedule.as_ref().map(|s| s.2);
+        for line in timed.chain(schedule) {
             let at = |msg: &str| Diagnostic::at_line(self.path, line, msg);
             if daylight.site.is_none() {
                 return Err(at("<sunTime> moves the sun over a day at a place, and the problem has no <site>")
                     .with_hint("add <site latitude=\"-34.9\" longitude=\"-56.2\" timezone=\"-3\"/> under <input>"));
             }
-            if daylight.sky.is_some_and(|s| s.kind == SkyKind::CieClear) {
-                return Err(at("<sunTime> with a cie-clear <sky> is not supported: the clear sky is drawn about one sun and would not follow it")
-                    .with_hint("use the cie-overcast sky, or no sky"));
+            if Some(line) == schedule && daylight.sky.is_some_and(|s| s.kind == SkyKind::CieClear) {
+                return Err(at("<sunTime objective=\"mean\"> with a cie-clear <sky> is not supported: the mean over many suns would need a clear sky drawn about each")
+                    .with_hint("use the cie-overcast sky, or no sky, or a <sunTime> variable (its clear sky follows its sun)"));
             }
         }
         Ok(())
@@ -239,6 +242,10 @@ pub(crate) struct SunClock {
     date: Date,
     compass: Compass,
     lux: Option<f64>,
+    /// The horizontal illuminance of the problem's CIE clear sky, lx, which is drawn
+    /// again about each sun the clock sets (the sky's luminance follows the sun: CIE S
+    /// 011 / ISO 15469's indicatrix and gradation are functions of the angle to it).
+    clear_sky: Option<f64>,
 }
 
 impl SunClock {
@@ -262,13 +269,35 @@ impl SunClock {
             date: *date,
             compass,
             lux: problem.daylight.sun.and_then(|s| s.illuminance),
+            clear_sky: problem
+                .daylight
+                .sky
+                .filter(|s| s.kind == SkyKind::CieClear)
+                .map(|s| s.horizontal_lux),
         };
         let (d, lux) = clock.at((from + to) / 2.0)?;
         scene.lights[light].kind = LightKind::Directional {
             direction: d.as_vec3(),
             illuminance: Vec3::splat(lux as f32),
         };
+        clock.draw_sky(scene, d);
         Ok(clock)
+    }
+
+    /// Whether the clock draws the scene's sky (a CIE clear sky about its sun).
+    pub(crate) fn draws_sky(&self) -> bool {
+        self.clear_sky.is_some()
+    }
+
+    /// Draws the problem's clear sky about the sun whose light travels along `travel`,
+    /// when the problem has one: with the sun below the horizon the CIE clear sky is not
+    /// defined and, as the sun's beam is then 0, the scene has no sky.
+    pub(crate) fn draw_sky(&self, scene: &mut Scene, travel: DVec3) {
+        if let Some(lux) = self.clear_sky {
+            scene.sky = Sky::cie_clear(scene.up, -travel.as_vec3(), lux)
+                .ok()
+                .map(Arc::new);
+        }
     }
 
     /// Where the sun stands `minutes` after local midnight (to the second, held within

@@ -87,6 +87,7 @@ fn sun_time_variable() {
     let clear =
         r#"<sun date="2026-12-21" time="12:00"/><sky type="cie-clear" horizontalLux="9000"/>"#;
     let mean = r#"<color id="W" hue="0" saturation="0"/><sunTime id="Sun" days="2026-01-01..2026-12-31" dayStep="7" from="08:00" to="18:00" step="60" objective="mean"/>"#;
+    with(site, clear, var).expect("a sunTime variable's clear sky follows its sun");
     let p = with(site, "", mean).unwrap();
     assert!(p.warnings.is_empty(), "{:?}", p.warnings);
     assert_eq!(p.variables.len(), 1);
@@ -126,7 +127,7 @@ fn sun_time_variable() {
             "first day first",
         ),
         ("", "", var, "no <site>"),
-        (site, clear, var, "cie-clear"),
+        (site, clear, mean, "cie-clear"),
         (
             site,
             "",
