@@ -2152,8 +2152,8 @@ mod luminaires {
     }
 
     /// `scene` shows the luminaire's file, its table's flux beside the file's figure,
-    /// watts and aim; the point lamp becomes a goniometric light aimed down (−up), C0
-    /// along +X.
+    /// watts, aim and luminous opening; the point lamp becomes a goniometric light aimed
+    /// down (−up), C0 along +X.
     #[test]
     fn scene_shows_file_flux_watts_and_aim() {
         let mut args = vec!["scene".to_string()];
@@ -2190,8 +2190,21 @@ mod luminaires {
             "batwing.ldt (EULUMDAT)",
             "the file says 3672 lm of luminaire",
             "64.00 W",
+            "luminous opening 590 × 590 mm",
         ] {
             assert!(table.contains(words), "{words:?} in {table}");
+        }
+        // A linear luminaire's length follows its format's convention into the scene:
+        // IES along C0 (here +X), EULUMDAT along C90 (here C0 × aim: the Z axis).
+        for (file, axis) in [("linear.ies", "X"), ("linear.ldt", "Z")] {
+            let mut args = vec!["scene".to_string()];
+            args.extend(lamp_room_with(&format!("photometry/{file}"), &["--json"]));
+            let out = json(&args);
+            assert_eq!(
+                named(&out["lights"], "Lamp")["luminaire"]["opening"],
+                format!("1500 × 60 mm, length along {axis}"),
+                "{file}"
+            );
         }
     }
 

@@ -19,7 +19,7 @@ pub struct LuminaireArgs {
     /// file, format, manufacturer, product, flux, lamp_flux, watts, efficacy,
     /// max_intensity, beam_angle and field_angle ([C0–C180, C90–C270] degrees),
     /// cie_flux_code (N1…N5 %), downward_fraction, opening, opening_size, opening_height,
-    /// luminaire_size and warnings.
+    /// luminaire_size ([C0–C180, C90–C270, height] m), luminaire (in words) and warnings.
     #[arg(long)]
     pub json: bool,
 }
@@ -109,15 +109,8 @@ fn sheet(s: &Sheet) -> String {
         String::new()
     };
     line("luminous opening", format!("{}{height}", f.opening));
-    if let Some([l, w, h]) = f.luminaire_size {
-        let mm = |m: f64| format!("{:.0}", 1000.0 * m);
-        // EULUMDAT: a width of 0 is a round luminaire of diameter `length`.
-        let size = if w > 0.0 {
-            format!("{} × {} mm, {} mm high", mm(l), mm(w), mm(h))
-        } else {
-            format!("Ø {} mm, {} mm high", mm(l), mm(h))
-        };
-        line("luminaire", size);
+    if let Some(luminaire) = &f.luminaire {
+        line("luminaire", luminaire.clone());
     }
     for w in &s.warnings {
         let _ = writeln!(t, "  warning: {w}");

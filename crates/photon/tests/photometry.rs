@@ -12,6 +12,8 @@
 //! - A table that is one cell, linear in γ: sampling density and intensity differ most.
 //! - An asymmetric table turned by the light's frame lights the side its C0 faces.
 //! - A disk opening: a Lambertian disk's closed-form illuminance, not a point's.
+//! - A linear luminaire in both formats, each by its own convention for the opening's
+//!   length, against the area source's integral.
 //! - `Scene::set_photometry` on a point lamp over a roof with a hole: a uniform
 //!   downward table reaches the floor through the hole alone.
 //! - Emission: counts in the table's cells against their share of the flux (χ²),
@@ -269,6 +271,72 @@ fn disk_opening_emits_from_its_area() {
     let e = measure(&scene, &["Below"], 400_000, 17);
     assert_both(&e[0], exact, [0.02, 0.02], "disk opening");
     assert!(exact < 0.6 * cosine_rect(i0, f64s(patch), h));
+}
+
+/// The mean illuminance over `patch` from `p` at `position` turned by `frame`, its
+/// opening's area drawn on an n × n grid of it: the area source's closed integral
+/// evaluated by the midpoint rule, from the table's own angles (`table_illuminance`).
+fn opening_illuminance(p: &Photometry, position: Vec3, frame: Mat3, patch: [f32; 4]) -> f64 {
+    let n = 24;
+    let points: Vec<Vec3> = (0..n * n)
+        .map(|k| {
+            let (u1, u2) = ((k / n) as f32 + 0.5, (k % n) as f32 + 0.5);
+            position + frame * p.opening.point(u1 / n as f32, u2 / n as f32)
+        })
+        .collect();
+    mean_over(f64s(patch), 40, |x, y| {
+        points
+            .iter()
+            .map(|&q| table_illuminance(p, q, frame, x, y))
+            .sum::<f64>()
+            / points.len() as f64
+    })
+}
+
+/// One 1500 × 60 mm linear luminaire written as IES and as EULUMDAT (cosine-like along
+/// its axis, batwing across it; make_photometry.py), each read by its format's
+/// convention — IES lays the length along C0, EULUMDAT along C90 — and turned so that
+/// its length lies along world X, 0.5 m over a black floor: beyond its end and beside it
+/// both read the area source's integral. Read with the length along C0, the EULUMDAT
+/// luminaire would lie across X and light beyond its end a third as much.
+#[test]
+fn a_linear_luminaire_lights_the_same_field_from_either_format() {
+    let (ies, ldt) = (data("linear.ies"), data("linear.ldt"));
+    let position = Vec3::new(0.0, 0.0, 0.5);
+    // EULUMDAT's C90 (local Y) onto world X, its C0 onto −Y.
+    let turned = Mat3::from_cols(Vec3::NEG_Y, Vec3::X, Vec3::Z);
+    let end: [f32; 4] = [0.7, 1.0, -0.15, 0.15];
+    let side: [f32; 4] = [-0.15, 0.15, 0.4, 0.7];
+    let exact = [end, side].map(|r| opening_illuminance(&ies, position, Mat3::IDENTITY, r));
+    for (k, r) in [end, side].into_iter().enumerate() {
+        let own = opening_illuminance(&ldt, position, turned, r);
+        assert!(
+            (own - exact[k]).abs() < 2e-3 * exact[k],
+            "{own} vs {}",
+            exact[k]
+        );
+    }
+    let mut along_c0 = ldt.clone();
+    along_c0.opening = Opening::Rectangle {
+        along_c0: 1.5,
+        along_c90: 0.06,
+    };
+    let wrong = opening_illuminance(&along_c0, position, turned, end);
+    assert!(wrong < 0.5 * exact[0], "{wrong} vs {}", exact[0]);
+    for (p, frame, file) in [(ies, Mat3::IDENTITY, "IES"), (ldt, turned, "EULUMDAT")] {
+        let scene = black_patches(
+            &[("End", end), ("Side", side)],
+            luminaire(p, position, frame),
+        );
+        let e = measure(&scene, &["End", "Side"], 400_000, 23);
+        assert_both(
+            &e[0],
+            exact[0],
+            [0.02, 0.02],
+            &format!("{file}: beyond the end"),
+        );
+        assert_both(&e[1], exact[1], [0.02, 0.02], &format!("{file}: beside"));
+    }
 }
 
 /// The table of `Photometry`'s unit tests: C-dependent, zero cells, uneven γ steps.

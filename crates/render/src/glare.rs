@@ -198,12 +198,14 @@ fn sight(observer: &Observer, up: Vec3) -> Result<(Vec3, Vec3), GlareError> {
 fn projected_area(opening: &Opening, height: f32, w: Vec3) -> f64 {
     let (w, h) = (w.as_dvec3(), f64::from(height));
     let face = f64::from(opening.area()) * (-w.z).max(0.0);
+    // The sides' shadow is the height times the opening's width across the horizontal
+    // part of `w`: a·|w_y| + b·|w_x| for a rectangle, √((a·w_y)² + (b·w_x)²) for an
+    // ellipse of axes a, b (a disk's d·|w_h|).
+    let [a, b] = opening.extents().map(f64::from);
     let sides = match *opening {
         Opening::Point => 0.0,
-        Opening::Rectangle { length, width } => {
-            h * (f64::from(length) * w.y.abs() + f64::from(width) * w.x.abs())
-        }
-        Opening::Disk { diameter } => h * f64::from(diameter) * w.truncate().length(),
+        Opening::Rectangle { .. } => h * (a * w.y.abs() + b * w.x.abs()),
+        Opening::Disk { .. } | Opening::Ellipse { .. } => h * (a * w.y).hypot(b * w.x),
     };
     face + sides
 }
@@ -553,8 +555,8 @@ mod tests {
     #[test]
     fn a_panel_seen_from_below_projects_its_face_and_from_the_side_its_edge() {
         let panel = Opening::Rectangle {
-            length: 0.6,
-            width: 0.3,
+            along_c0: 0.6,
+            along_c90: 0.3,
         };
         let below = projected_area(&panel, 0.05, -Vec3::Z);
         assert!((below - 0.18).abs() < 1e-6);
@@ -562,6 +564,17 @@ mod tests {
         assert!((along_x - 0.05 * 0.3).abs() < 1e-6);
         let flat = projected_area(&panel, 0.0, Vec3::Y);
         assert_eq!(flat, 0.0);
+        // An ellipse of the panel's axes: π/4 of its face; from the side its height
+        // times the axis across the view.
+        let ellipse = Opening::Ellipse {
+            along_c0: 0.6,
+            along_c90: 0.3,
+        };
+        let below = projected_area(&ellipse, 0.05, -Vec3::Z);
+        assert!((below - 0.18 * std::f64::consts::FRAC_PI_4).abs() < 1e-6);
+        for (w, across) in [(Vec3::X, 0.3), (Vec3::Y, 0.6)] {
+            assert!((projected_area(&ellipse, 0.05, w) - 0.05 * across).abs() < 1e-6);
+        }
     }
 
     #[test]

@@ -92,6 +92,10 @@ pub struct LuminaireSummary {
     pub aim: [f32; 3],
     /// The C0 axis (C = 0°, γ = 90°), unit.
     pub c0: [f32; 3],
+    /// The luminous opening in words with the scene axis its length lies along
+    /// ("1500 × 60 mm, length along X"), as the light is turned.
+    #[serde(default)]
+    pub opening: String,
 }
 
 /// A camera.
@@ -266,6 +270,7 @@ impl Scene {
             multiplier: luminance(*multiplier) * tilt,
             aim: (-frame.z_axis).to_array(),
             c0: frame.x_axis.to_array(),
+            opening: p.opening.words(|k| axis_words(frame.col(k))),
         })
     }
 
@@ -382,6 +387,7 @@ impl SceneSummary {
                         v3(Some(m.aim)),
                         v3(Some(m.c0))
                     );
+                    let _ = writeln!(out, "{:<20}  luminous opening {}", "", m.opening);
                 }
             }
             if self.lights.iter().any(|l| l.kind == "area") {
@@ -415,6 +421,28 @@ fn placement_area(vertices: &[Vec3]) -> f32 {
     let [a, b, c, d] = [vertices[0], vertices[1], vertices[2], vertices[3]];
     let quad = |p: Vec3, q: Vec3, r: Vec3, s: Vec3| 0.5 * (r - p).cross(s - q).length();
     quad(a, b, c, d).max(quad(a, b, d, c))
+}
+
+/// A scene direction a length lies along, in words: the axis it is within half a degree
+/// of (a length has no sign: "X"), else its components.
+fn axis_words(d: Vec3) -> String {
+    let d = d.normalize_or_zero();
+    let a = d.abs();
+    let k = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    if a[k] > 0.5f32.to_radians().cos() {
+        ["X", "Y", "Z"][k].to_string()
+    } else {
+        let d = if d[k] < 0.0 { -d } else { d };
+        // No "-0.00": what rounds to zero is printed as zero.
+        let c = |x: f32| if x.abs() < 0.005 { 0.0 } else { x };
+        format!("({:.2}, {:.2}, {:.2})", c(d.x), c(d.y), c(d.z))
+    }
 }
 
 #[cfg(test)]
@@ -461,5 +489,14 @@ mod tests {
         let w = s.summary().warnings;
         assert_eq!(w.len(), 1);
         assert!(w[0].contains("--scale 0.001"), "{}", w[0]);
+    }
+
+    /// A length's axis has no sign; off the axes it is given by its components, turned
+    /// so that its largest one is positive.
+    #[test]
+    fn axes_are_named_without_sign() {
+        assert_eq!(axis_words(Vec3::NEG_Z), "Z");
+        assert_eq!(axis_words(Vec3::new(0.0, 2.0, 0.001)), "Y");
+        assert_eq!(axis_words(Vec3::new(-1.0, 1.0, 0.0)), "(0.71, -0.71, 0.00)");
     }
 }

@@ -118,11 +118,15 @@ fn manufacturer_files_read_and_integrate_to_their_flux() {
         Some("Recessed office panel 600 × 600, batwing louvre\nspecular aluminium, UGR < 19")
     );
     assert_eq!((bw.lamps, bw.lumens_per_lamp), (4, Some(1350.0)));
-    let Opening::Rectangle { length, width } = bw.opening else {
+    let Opening::Rectangle {
+        along_c0,
+        along_c90,
+    } = bw.opening
+    else {
         panic!("{:?}", bw.opening)
     };
     assert!(
-        (length - 0.6).abs() < 1e-4 && (width - 0.6).abs() < 1e-4,
+        (along_c0 - 0.6).abs() < 1e-4 && (along_c90 - 0.6).abs() < 1e-4,
         "feet to metres"
     );
 
@@ -163,7 +167,16 @@ fn manufacturer_files_read_and_integrate_to_their_flux() {
         assert_eq!(ldt.watts, ies.watts);
     }
     let bw_ldt = read("batwing.ldt");
-    assert_eq!(bw_ldt.luminaire_size, Some([0.597, 0.597, 0.07]));
+    assert_eq!(
+        bw_ldt.luminaire,
+        Some((
+            Opening::Rectangle {
+                along_c0: 0.597,
+                along_c90: 0.597
+            },
+            0.07
+        ))
+    );
     assert_eq!(
         bw_ldt.keyword("Company"),
         Some("Lichtwerk Lüdenscheid GmbH")
@@ -172,8 +185,8 @@ fn manufacturer_files_read_and_integrate_to_their_flux() {
     assert_eq!(
         bw_ldt.opening,
         Opening::Rectangle {
-            length: 0.59,
-            width: 0.59
+            along_c0: 0.59,
+            along_c90: 0.59
         }
     );
     assert_eq!(
@@ -575,4 +588,159 @@ fn set_photometry_replaces_point_and_spot_lights() {
         "no light named 'Lmap'; the scene's lights are Lamp, Spot, Sun"
     );
     assert!(scene.set_photometry("Lamp", flood, -1.0).is_err());
+}
+
+/// One linear luminaire written in both formats (make_photometry.py): IES lays its
+/// 1500 mm length along C0–C180, EULUMDAT along C90–C270, and in each file that is the
+/// plane where it is cosine-like (I = I₀ cos γ at 60°), the batwing across it. The two
+/// tables are one distribution turned by 90°, with the same flux; the EULUMDAT
+/// luminaire's own 1520 × 80 mm lies the same way as its opening.
+#[test]
+fn a_linear_luminaires_length_lies_along_its_cosine_like_plane_in_both_formats() {
+    let (ies, ldt) = (read("linear.ies"), read("linear.ldt"));
+    assert_eq!(
+        ies.opening,
+        Opening::Rectangle {
+            along_c0: 1.5,
+            along_c90: 0.06
+        }
+    );
+    assert_eq!(
+        ldt.opening,
+        Opening::Rectangle {
+            along_c0: 0.06,
+            along_c90: 1.5
+        }
+    );
+    assert_eq!(
+        ldt.luminaire,
+        Some((
+            Opening::Rectangle {
+                along_c0: 0.08,
+                along_c90: 1.52
+            },
+            0.05
+        ))
+    );
+    let i0 = 3000.0 / (PI * 1.375);
+    let cosine_like = |p: &Photometry, c: f64| (p.intensity(c, 60.0) - i0 * 0.5).abs() < 1e-3 * i0;
+    assert!(cosine_like(&ies, 0.0) && !cosine_like(&ies, 90.0));
+    assert!(cosine_like(&ldt, 90.0) && !cosine_like(&ldt, 0.0));
+    for c in [0.0, 15.0, 40.0, 90.0, 135.0, 200.0, 300.0] {
+        for g in [0.0, 25.0, 60.0, 85.0] {
+            let (a, b) = (ies.intensity(c, g), ldt.intensity((c + 90.0) % 360.0, g));
+            assert!((a - b).abs() < 1e-3 * i0, "C{c} γ{g}: {a} vs {b}");
+        }
+    }
+    assert!(rel(ies.flux(), ldt.flux()) < 1e-3);
+    assert!(rel(ies.flux(), 3000.0) < 0.01, "{}", ies.flux());
+    assert!(ies.warnings.is_empty() && ldt.warnings.is_empty());
+}
+
+/// LM-63-2019 codes the opening's shape by the signs of its width, length and height;
+/// each reads as the flat section invlight emits from, its height kept for its
+/// projected area, and a body (cylinder, sphere) is warned of.
+#[test]
+fn lm63_2019_shapes_by_the_signs_of_their_dimensions() {
+    let with = |w: &str, l: &str, h: &str| {
+        let text = GOOD_IES
+            .replace("IESNA:LM-63-2002", "IES:LM-63-2019")
+            .replace("1 1 2 0 0 0\n", &format!("1 1 2 {w} {l} {h}\n"));
+        parse_ies(text.as_bytes(), Path::new("shape.ies")).unwrap()
+    };
+    let rect = |along_c0, along_c90| Opening::Rectangle {
+        along_c0,
+        along_c90,
+    };
+    for (w, l, h, opening, height, warning) in [
+        ("0", "0", "0", Opening::Point, 0.0, ""),
+        ("0.1", "0.5", "0", rect(0.5, 0.1), 0.0, ""),
+        ("0.1", "0.5", "0.04", rect(0.5, 0.1), 0.04, ""),
+        (
+            "-0.2",
+            "-0.2",
+            "0",
+            Opening::Disk { diameter: 0.2 },
+            0.0,
+            "",
+        ),
+        (
+            "-0.1",
+            "-0.3",
+            "0",
+            Opening::Ellipse {
+                along_c0: 0.3,
+                along_c90: 0.1,
+            },
+            0.0,
+            "",
+        ),
+        (
+            "-0.2",
+            "-0.2",
+            "0.3",
+            Opening::Disk { diameter: 0.2 },
+            0.3,
+            "",
+        ),
+        (
+            "-0.2",
+            "-0.2",
+            "-0.2",
+            Opening::Disk { diameter: 0.2 },
+            0.2,
+            "a sphere",
+        ),
+        (
+            "-0.05",
+            "1.2",
+            "-0.05",
+            rect(1.2, 0.05),
+            0.05,
+            "1200 mm long along C0–C180",
+        ),
+        (
+            "1.2",
+            "-0.05",
+            "-0.05",
+            rect(0.05, 1.2),
+            0.05,
+            "1200 mm long along C90–C270",
+        ),
+        ("-0.2", "0", "-0.2", Opening::Point, 0.2, "from its centre"),
+    ] {
+        let p = with(w, l, h);
+        assert_eq!(p.opening, opening, "{w} {l} {h}");
+        assert!((p.opening_height - height).abs() < 1e-6, "{w} {l} {h}");
+        match warning {
+            "" => assert!(p.warnings.is_empty(), "{w} {l} {h}: {:?}", p.warnings),
+            _ => assert!(
+                p.warnings.iter().any(|m| m.contains(warning)),
+                "{w} {l} {h}: {:?}",
+                p.warnings
+            ),
+        }
+    }
+}
+
+/// The second number on LM-63's ballast line was the ballast-lamp photometric factor
+/// until LM-63-1995 and is "future use" from LM-63-2002 (the file generation type in
+/// 2019): the older editions multiply the table by it, the newer do not.
+#[test]
+fn the_ballast_lamp_factor_applies_before_2002_only() {
+    let with = |header: &str| {
+        let text = GOOD_IES
+            .replace("IESNA:LM-63-2002", header)
+            .replace("\n1 1 10\n", "\n1 2 10\n");
+        parse_ies(text.as_bytes(), Path::new("factor.ies")).unwrap()
+    };
+    for (header, factor) in [
+        ("IESNA:LM-63-1995", 2.0),
+        ("IESNA91", 2.0),
+        ("IESNA:LM-63-2002", 1.0),
+        ("IES:LM-63-2019", 1.0),
+    ] {
+        let p = with(header);
+        assert_eq!(p.intensity(0.0, 0.0), 100.0 * factor, "{header}");
+    }
 }

@@ -182,6 +182,25 @@ ldt("wallwasher.ldt", "Lumen & Co.", 2, frange(0, 345, 15), frange(0, 180, 5),
     luminaire="Recessed LED wall washer", number="WW-LED-30", lamp_type="LED", watts=14.0,
     dims=(130, 130, 80), area=(120, 120))
 
+# 4e. A linear luminaire 1500 × 60 mm, the same one written in both formats, whose
+# along-the-lamp plane is unmistakable: cosine-like along its axis, batwing across it.
+# With C' the plane angle from the luminaire axis:
+# I = I0·cos γ·(1 + 1.5 sin²γ sin²C'), Φ = π·I0·(1 + 1.5/4) = 3000 lm.
+# IES LM-63 lays the length along 0°–180° (C' = C); EULUMDAT along C90–C270
+# (C' = C − 90°, sin²C' = cos²C).
+i_ln = 3000.0 / (math.pi * 1.375)
+ln = lambda cp, g: (i_ln * cos_d(g) * (1.0 + 1.5 * sin_d(g) ** 2 * sin_d(cp) ** 2)
+                    if g <= 90 else 0.0)
+ies("linear.ies", "IESNA:LM-63-2002",
+    ["[TEST] LT-2026-1500", "[MANUFAC] Lumen & Co.", "[LUMCAT] LN-1500",
+     "[LUMINAIRE] Linear LED luminaire 1500 mm, batwing across the lamp",
+     "[LAMP] LED, absolute photometry", "[_ANALYTIC_FLUX] 3000"],
+    frange(0, 90, 15), frange(0, 90, 5), ln, lumens=-1.0, width=0.06, length=1.5, watts=25.0)
+ldt("linear.ldt", "Lumen & Co.", 4, frange(0, 345, 15), frange(0, 180, 5),
+    lambda c, g: ln(c - 90.0, g) * 1000.0 / 3000.0, 3000.0, 1.0, ityp=2,
+    luminaire="Linear LED luminaire 1500 mm", number="LN-1500", lamp_type="LED", watts=25.0,
+    dims=(1520, 80, 50), area=(1500, 60))
+
 # 4d. Type B floodlight, 250 W metal halide (20000 lm), tilt data included:
 # I = I0·cos⁶V·cos³H over V, H in ±90°, dω = cos H dH dV: Φ = I0·(5π/16)·(3π/8) = 14000 lm.
 i_fl = 14000.0 / ((5.0 * math.pi / 16.0) * (3.0 * math.pi / 8.0))

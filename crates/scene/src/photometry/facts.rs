@@ -50,13 +50,17 @@ pub struct LuminaireFacts {
     pub downward_fraction: f64,
     /// The luminous opening in words, with its axes in the luminaire's frame.
     pub opening: String,
-    /// The luminous opening's length (along C0–C180) and width (along C90–C270), m;
-    /// a disk's diameter twice; zeros for a point.
+    /// The luminous opening's extents along C0–C180 (local X) and C90–C270 (local Y),
+    /// m; a disk's diameter twice; zeros for a point.
     pub opening_size: [f64; 2],
     /// The luminous opening's height (its sides), m.
     pub opening_height: f64,
-    /// The luminaire's length, width and height, m, when the file gives them.
+    /// The luminaire's extents along C0–C180 and C90–C270 and its height, m, when the
+    /// file gives them.
     pub luminaire_size: Option<[f64; 3]>,
+    /// The luminaire in words, as `opening`, when the file gives its size.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub luminaire: Option<String>,
 }
 
 /// Steps of the quadratures over the sphere (polar, azimuthal): 0.25° × 1°, where the
@@ -104,13 +108,15 @@ impl LuminaireFacts {
             ],
             downward_fraction: if total > 0.0 { down / total } else { 0.0 },
             opening: opening_words(&p.opening),
-            opening_size: match p.opening {
-                Opening::Point => [0.0; 2],
-                Opening::Rectangle { length, width } => [metres(length), metres(width)],
-                Opening::Disk { diameter } => [metres(diameter); 2],
-            },
+            opening_size: p.opening.extents().map(metres),
             opening_height: metres(p.opening_height),
-            luminaire_size: p.luminaire_size.map(|s| s.map(metres)),
+            luminaire_size: p.luminaire.map(|(o, h)| {
+                let [a, b] = o.extents();
+                [a, b, h].map(metres)
+            }),
+            luminaire: p
+                .luminaire
+                .map(|(o, h)| format!("{}, {:.0} mm high", opening_words(&o), 1000.0 * h)),
         }
     }
 
@@ -151,16 +157,7 @@ fn product(p: &Photometry) -> Option<String> {
 /// The opening and its axes in the luminaire's frame (C0 is local +X, C90 local +Y,
 /// the photometric zero local −Z: see the module `photometry`).
 fn opening_words(o: &Opening) -> String {
-    let mm = |m: f32| format!("{:.0}", 1000.0 * m);
-    match *o {
-        Opening::Point => "a point (no luminous dimensions)".to_string(),
-        Opening::Rectangle { length, width } => format!(
-            "{} × {} mm, length along C0–C180 (local X), width along C90–C270 (local Y)",
-            mm(length),
-            mm(width)
-        ),
-        Opening::Disk { diameter } => format!("a disk of {} mm", mm(diameter)),
-    }
+    o.words(|k| ["C0–C180 (local X)", "C90–C270 (local Y)"][k].to_string())
 }
 
 /// The flux within each polar angle of `limits` (degrees from nadir, increasing), lm:

@@ -231,7 +231,8 @@ pub(crate) fn parse_ies_in(
     )
     .map_err(|m| LoadError::at(path, format!("lines {c_line}–"), m))?;
 
-    let (opening, shape_warning) = opening(width as f32, length as f32);
+    let (opening, opening_height, shape_warning) =
+        opening(width as f32, length as f32, height as f32);
     warnings.extend(shape_warning);
     let mut p = Photometry {
         file: file_name(path),
@@ -245,8 +246,8 @@ pub(crate) fn parse_ies_in(
         watts: (watts > 0.0).then_some(watts),
         ballast_factor: ballast,
         opening,
-        opening_height: height.abs() as f32,
-        luminaire_size: None,
+        opening_height,
+        luminaire: None,
         tilt,
         warnings,
         table,
@@ -271,21 +272,75 @@ fn read_tilt(numbers: &mut Numbers<'_>) -> Result<Tilt, LoadError> {
     })
 }
 
-/// The luminous opening of LM-63-2002 §5.11: zero width and length a point, both
-/// positive a rectangle, both negative and equal a disk. Other shapes of LM-63-2019
-/// (ellipses, cylinders, spheres) emit from their centre, with a warning.
-pub(super) fn opening(width: f32, length: f32) -> (Opening, Option<String>) {
-    if width == 0.0 && length == 0.0 {
-        (Opening::Point, None)
-    } else if width >= 0.0 && length >= 0.0 {
-        (Opening::Rectangle { length, width }, None)
-    } else if width < 0.0 && (width - length).abs() <= 1e-3 * width.abs() {
-        (Opening::Disk { diameter: -width }, None)
+/// The luminous opening of an IES file from its width, length and height, m, with the
+/// height its sides or body count with, and a warning when invlight models it
+/// approximately.
+///
+/// LM-63-2002 §5.11 lays the length along the 0°–180° photometric plane and the width
+/// along 90°–270° (Radiance's `ies2rad` places them so, and a linear luminaire's
+/// cosine-like, along-the-lamp plane is 0° in IES files): here `along_c0` is the
+/// length. Zero width and length are a point; both positive a rectangle, a positive
+/// height its luminous sides. LM-63-2019 codes other shapes by negative dimensions:
+/// width and length negative an ellipse (a disk when equal) and with a height a
+/// vertical cylinder (positive: its base and luminous sides, as a rectangle's) or a
+/// spheroid (negative); one of them positive with a negative height a horizontal
+/// cylinder, its positive dimension its length. A spheroid or horizontal cylinder
+/// emits from its horizontal section, its height counted in its projected area, and is
+/// warned of; shapes with a zero dimension (vertical circles) emit from their centre.
+pub(super) fn opening(width: f32, length: f32, height: f32) -> (Opening, f32, Option<String>) {
+    let mm = |m: f32| format!("{:.0}", 1000.0 * m.abs());
+    let body = |shape: String| {
+        Some(format!(
+            "the luminous opening is {shape} (LM-63-2019): it emits from its horizontal section, its height counted in its projected area"
+        ))
+    };
+    let (w, l, h) = (width, length, height);
+    if w == 0.0 && l == 0.0 {
+        (Opening::Point, h.abs(), None)
+    } else if w > 0.0 && l > 0.0 && h >= 0.0 {
+        let rectangle = Opening::Rectangle {
+            along_c0: l,
+            along_c90: w,
+        };
+        (rectangle, h, None)
+    } else if w < 0.0 && l < 0.0 {
+        let section = if (w - l).abs() <= 1e-3 * w.abs() {
+            Opening::Disk { diameter: -w }
+        } else {
+            Opening::Ellipse {
+                along_c0: -l,
+                along_c90: -w,
+            }
+        };
+        // A vertical cylinder (a positive height) is its base and its sides, as a
+        // rectangle with luminous sides.
+        let shape =
+            (h < 0.0).then(|| format!("a sphere or spheroid {} × {} × {} mm", mm(l), mm(w), mm(h)));
+        let shape = shape.and_then(body);
+        (section, h.abs(), shape)
+    } else if h < 0.0 && w != 0.0 && l != 0.0 && (w < 0.0) != (l < 0.0) {
+        // One of width and length is negative: a horizontal cylinder along the other.
+        let (long, along) = if l > 0.0 {
+            (l, "C0–C180")
+        } else {
+            (w, "C90–C270")
+        };
+        let section = Opening::Rectangle {
+            along_c0: l.abs(),
+            along_c90: w.abs(),
+        };
+        let shape = format!(
+            "a horizontal cylinder {} mm long along {along}, Ø {} mm",
+            mm(long),
+            mm(h)
+        );
+        (section, h.abs(), body(shape))
     } else {
         (
             Opening::Point,
+            h.abs(),
             Some(format!(
-                "the luminous opening (width {width} m, length {length} m) is not a rectangle or a disk: it emits from its centre"
+                "the luminous opening (width {width} m, length {length} m, height {height} m) is not one invlight models: it emits from its centre"
             )),
         )
     }

@@ -6,7 +6,8 @@
 //! both), 4 number of C-planes Mc, 5 their spacing Dc, 6 number of γ angles Ng, 7
 //! their spacing Dg, 8 report number, 9 luminaire name, 10 luminaire number, 11 file
 //! name, 12 date/user, 13–15 luminaire length (or diameter), width (0: round), height
-//! in mm, 16–17 luminous area length (or diameter) and width (0: round) in mm, 18–21
+//! in mm, 16–17 luminous area length (or diameter) and width (0: round) in mm — the
+//! lengths along C90–C270, the widths along C0–C180 ([`luminous_area`]), 18–21
 //! luminous area heights at C0, C90, C180, C270, 22 downward flux fraction %, 23 light
 //! output ratio %, 24 conversion factor of the intensities, 25 tilt during measurement,
 //! 26 number n of lamp sets, then per set: number of lamps, lamp type, total luminous
@@ -22,7 +23,7 @@
 //! lamp flux × the light output ratio. A blank line where a number stands reads as 0, as
 //! exporters leave fields they do not fill (the tilt, the direct ratios) empty.
 
-use super::ies::{file_name, opening};
+use super::ies::file_name;
 use super::symmetry::{Symmetry, expand_c};
 use super::text::{Numbers, increasing, latin1};
 use super::{Opening, PhotometricSystem, Photometry, PhotometryFormat, Table};
@@ -61,12 +62,14 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     ] {
         keywords.push((key.to_string(), r.text()?.to_string()));
     }
-    let size = [
+    let [l, w, h] = [
         r.number("the luminaire length or diameter (mm)")?,
         r.number("the luminaire width (mm)")?,
         r.number("the luminaire height (mm)")?,
     ]
     .map(|mm| (mm * 1e-3) as f32);
+    // The luminaire's outline lies as its luminous area does.
+    let luminaire = luminous_area(l, w).0;
     let length = r.number("the luminous area length or diameter (mm)")? * 1e-3;
     let width = r.number("the luminous area width (mm)")? * 1e-3;
     let mut heights = [0.0f64; 4];
@@ -195,16 +198,7 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         r.err_at(i_line, m)
             .with_hint(format!("checked against Isym on line {isym_line}"))
     })?;
-    let (opening, shape) = if width == 0.0 && length > 0.0 {
-        (
-            Opening::Disk {
-                diameter: length as f32,
-            },
-            None,
-        )
-    } else {
-        opening(width as f32, length as f32)
-    };
+    let (opening, shape) = luminous_area(length as f32, width as f32);
     warnings.extend(shape);
     let mut p = Photometry {
         file: file_name(path),
@@ -219,7 +213,7 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         ballast_factor: 1.0,
         opening,
         opening_height: heights.iter().copied().fold(0.0, f64::max) as f32,
-        luminaire_size: Some(size),
+        luminaire: Some((luminaire, h)).filter(|(o, _)| *o != Opening::Point),
         tilt: None,
         warnings,
         table,
@@ -277,5 +271,36 @@ impl Lines<'_> {
                 .with_hint(FORMAT_HINT));
         }
         Ok(x as i64)
+    }
+}
+
+/// The luminous area of an EULUMDAT file from its length (or diameter) and width, m: a
+/// disk when the width is 0, else a rectangle whose length lies along C90–C270.
+///
+/// EULUMDAT's C0–C180 plane is the one across a linear luminaire and C90–C270 the one
+/// along it (DIALux's support article on the luminous intensity distribution names the
+/// C0/C180 plane transverse to the luminaire axis and C90/C270 along it), the opposite
+/// of IES LM-63, which lays the length along 0°–180°. Manufacturers' files agree: a
+/// linear luminaire's batwing (across-the-lamp) curve is its C0 plane and its
+/// cosine-like (along-the-lamp) curve its C90 plane, and an exit sign that shines toward
+/// C0 and C180 can only have its 232 mm length along C90.
+fn luminous_area(length: f32, width: f32) -> (Opening, Option<String>) {
+    if length == 0.0 && width == 0.0 {
+        (Opening::Point, None)
+    } else if width == 0.0 && length > 0.0 {
+        (Opening::Disk { diameter: length }, None)
+    } else if length > 0.0 && width > 0.0 {
+        let rectangle = Opening::Rectangle {
+            along_c0: width,
+            along_c90: length,
+        };
+        (rectangle, None)
+    } else {
+        (
+            Opening::Point,
+            Some(format!(
+                "the luminous area (length {length} m, width {width} m) is not a rectangle or a disk: it emits from its centre"
+            )),
+        )
     }
 }

@@ -90,23 +90,33 @@ pub enum PhotometricSystem {
 }
 
 /// The luminous opening a luminaire emits from, in metres, lying in the local X/Y plane
-/// and facing the photometric zero (−Z).
+/// and facing the photometric zero (−Z). Its sides are named by the C-planes they lie
+/// in, not "length" and "width": the two formats lay a luminaire's length along
+/// different planes (IES LM-63 along C0–C180, EULUMDAT along C90–C270; the readers'
+/// docs give the sources).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Opening {
     /// A point source (dimensions zero).
     Point,
-    /// A rectangle: `length` along C0–C180 (local X), `width` along C90–C270 (local Y),
-    /// as Radiance's `ies2rad` places them.
+    /// A rectangle `along_c0` × `along_c90`.
     Rectangle {
-        /// Along local X, m.
-        length: f32,
-        /// Along local Y, m.
-        width: f32,
+        /// Its side along C0–C180 (local X), m.
+        along_c0: f32,
+        /// Its side along C90–C270 (local Y), m.
+        along_c90: f32,
     },
     /// A disk of `diameter` m.
     Disk {
         /// Diameter, m.
         diameter: f32,
+    },
+    /// An ellipse with axes `along_c0` and `along_c90` (LM-63-2019's elliptical
+    /// opening).
+    Ellipse {
+        /// Its axis along C0–C180 (local X), m.
+        along_c0: f32,
+        /// Its axis along C90–C270 (local Y), m.
+        along_c90: f32,
     },
 }
 
@@ -115,25 +125,78 @@ impl Opening {
     /// uniform by area: the centre for a point source.
     #[inline]
     pub fn point(&self, u1: f32, u2: f32) -> Vec3 {
+        let ellipse = |a: f32, b: f32| {
+            let r = 0.5 * u1.sqrt();
+            let phi = std::f32::consts::TAU * u2;
+            Vec3::new(a * r * phi.cos(), b * r * phi.sin(), 0.0)
+        };
         match *self {
             Opening::Point => Vec3::ZERO,
-            Opening::Rectangle { length, width } => {
-                Vec3::new((u1 - 0.5) * length, (u2 - 0.5) * width, 0.0)
-            }
-            Opening::Disk { diameter } => {
-                let r = 0.5 * diameter * u1.sqrt();
-                let phi = std::f32::consts::TAU * u2;
-                Vec3::new(r * phi.cos(), r * phi.sin(), 0.0)
-            }
+            Opening::Rectangle {
+                along_c0,
+                along_c90,
+            } => Vec3::new((u1 - 0.5) * along_c0, (u2 - 0.5) * along_c90, 0.0),
+            Opening::Disk { diameter } => ellipse(diameter, diameter),
+            Opening::Ellipse {
+                along_c0,
+                along_c90,
+            } => ellipse(along_c0, along_c90),
         }
     }
 
     /// Area, m² (0 for a point).
     pub fn area(&self) -> f32 {
+        use std::f32::consts::FRAC_PI_4;
         match *self {
             Opening::Point => 0.0,
-            Opening::Rectangle { length, width } => length * width,
-            Opening::Disk { diameter } => std::f32::consts::FRAC_PI_4 * diameter * diameter,
+            Opening::Rectangle {
+                along_c0,
+                along_c90,
+            } => along_c0 * along_c90,
+            Opening::Disk { diameter } => FRAC_PI_4 * diameter * diameter,
+            Opening::Ellipse {
+                along_c0,
+                along_c90,
+            } => FRAC_PI_4 * along_c0 * along_c90,
+        }
+    }
+
+    /// Its extents along local X (C0–C180) and local Y (C90–C270), m; zeros for a
+    /// point.
+    pub fn extents(&self) -> [f32; 2] {
+        match *self {
+            Opening::Point => [0.0; 2],
+            Opening::Rectangle {
+                along_c0,
+                along_c90,
+            }
+            | Opening::Ellipse {
+                along_c0,
+                along_c90,
+            } => [along_c0, along_c90],
+            Opening::Disk { diameter } => [diameter; 2],
+        }
+    }
+
+    /// The opening in words, in mm, with the axis its length (the longer side) lies
+    /// along, named by `axis` from 0 (local X, C0–C180) or 1 (local Y, C90–C270):
+    /// "1500 × 60 mm, length along C90–C270".
+    pub fn words(&self, axis: impl Fn(usize) -> String) -> String {
+        let mm = |m: f32| format!("{:.0}", 1000.0 * m);
+        let sides = |[a, b]: [f32; 2]| {
+            let (long, short, k) = if b > a { (b, a, 1) } else { (a, b, 0) };
+            let size = format!("{} × {} mm", mm(long), mm(short));
+            if mm(long) == mm(short) {
+                size
+            } else {
+                format!("{size}, length along {}", axis(k))
+            }
+        };
+        match *self {
+            Opening::Point => "a point (no luminous dimensions)".to_string(),
+            Opening::Rectangle { .. } => sides(self.extents()),
+            Opening::Ellipse { .. } => format!("an ellipse {}", sides(self.extents())),
+            Opening::Disk { diameter } => format!("a disk Ø {} mm", mm(diameter)),
         }
     }
 }
@@ -214,11 +277,14 @@ pub struct Photometry {
     pub ballast_factor: f64,
     /// The luminous opening.
     pub opening: Opening,
-    /// Height of the luminous opening, m (kept, not emitted from: the opening is flat).
+    /// Height of the luminous opening, m: its luminous sides, or a body's height (a
+    /// cylinder's, a sphere's); light is emitted from the flat opening, the height
+    /// counts in its projected area (its luminance, for glare).
     pub opening_height: f32,
-    /// The luminaire's length (along C0–C180), width and height, m, when the file gives
-    /// them (EULUMDAT; an IES file gives only its luminous opening).
-    pub luminaire_size: Option<[f32; 3]>,
+    /// The luminaire's outline in the local X/Y plane (a rectangle, or a disk for a
+    /// round one) and its height, m, when the file gives them (EULUMDAT; an IES file
+    /// gives only its luminous opening).
+    pub luminaire: Option<(Opening, f32)>,
     /// IES tilt data; not applied to the table (it depends on how the luminaire is
     /// installed: [`crate::Scene::set_photometry`] applies it).
     pub tilt: Option<Tilt>,
@@ -295,7 +361,7 @@ impl Photometry {
             ballast_factor: 1.0,
             opening: Opening::Point,
             opening_height: 0.0,
-            luminaire_size: None,
+            luminaire: None,
             tilt: None,
             warnings: Vec::new(),
             table: Table::new(system, horizontal, vertical, candela)?,
