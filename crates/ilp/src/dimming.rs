@@ -20,7 +20,9 @@
 //! The estimates are noisy and a constraint holds only at the run's confidence
 //! (mean − z·σ above its bound), so each bound is moved by a margin z·σ before the
 //! program is solved, σ that of the quantity at the levels found before (three rounds
-//! from full output settle it to a fraction of a per cent). The margins are those of
+//! from full output settle it to a fraction of a per cent); a constraint the levels
+//! found still leave within z·σ of its bound has its margin raised by the shortfall
+//! and the program is solved again. The margins are those of
 //! the evaluation's own photons, so that it decides its constraints: a look with few
 //! photons asks for more light than a full evaluation would, and so for more power,
 //! which makes it look no better than it is. When no levels meet a look's margins, the
@@ -74,6 +76,10 @@ const ROUNDS: usize = 3;
 /// undecided.
 const MARGIN_FACTOR: f64 = 1.02;
 
+/// Rounds at most that raise the margins of constraints the levels found leave
+/// undecided; one or two settle them.
+const SETTLING_ROUNDS: usize = 4;
+
 impl LevelSolver {
     /// The component weights of `levels` (1 for the components no dimmer holds).
     pub fn weights(&self, levels: &[f64]) -> Vec<f64> {
@@ -99,7 +105,7 @@ impl LevelSolver {
             (m.photons as f64 / full as f64).sqrt()
         };
         for scale in [1.0, full_scale, 0.0] {
-            if let Some(levels) = self.with_margins(&rows, reading, m, &most, scale) {
+            if let Some(levels) = self.with_margins(&rows, (reading, bounds), m, &most, scale) {
                 return Levels {
                     levels,
                     feasible: true,
@@ -167,17 +173,21 @@ impl LevelSolver {
 
     /// The least-power levels with every bound moved inward by `scale` times its
     /// margin z·σ, σ at the levels of the round before (from `most`); `None` when no
-    /// levels in range meet them.
+    /// levels in range meet them. The rounds are then checked: a constraint still
+    /// within `scale`·z·σ of its bound at the levels found (its σ there larger than
+    /// the one its margin came from, or the grid's least cell another than the rows
+    /// foresaw) has its margin raised by the shortfall and the program solved again,
+    /// so that a full evaluation decides what its levels were chosen to meet.
     fn with_margins(
         &self,
         rows: &Rows,
-        reading: &Reading,
+        (reading, bounds): (&Reading, &[Bound]),
         m: &Measurement,
         most: &[f64],
         scale: f64,
     ) -> Option<Vec<f64>> {
         let mut levels = most.to_vec();
-        let mut found = false;
+        let mut found = None;
         for _ in 0..ROUNDS {
             let e = reading.read(m, &self.weights(&levels), 0.0);
             let margins: Vec<f64> = e
@@ -188,7 +198,7 @@ impl LevelSolver {
             match self.program(rows, &margins) {
                 Some(y) => {
                     levels = y;
-                    found = true;
+                    found = Some(margins);
                 }
                 // The margins of the last levels found are too much for these: keep
                 // those, which met theirs.
@@ -198,7 +208,39 @@ impl LevelSolver {
                 break;
             }
         }
-        found.then_some(levels)
+        let mut margins = found?;
+        if scale == 0.0 {
+            return Some(levels);
+        }
+        let held: Vec<bool> = (0..bounds.len())
+            .map(|i| rows.0.iter().any(|r| r.constraint == i))
+            .collect();
+        for _ in 0..SETTLING_ROUNDS {
+            let e = reading.read(m, &self.weights(&levels), 0.0);
+            let mut raised = margins.clone();
+            for (i, (c, b)) in e.constraints.iter().zip(bounds).enumerate() {
+                let need = self.z * c.std_error * scale;
+                let slack = if b.is_lower() {
+                    c.mean - b.limit()
+                } else {
+                    b.limit() - c.mean
+                };
+                if held[i] && slack < need {
+                    raised[i] += MARGIN_FACTOR * (need - slack) + 1e-9 * b.limit().abs();
+                }
+            }
+            if raised == margins {
+                break;
+            }
+            match self.program(rows, &raised) {
+                Some(y) => {
+                    levels = y;
+                    margins = raised;
+                }
+                None => break,
+            }
+        }
+        Some(levels)
     }
 
     /// The least-power levels with each constraint's bound moved inward by its margin,

@@ -574,8 +574,10 @@ impl Space {
     /// ([`Space::with_exchangeable`]), as a designer lays luminaires out first: for a
     /// group of m members, every r × c = m, members in rows along the parallelogram's
     /// second edge and columns along its first, each row and column spaced evenly with
-    /// the outer ones `f` of a spacing from the edges, for f in `WALL_FRACTIONS`
-    /// (½ is the usual "half a spacing from the walls"). Every other coordinate is
+    /// the outer columns `f` of a spacing from their edges and the outer rows `g`,
+    /// for every f and g in `WALL_FRACTIONS` (½ is the usual "half a spacing from the
+    /// walls"; the least power of a long room often keeps its rows nearer a spacing
+    /// from the long walls than its columns from the short ones). Every other coordinate is
     /// `x`'s. The configurations are snapped to their cells and distinct; the search
     /// starts from them as well as from `x`, so a regular layout is always among what
     /// it compares. A `<lightArray>` variable ([`Domain::Array`]) starts from every
@@ -608,13 +610,17 @@ impl Space {
             }
             for columns in (1..=m).filter(|c| m % c == 0) {
                 let rows = m / columns;
-                for f in WALL_FRACTIONS {
-                    let at = |i: usize, n: usize| (i as f64 + f) / (n as f64 - 1.0 + 2.0 * f);
+                let fractions = WALL_FRACTIONS
+                    .iter()
+                    .flat_map(|&a| WALL_FRACTIONS.iter().map(move |&b| (a, b)));
+                for (fc, fr) in fractions {
+                    let at =
+                        |i: usize, n: usize, f: f64| (i as f64 + f) / (n as f64 - 1.0 + 2.0 * f);
                     let mut config = x.clone();
                     for (k, member) in group.iter().enumerate() {
                         let c = self.slice_mut(&mut config, member[0]);
-                        c[0] = at(k % columns, columns);
-                        c[1] = at(k / columns, rows);
+                        c[0] = at(k % columns, columns, fc);
+                        c[1] = at(k / columns, rows, fr);
                     }
                     let config = self.snap(&config);
                     if out.iter().all(|o| self.cell(o) != self.cell(&config)) {
@@ -800,11 +806,13 @@ mod tests {
             coords: vec![0.5; 12],
         };
         let arrays = space.regular_arrays(&x);
-        // 1 × 6, 2 × 3, 3 × 2 and 6 × 1, each at three distances from the edges.
-        assert_eq!(arrays.len(), 12);
+        // 1 × 6 and 6 × 1 at three distances of the rows (or columns) from the
+        // edges, a single one always in the middle; 2 × 3 and 3 × 2 at three of the
+        // columns times three of the rows.
+        assert_eq!(arrays.len(), 3 + 9 + 9 + 3);
         // Two rows of three, half a spacing from the edges: columns at 1, 3 and 5 m
         // and rows at 1.5 and 4.5 m, each snapped to its cell (0.1 m).
-        let mut points: Vec<(f64, f64)> = arrays[6]
+        let mut points: Vec<(f64, f64)> = arrays[3 + 9]
             .coords
             .chunks(2)
             .map(|c| (6.0 * c[0], 6.0 * c[1]))

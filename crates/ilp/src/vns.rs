@@ -1071,7 +1071,12 @@ impl<'s> Search<'s> {
     /// The structured starts not evaluated yet, each as a candidate of its own
     /// iteration (a regular array of the interchangeable lamps, [`Space::regular_arrays`]):
     /// a designer's first layout is among the configurations the walk compares, and it
-    /// starts from the best of them. `false` when the observer asked to stop.
+    /// starts from the best of them. Each is evaluated at once with the decisive
+    /// count, without the looks before it: a look of few photons reads a uniformity
+    /// low (the least of noisy cells is biased down), its least-power levels then ask
+    /// for more light than the array needs, and the start would lose to the incumbent
+    /// on a power it would not draw. The starts are few, so this costs little.
+    /// `false` when the observer asked to stop.
     fn structured_starts<E: Evaluate, O: Observer>(
         &mut self,
         eval: &mut E,
@@ -1091,7 +1096,15 @@ impl<'s> Search<'s> {
             if !self.fresh((iteration, &config, &cell), eval, observer) {
                 continue;
             }
-            self.candidate((iteration, config, cell), 0.0, eval, observer)?;
+            let (_, decisive) = self.schedule(eval);
+            self.candidate_after(
+                &[],
+                decisive,
+                (iteration, config, cell),
+                0.0,
+                eval,
+                observer,
+            )?;
         }
         Ok(true)
     }
@@ -1129,16 +1142,30 @@ impl<'s> Search<'s> {
     /// others, [`Evaluate::prepare`]), counted in that evaluation's seconds.
     fn candidate<E: Evaluate, O: Observer>(
         &mut self,
+        at: (u64, Configuration, Cell),
+        lead: f64,
+        eval: &mut E,
+        observer: &mut O,
+    ) -> Result<Verdict, SearchError<E::Error>> {
+        let (looks, photons) = self.schedule(eval);
+        self.candidate_after(&looks, photons, at, lead, eval, observer)
+    }
+
+    /// A candidate judged at each of `looks` in turn, then, when none decided it, with
+    /// `photons` ([`Search::candidate`]).
+    fn candidate_after<E: Evaluate, O: Observer>(
+        &mut self,
+        looks: &[u64],
+        photons: u64,
         (iteration, config, cell): (u64, Configuration, Cell),
         mut lead: f64,
         eval: &mut E,
         observer: &mut O,
     ) -> Result<Verdict, SearchError<E::Error>> {
         let (fast_n, full) = self.settings.sample_counts(eval);
-        let (looks, photons) = self.schedule(eval);
         let z_early = early_look_z(self.settings.confidence, looks.len());
         let sequential = self.settings.strategy.paired();
-        for look in looks {
+        for &look in looks {
             let (fast, seconds) = self.evaluate(eval, &config, look)?;
             let seconds = seconds + std::mem::take(&mut lead);
             // The thesis' one fast look decides at the ISOC's own levels; a sequential
