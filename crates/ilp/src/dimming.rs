@@ -218,18 +218,15 @@ impl LevelSolver {
         for _ in 0..SETTLING_ROUNDS {
             let e = reading.read(m, &self.weights(&levels), 0.0);
             let mut raised = margins.clone();
+            let mut short = false;
             for (i, (c, b)) in e.constraints.iter().zip(bounds).enumerate() {
-                let need = self.z * c.std_error * scale;
-                let slack = if b.is_lower() {
-                    c.mean - b.limit()
-                } else {
-                    b.limit() - c.mean
-                };
-                if held[i] && slack < need {
-                    raised[i] += MARGIN_FACTOR * (need - slack) + 1e-9 * b.limit().abs();
+                let (need, inside) = (self.z * c.std_error * scale, b.inside(c.mean));
+                if held[i] && inside < need {
+                    raised[i] += MARGIN_FACTOR * (need - inside) + 1e-9 * b.limit().abs();
+                    short = true;
                 }
             }
-            if raised == margins {
+            if !short {
                 break;
             }
             match self.program(rows, &raised) {

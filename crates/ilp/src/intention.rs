@@ -201,6 +201,16 @@ impl Bound {
         !matches!(self, Bound::MaxLux(_))
     }
 
+    /// How far `value` lies inside the bound, in its unit: value − limit for a lower
+    /// bound, limit − value for an upper one; negative when it is outside.
+    pub fn inside(&self, value: f64) -> f64 {
+        if self.is_lower() {
+            value - self.limit()
+        } else {
+            self.limit() - value
+        }
+    }
+
     /// The grid it is read on, when it is read on one.
     pub fn grid(&self) -> Option<Grid> {
         match *self {

@@ -598,6 +598,8 @@ impl Space {
                 }
             }
         }
+        // Member i of n evenly spaced, the outer ones f of a spacing from the edges.
+        let at = |i: usize, n: usize, f: f64| (i as f64 + f) / (n as f64 - 1.0 + 2.0 * f);
         for group in &self.exchangeable {
             let m = group.len();
             let placed = group.iter().all(|member| {
@@ -614,8 +616,6 @@ impl Space {
                     .iter()
                     .flat_map(|&a| WALL_FRACTIONS.iter().map(move |&b| (a, b)));
                 for (fc, fr) in fractions {
-                    let at =
-                        |i: usize, n: usize, f: f64| (i as f64 + f) / (n as f64 - 1.0 + 2.0 * f);
                     let mut config = x.clone();
                     for (k, member) in group.iter().enumerate() {
                         let c = self.slice_mut(&mut config, member[0]);

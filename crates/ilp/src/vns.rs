@@ -891,13 +891,8 @@ impl<'s> Search<'s> {
             .iter()
             .zip(&e.constraints)
             .map(|(bound, c)| {
-                let limit = bound.limit();
-                let short = if bound.is_lower() {
-                    limit - c.mean
-                } else {
-                    c.mean - limit
-                };
-                (short / limit.abs().max(f64::MIN_POSITIVE)).max(0.0)
+                let short = -bound.inside(c.mean);
+                (short / bound.limit().abs().max(f64::MIN_POSITIVE)).max(0.0)
             })
             .fold(0.0, f64::max)
     }
@@ -1082,6 +1077,7 @@ impl<'s> Search<'s> {
         eval: &mut E,
         observer: &mut O,
     ) -> Result<bool, SearchError<E::Error>> {
+        let (_, decisive) = self.schedule(eval);
         while let Some(config) = self.starts.get(self.iteration as usize - 1).cloned() {
             if observer.should_stop() {
                 return Ok(false);
@@ -1096,7 +1092,6 @@ impl<'s> Search<'s> {
             if !self.fresh((iteration, &config, &cell), eval, observer) {
                 continue;
             }
-            let (_, decisive) = self.schedule(eval);
             self.candidate_after(
                 &[],
                 decisive,

@@ -222,7 +222,7 @@ fn the_levels_found_decide_a_uniformity_they_were_chosen_to_meet() {
     // changes with the levels, so a margin from the levels of the round before can
     // fall short at the levels found (0.6139 ± 0.0088 read once: undecided); whatever
     // the trace, the levels returned must leave every constraint decided
-    // (mean − z·σ ≥ bound) and not much more lit than that.
+    // (mean − z·σ ≥ bound) and the binding one not much more lit than that.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/open-office/problem.xml");
     let pb = Problem::read(&path).unwrap();
     let mut scene = pb
@@ -234,17 +234,16 @@ fn the_levels_found_decide_a_uniformity_they_were_chosen_to_meet() {
         .regular_arrays(&binding.space.snap(&binding.initial))
         .into_iter()
         .filter(|c| {
-            let mut xs: Vec<i64> = (0..6)
-                .map(|k| (binding.space.slice(c, k)[0] * 1e3) as i64)
-                .collect();
-            xs.sort();
+            // Three columns: three distinct first coordinates (snapped, so exact).
+            let mut xs: Vec<f64> = (0..6).map(|k| binding.space.slice(c, k)[0]).collect();
+            xs.sort_by(f64::total_cmp);
             xs.dedup();
             xs.len() == 3
         })
         .collect();
     assert!(arrays.len() >= 4, "3 × 2 arrays: {}", arrays.len());
     let z = pb.confidence.z_one_sided();
-    let mut undecided = Vec::new();
+    let mut off = Vec::new();
     let mut evaluated = 0;
     for seed in 1..=4 {
         let mut eval =
@@ -260,17 +259,24 @@ fn the_levels_found_decide_a_uniformity_they_were_chosen_to_meet() {
                 continue;
             }
             evaluated += 1;
-            for (c, bound) in e.constraints.iter().zip([500.0, 0.6]) {
-                let slack = (c.mean - z * c.std_error - bound) / c.std_error;
-                if !(0.0..1.0).contains(&slack) {
-                    undecided.push((seed, a, bound, c.mean, c.std_error, slack));
-                }
+            let slack: Vec<f64> = e
+                .constraints
+                .iter()
+                .zip([500.0, 0.6])
+                .map(|(c, bound)| (c.mean - z * c.std_error - bound) / c.std_error)
+                .collect();
+            // Every constraint decided, and the one that holds the power down left
+            // just its margin (2 % of z·σ over it, what MARGIN_FACTOR asks): no
+            // more light than the confidence needs.
+            let least = slack.iter().copied().fold(f64::INFINITY, f64::min);
+            if !(0.0..0.2).contains(&least) {
+                off.push((seed, a, slack));
             }
         }
     }
     assert!(evaluated >= 8, "levels that meet the bounds: {evaluated}");
     assert!(
-        undecided.is_empty(),
-        "(seed, array, bound, mean, σ, slack in σ): {undecided:?}"
+        off.is_empty(),
+        "(seed, array, slack of Em and U0 in σ): {off:?}"
     );
 }
