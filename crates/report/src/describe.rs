@@ -124,7 +124,7 @@ pub fn moved(from: &VariableValue, to: &VariableValue) -> String {
             )
         }
         (VariableValue::Array(a), VariableValue::Array(b)) => format!(
-            "set out {} and {} of a spacing from the walls instead of {} and {}",
+            "set out {} and {} of a spacing from the rectangle's edges instead of {} and {}",
             significant(b.walls[0]),
             significant(b.walls[1]),
             significant(a.walls[0]),

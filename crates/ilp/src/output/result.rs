@@ -661,7 +661,7 @@ impl ResultFile {
                         rows,
                         walls,
                     } => format!(
-                        "{id} {rows} × {columns} ({} × {} of a spacing from the walls)",
+                        "{id} {rows} × {columns} ({} × {} of a spacing from the rectangle's edges)",
                         significant(walls[0]),
                         significant(walls[1])
                     ),
