@@ -3041,3 +3041,59 @@ mod datasheet {
         );
     }
 }
+
+/// `map --task` on a workplane judges EN 12464-1's areas around it from the same
+/// photons, each with what it must meet, its bounds and a verdict; `--no-areas` judges
+/// the task area alone.
+#[test]
+fn map_with_a_task_judges_the_areas_around_the_task_area() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/open-office/problem.xml");
+    let prefix = dir.path().join("task");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "map",
+            problem.to_str().unwrap(),
+            "-s",
+            "TaskArea",
+            "--task",
+            "office",
+            "-n",
+            "100000",
+            "-o",
+            prefix.to_str().unwrap(),
+            "--json",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let mapped = json(args(&[]));
+    let areas = mapped["areas"].as_array().expect("areas[]");
+    let kinds: Vec<&str> = areas.iter().map(|a| a["area"].as_str().unwrap()).collect();
+    // The workplane's 0.5 m border leaves the surrounding band up to the walls and no
+    // room for a background.
+    assert_eq!(
+        kinds,
+        [
+            "immediate surrounding",
+            "wall",
+            "wall",
+            "wall",
+            "wall",
+            "ceiling"
+        ]
+    );
+    assert_eq!(f64_of(&areas[0]["required_em"]), 300.0);
+    assert_eq!(f64_of(&areas[5]["required_em"]), 50.0);
+    for a in areas {
+        let (low, em, high) = (
+            f64_of(&a["em_bounds"][0]),
+            f64_of(&a["em"]),
+            f64_of(&a["em_bounds"][1]),
+        );
+        assert!(low < em && em < high && low > 0.0, "{a}");
+        assert!(["meets", "fails", "cannot tell"].contains(&a["verdict"].as_str().unwrap()));
+    }
+    let alone = json(args(&["--no-areas"]));
+    assert!(alone.get("areas").is_none());
+}

@@ -7,8 +7,11 @@ use crate::args::{ReportArgs, SceneArgs, TraceArgs};
 use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, Side};
-use invlight_render::{GridSpacing, MapPlan, MapSettings, illuminance_map};
-use invlight_report::{MapPage, Progress, compliance_text, file_safe};
+use invlight_render::{
+    AreaVerdict, GridSpacing, MapPlan, MapSettings, MapTarget, illuminance_maps_across,
+};
+use invlight_report::{MapPage, Progress, areas_text, compliance_text, file_safe};
+use invlight_scene::{AreaKind, SURROUNDING_BAND};
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -50,6 +53,12 @@ pub struct MapArgs {
     pub report: Option<PathBuf>,
     #[command(flatten)]
     pub require: ReportArgs,
+    /// With --task or --em: judge the task area alone. By default a horizontal task
+    /// area is judged with EN 12464-1's areas around it, measured by the same photons:
+    /// the immediate surrounding (a 0.5 m band in its plane), the background (3 m
+    /// around that, within the room), the four walls and the ceiling.
+    #[arg(long)]
+    pub no_areas: bool,
     /// Print one JSON object (surface, cells, points with mean/low/high, emin, eavg,
     /// emax, u0) instead of a summary.
     #[arg(long)]
@@ -61,16 +70,23 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let trace = args.trace.settings(4_000_000)?;
     let confidence = args.trace.confidence.unwrap_or_default();
     let path = &args.scene.scene;
-    let (scene, problem) = args.scene.load_with_problem()?;
+    let (mut scene, problem) = args.scene.load_with_problem()?;
     let surface = scene.find_surface(path, &args.surface)?;
     crate::warn(scene.reception_warning(surface));
     scene.require_light(path)?;
+    let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
+    let requirement = args.require.requirement(mf)?;
+    let areas = match requirement.as_ref().filter(|_| !args.no_areas) {
+        Some(_) => scene.add_task_areas(path, surface).unwrap_or_else(|e| {
+            crate::warn(Some(format!("{e}; the areas around it are not judged")));
+            Vec::new()
+        }),
+        None => Vec::new(),
+    };
     let pool = args.trace.pool()?;
     let start = Instant::now();
     // Nothing moves: one world-space tree, as `measure` builds.
     let accel = Accel::with_movable(&scene, &[]);
-    let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
-    let requirement = args.require.requirement(mf)?;
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
     let (spacing, side) = as_the_problem_reads(&args, problem.as_ref());
@@ -80,18 +96,51 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
     };
+    let mut targets = vec![MapTarget {
+        surface,
+        spacing,
+        side,
+    }];
+    // A band's grid has at least two cells across it; the others follow the rule.
+    targets.extend(areas.iter().map(|a| MapTarget {
+        surface: a.surface,
+        spacing: match a.kind {
+            AreaKind::Surrounding => GridSpacing::Metres(0.5 * SURROUNDING_BAND as f32),
+            _ => GridSpacing::Auto,
+        },
+        side: Side::Front,
+    }));
     let bar = Progress::photons(trace.photons, "this map");
     let report = |done: u64| bar.set(done);
-    let map = pool
-        .install(|| illuminance_map(&scene, &accel, surface, &settings, Some(&report)))
+    let mut maps = pool
+        .install(|| {
+            illuminance_maps_across(
+                &scene,
+                &accel,
+                &targets,
+                &settings,
+                Some(&report),
+                invlight_photon::cluster(),
+            )
+        })
         .map_err(bad)?;
     bar.finish();
     if !invlight_photon::leads() {
         return Ok(ExitCode::SUCCESS);
     }
+    let map = maps.remove(0);
     crate::warn(map.warning(&args.surface));
     let seconds = start.elapsed().as_secs_f64();
-    let report = map.report(&args.surface, &settings, confidence, seconds);
+    let mut report = map.report(&args.surface, &settings, confidence, seconds);
+    if let Some(r) = &requirement {
+        let measured = areas
+            .iter()
+            .zip(maps)
+            .map(|(a, m)| (a.kind, a.name.clone(), a.size, m))
+            .collect();
+        let judged = AreaVerdict::judge(measured, r, confidence);
+        report.areas = judged.iter().map(AreaVerdict::report).collect();
+    }
 
     let prefix = args
         .output
@@ -117,6 +166,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         let verdict = requirement.as_ref().map_or(String::new(), |r| {
             let confidence = invlight_ilp::Confidence::new(report.confidence).unwrap_or_default();
             compliance_text(&map.compliance(r, confidence))
+                + &areas_text(&report.areas, report.confidence)
         });
         crate::print(&(report.summary() + &verdict + &written))?;
     }

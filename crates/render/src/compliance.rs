@@ -53,55 +53,78 @@ pub struct Task {
     pub em: f64,
     /// Required uniformity U0 = Emin/Ē.
     pub u0: f64,
+    /// Required maintained average illuminance on the walls, lx (U0 ≥ 0.10): 75 lx
+    /// where the standard asks for bright rooms (offices, education), else 50 lx.
+    pub walls_em: f64,
+    /// Required maintained average illuminance on the ceiling, lx (U0 ≥ 0.10): 50 lx
+    /// in those rooms, else 30 lx.
+    pub ceiling_em: f64,
 }
 
 /// A few common tasks of EN 12464-1:2021 (CEN, "Light and lighting — Lighting of work
 /// places — Part 1: Indoor work places", schedule of lighting requirements: offices,
 /// traffic zones inside buildings, educational premises). The values are the required
 /// Ēm and U0 as the standard tabulates them; check them against your copy before
-/// relying on them, and give `--em`/`--u0` for any other task.
+/// relying on them, and give `--em`/`--u0` for any other task. The walls' and the
+/// ceiling's values are those of its clause on the illuminance of walls and ceilings
+/// (2021 §5.2.4; 2011 §4.3.1): Ēm ≥ 50 lx on walls and 30 lx on ceilings, 75 lx and
+/// 50 lx in offices, education and health care, each with U0 ≥ 0.10.
 pub const TASKS: &[Task] = &[
     Task {
         name: "office",
         description: "Offices: writing, typing, reading, data processing",
         em: 500.0,
         u0: 0.60,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
     Task {
         name: "filing",
         description: "Offices: filing, copying",
         em: 300.0,
         u0: 0.40,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
     Task {
         name: "meeting",
         description: "Offices: conference and meeting rooms",
         em: 500.0,
         u0: 0.60,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
     Task {
         name: "drawing",
         description: "Offices: technical drawing",
         em: 750.0,
         u0: 0.70,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
     Task {
         name: "corridor",
         description: "Traffic zones inside buildings: corridors and circulation areas",
         em: 100.0,
         u0: 0.40,
+        walls_em: 50.0,
+        ceiling_em: 30.0,
     },
     Task {
         name: "classroom",
         description: "Educational premises: classrooms, tutorial rooms",
         em: 500.0,
         u0: 0.60,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
     Task {
         name: "board",
         description: "Educational premises: black, green and white boards",
         em: 500.0,
         u0: 0.70,
+        walls_em: 75.0,
+        ceiling_em: 50.0,
     },
 ];
 

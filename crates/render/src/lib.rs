@@ -25,6 +25,7 @@
 //!   embedded DejaVu Sans, coloured by viridis over the data's range ([`ColourScale`]).
 #![deny(missing_docs)]
 
+mod areas;
 mod camera;
 mod chart;
 mod colour_map;
@@ -39,6 +40,9 @@ mod plan;
 mod plot;
 mod tonemap;
 
+pub use areas::{
+    AreaReport, AreaVerdict, ROOM_U0, SURROUNDING_U0, area_requirement, surrounding_em,
+};
 pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
@@ -59,7 +63,7 @@ pub use integrator::{
 };
 pub use map::{
     GridSpacing, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
-    MapSummary, illuminance_map, illuminance_map_across,
+    MapSummary, MapTarget, illuminance_map, illuminance_map_across, illuminance_maps_across,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{

@@ -213,56 +213,102 @@ pub fn illuminance_map_across(
     progress: Option<&(dyn Fn(u64) + Sync)>,
     cluster: &dyn Cluster,
 ) -> Result<IlluminanceMap, MapError> {
-    let grid = settings.spacing.grid(scene, surface)?;
+    let target = MapTarget {
+        surface,
+        spacing: settings.spacing,
+        side: settings.side,
+    };
+    let mut maps = illuminance_maps_across(scene, accel, &[target], settings, progress, cluster)?;
+    Ok(maps.remove(0))
+}
+
+/// A surface to map with its grid and side, one of several measured by one trace.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapTarget {
+    /// The planar surface.
+    pub surface: SurfaceId,
+    /// Its cells' size.
+    pub spacing: GridSpacing,
+    /// The side whose light counts.
+    pub side: Side,
+}
+
+/// The maps of `targets` from one trace with `settings`' photons and estimator (its
+/// spacing and side are the targets' own), in their order: a task area and the areas
+/// around it are measured by the same photons, as one map is.
+pub fn illuminance_maps_across(
+    scene: &Scene,
+    accel: &Accel,
+    targets: &[MapTarget],
+    settings: &MapSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    cluster: &dyn Cluster,
+) -> Result<Vec<IlluminanceMap>, MapError> {
+    let grids = targets
+        .iter()
+        .map(|t| t.spacing.grid(scene, t.surface))
+        .collect::<Result<Vec<_>, _>>()?;
     photons_traced(settings.trace.photons)
         .ok_or(MapError::TooManyPhotons(settings.trace.photons))?;
-    let spacing = settings.spacing.metres(&grid);
-    let spacing_rule = settings.spacing.rule(&grid);
+    let surfaces: Vec<SurfaceId> = targets.iter().map(|t| t.surface).collect();
     let components = Components::one(scene);
     let request = Request {
-        surfaces: &[surface],
-        grids: vec![GridRequest {
-            target: 0,
-            side: settings.side,
-            grid,
-        }],
+        surfaces: &surfaces,
+        grids: grids
+            .iter()
+            .zip(targets)
+            .enumerate()
+            .map(|(i, (grid, t))| GridRequest {
+                target: i,
+                side: t.side,
+                grid: grid.clone(),
+            })
+            .collect(),
         components: &components,
         estimator: settings.estimator,
         keep_groups: false,
     };
     let measured = measure_across(scene, accel, &request, &settings.trace, progress, cluster);
-    let g = &measured.grids[0];
-    let (w, grid) = ([1.0], &g.grid);
-    let cells = (0..grid.cells())
-        .map(|i| {
-            g.cell(i, &w).map(|estimate| MapCell {
-                index: grid.index(i),
-                centre: grid.centre(i),
-                area: grid.areas[i],
-                estimate,
-                hits: g.hits(i),
-            })
+    let w = [1.0];
+    let maps = targets
+        .iter()
+        .enumerate()
+        .map(|(t, target)| {
+            let g = &measured.grids[t];
+            let grid = &g.grid;
+            let cells = (0..grid.cells())
+                .map(|i| {
+                    g.cell(i, &w).map(|estimate| MapCell {
+                        index: grid.index(i),
+                        centre: grid.centre(i),
+                        area: grid.areas[i],
+                        estimate,
+                        hits: g.hits(i),
+                    })
+                })
+                .collect();
+            let uniformity = g.uniformity(&w);
+            let side = |s| measured.estimate_of(t, s, &w).mean;
+            IlluminanceMap {
+                origin: grid.origin,
+                u: grid.u,
+                v: grid.v,
+                columns: grid.columns,
+                rows: grid.rows,
+                cell_u: grid.cell_u,
+                cell_v: grid.cell_v,
+                spacing: target.spacing.metres(grid),
+                spacing_rule: target.spacing.rule(grid),
+                side: target.side,
+                cells,
+                photons: measured.photons,
+                mean: uniformity.average,
+                u0: uniformity.u0,
+                front_back: (side(Side::Front), side(Side::Back)),
+            }
         })
         .collect();
-    let uniformity = g.uniformity(&w);
-    let side = |s| measured.estimate_of(0, s, &w).mean;
-    Ok(IlluminanceMap {
-        origin: grid.origin,
-        u: grid.u,
-        v: grid.v,
-        columns: grid.columns,
-        rows: grid.rows,
-        cell_u: grid.cell_u,
-        cell_v: grid.cell_v,
-        spacing,
-        spacing_rule,
-        side: settings.side,
-        cells,
-        photons: measured.photons,
-        mean: uniformity.average,
-        u0: uniformity.u0,
-        front_back: (side(Side::Front), side(Side::Back)),
-    })
+    Ok(maps)
 }
 
 /// A cell of `invlight map --json`.
@@ -321,6 +367,10 @@ pub struct MapReport {
     pub u0: f64,
     /// Standard error of U0 (the delta method over the photon groups).
     pub u0_std_error: f64,
+    /// EN 12464-1's areas around the surface (`--task`), each with its verdict: the
+    /// immediate surrounding, the background, the walls and the ceiling.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<crate::AreaReport>,
 }
 
 /// A row of the map's CSV: one cell.
@@ -466,6 +516,7 @@ impl IlluminanceMap {
             emax_over_emin: summary.max_ratio(),
             u0: summary.u0,
             u0_std_error: self.u0.std_error,
+            areas: Vec::new(),
         }
     }
 

@@ -22,7 +22,7 @@ mod progress;
 mod solve_page;
 
 pub use html::{Page, external_references};
-pub use map_page::{MapPage, compliance_text};
+pub use map_page::{MapPage, areas_text, compliance_text};
 pub use pictures::{PictureError, Pictures, file_safe};
 pub use plots::{convergence, search_plot};
 pub use progress::Progress;

@@ -5,7 +5,8 @@
 use crate::html::{Page, escape, figure, table};
 use invlight_photon::Side;
 use invlight_render::{
-    Compliance, Criterion, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict, plain,
+    AreaReport, Compliance, Criterion, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict,
+    plain,
 };
 use invlight_scene::Vec3;
 use invlight_stats::{Confidence, significant};
@@ -47,7 +48,7 @@ pub fn requirement_words(r: &Requirement) -> String {
 }
 
 /// The compliance as the terminal prints it, the same verdicts as the page's
-/// ([`compliance_html`]): the grid's sentence, then a line per criterion.
+/// (`compliance_html`): the grid's sentence, then a line per criterion.
 pub fn compliance_text(c: &Compliance) -> String {
     let pct = format!("{} %", plain(c.confidence * 100.0));
     let what = requirement_words(&c.requirement);
@@ -67,6 +68,62 @@ pub fn compliance_text(c: &Compliance) -> String {
             k.name,
             k.sentence(c.confidence)
         );
+    }
+    out
+}
+
+/// The cells of an area's row, as the terminal and the page print them: the area, its
+/// size, what it must meet, maintained Ēm with its bounds, U0 with its bounds, and the
+/// verdict.
+fn area_cells(a: &AreaReport) -> [String; 6] {
+    let size = if a.area == "wall" || a.area == "ceiling" {
+        format!("{:.2} m × {:.2} m", a.size[0], a.size[1])
+    } else {
+        format!("{} m band", plain(a.size[0]))
+    };
+    let bound = |x: Option<f64>| x.map_or("∞".to_string(), |x| format!("{x:.2}"));
+    let name = if a.area == "wall" {
+        a.surface.clone()
+    } else {
+        a.area.clone()
+    };
+    [
+        name,
+        size,
+        format!(
+            "Em ≥ {} lx, U0 ≥ {:.2}",
+            plain(a.required_em),
+            a.required_u0
+        ),
+        format!(
+            "{} lx [{}, {}]",
+            significant(a.em),
+            significant(a.em_bounds[0]),
+            significant(a.em_bounds[1])
+        ),
+        format!(
+            "{:.2} [{}, {}]",
+            a.u0,
+            bound(a.u0_bounds[0]),
+            bound(a.u0_bounds[1])
+        ),
+        a.verdict.clone(),
+    ]
+}
+
+/// EN 12464-1's areas around a task area as the terminal prints them, a line each.
+pub fn areas_text(areas: &[AreaReport], confidence: f64) -> String {
+    if areas.is_empty() {
+        return String::new();
+    }
+    let mut out = format!(
+        "EN 12464-1's areas around it (maintained values, all verdicts together at {} % confidence):
+",
+        plain(confidence * 100.0)
+    );
+    for a in areas {
+        let [name, size, asked, em, u0, verdict] = area_cells(a);
+        out += &format!("  {name} ({size}): {asked}: Em {em}, U0 {u0}: {verdict}\n");
     }
     out
 }
@@ -323,6 +380,20 @@ impl<'a> MapPage<'a> {
                 self.requirement,
             )?,
         );
+        if !r.areas.is_empty() {
+            let rows: Vec<Vec<String>> = r.areas.iter().map(|a| area_cells(a).to_vec()).collect();
+            page.section(
+                "EN 12464-1's areas around it",
+                &format!(
+                    "<p>The immediate surrounding (a band of 0.5 m around the task area, in its plane), the background (3 m around that, within the room), the walls and the ceiling (calculation rectangles 1 cm inside the room, facing into it), traced with the same photons, on EN 12464-1's grids. Values are maintained; the bounds are one-sided, and every verdict of the table holds together with the others at {} % confidence (Bonferroni).</p>{}",
+                    plain(confidence.level() * 100.0),
+                    table(
+                        &["Area", "Size", "Required", "Em (maintained)", "U0", "Verdict"],
+                        &rows
+                    )
+                ),
+            );
+        }
         page.section(
             "How it was measured",
             &format!(

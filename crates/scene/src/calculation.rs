@@ -71,15 +71,15 @@ pub struct Calculation {
 }
 
 /// A triangle counts as horizontal when its normal is within about 1.1° of the up axis.
-const HORIZONTAL_COS: f32 = 0.9998;
+pub(crate) const HORIZONTAL_COS: f32 = 0.9998;
 
 /// The share of the scene's footprint a horizontal level must cover to be taken as the
 /// floor when no floor is named.
-const FLOOR_SHARE: f64 = 0.25;
+pub(crate) const FLOOR_SHARE: f64 = 0.25;
 
 /// An error about a request: at its problem file's line, or at the scene file `scene`
 /// naming the flag.
-fn error(
+pub(crate) fn error(
     origin: &Option<(PathBuf, u32)>,
     scene: &Path,
     flag: String,
@@ -92,7 +92,7 @@ fn error(
 }
 
 /// The eight corners of the box from `lo` to `hi`.
-fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+pub(crate) fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
     std::array::from_fn(|i| {
         Vec3::new(
             if i & 1 == 0 { lo.x } else { hi.x },
@@ -104,28 +104,57 @@ fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
 
 /// Two unit vectors across `up` with `e1 × e2 = up`: Z and X for a Y-up scene, X and Y
 /// for a Z-up one, so that rooms along the axes get plan axes along them.
-fn plan_axes(up: Vec3) -> (Vec3, Vec3) {
+pub(crate) fn plan_axes(up: Vec3) -> (Vec3, Vec3) {
     let up = up.normalize();
     let seed = if up.y.abs() > 0.9 { Vec3::Z } else { Vec3::X };
     let e1 = (seed - up * seed.dot(up)).normalize();
     (e1, up.cross(e1))
 }
 
+/// The world point at `(x, y)` in the plan frame whose first axis is `a` (the second
+/// `a` turned by +90°, both in [`plan_axes`]' plane), `height` along `up`.
+pub(crate) fn plan_point(up: Vec3, a: DVec2, x: f64, y: f64, height: f64) -> Vec3 {
+    let up = up.normalize();
+    let (e1, e2) = plan_axes(up);
+    let p = a * x + a.perp() * y;
+    (e1.as_dvec3() * p.x + e2.as_dvec3() * p.y + up.as_dvec3() * height).as_vec3()
+}
+
 /// A horizontal level: its height along up, area, and its triangles' corners in plan.
-struct Level {
-    height: f64,
-    area: f64,
-    corners: Vec<DVec2>,
+pub(crate) struct Level {
+    pub(crate) height: f64,
+    pub(crate) area: f64,
+    pub(crate) corners: Vec<DVec2>,
+}
+
+/// Which way the horizontal triangles [`levels`] keeps face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Facing {
+    /// Their front faces up: a floor.
+    Up,
+    /// Either way.
+    Either,
+}
+
+/// The room found by [`Scene::room`].
+pub(crate) struct Room {
+    /// The floor level.
+    pub(crate) level: Level,
+    /// The floor as messages name it.
+    pub(crate) floor_name: String,
+    /// The highest point of the scene along up.
+    pub(crate) top: f32,
+    /// Heights within this are one level, m.
+    pub(crate) tolerance: f64,
 }
 
 /// The horizontal triangles `tris` (corners, world) grouped by height: levels within
-/// `tolerance` of one another, lowest first. `upward` keeps only those whose front faces
-/// up.
-fn levels(
+/// `tolerance` of one another, lowest first, of those whose front faces as `facing` asks.
+pub(crate) fn levels(
     tris: impl Iterator<Item = [Vec3; 3]>,
     up: Vec3,
     tolerance: f64,
-    upward: bool,
+    facing: Facing,
 ) -> Vec<Level> {
     let (e1, e2) = plan_axes(up);
     let mut flat: Vec<(f64, f64, [DVec2; 3])> = tris
@@ -133,10 +162,9 @@ fn levels(
             let cross = (c[1] - c[0]).cross(c[2] - c[0]);
             let area = 0.5 * cross.length();
             let cos = cross.normalize_or_zero().dot(up);
-            let horizontal = if upward {
-                cos >= HORIZONTAL_COS
-            } else {
-                cos.abs() >= HORIZONTAL_COS
+            let horizontal = match facing {
+                Facing::Up => cos >= HORIZONTAL_COS,
+                Facing::Either => cos.abs() >= HORIZONTAL_COS,
             };
             (area > 0.0 && horizontal).then(|| {
                 let h = c.iter().map(|p| f64::from(p.dot(up))).sum::<f64>() / 3.0;
@@ -166,19 +194,19 @@ fn levels(
 /// A rectangle in plan: its unit axis `a` (the other axis is `a` turned by +90°) and
 /// its extents along each.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Rectangle {
-    a: DVec2,
-    along: (f64, f64),
-    across: (f64, f64),
+pub(crate) struct Rectangle {
+    pub(crate) a: DVec2,
+    pub(crate) along: (f64, f64),
+    pub(crate) across: (f64, f64),
 }
 
 impl Rectangle {
-    fn area(&self) -> f64 {
+    pub(crate) fn area(&self) -> f64 {
         (self.along.1 - self.along.0) * (self.across.1 - self.across.0)
     }
 
     /// The rectangle of `points` with its sides along `a` and `a` turned by 90°.
-    fn around(points: &[DVec2], a: DVec2) -> Rectangle {
+    pub(crate) fn around(points: &[DVec2], a: DVec2) -> Rectangle {
         let b = a.perp();
         let mut r = Rectangle {
             a,
@@ -227,7 +255,7 @@ fn hull(mut points: Vec<DVec2>) -> Vec<DVec2> {
 /// rectangle for an arbitrary closed curve", CACM 18(7), 1975). The axis-aligned one is
 /// kept unless another is smaller by more than rounding, so a room along the axes gets
 /// a workplane along them.
-fn outline(points: &[DVec2]) -> Rectangle {
+pub(crate) fn outline(points: &[DVec2]) -> Rectangle {
     let mut best = Rectangle::around(points, DVec2::X);
     let h = hull(points.to_vec());
     for (i, &p) in h.iter().enumerate() {
@@ -362,82 +390,12 @@ impl Scene {
                 w.border
             )));
         }
-        let Some((lo, hi)) = self.bounds() else {
-            return Err(err(
-                "the scene is empty, expected a room to lay the workplane in".into(),
-            ));
-        };
-        let up = self.up.normalize();
-        let (e1, e2) = plan_axes(up);
-        let box_corners = box_corners(lo, hi);
-        let (bottom, top) = box_corners
-            .iter()
-            .map(|p| p.dot(up))
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(b, t), h| {
-                (b.min(h), t.max(h))
-            });
-        let tolerance = 1e-3f64.max(1e-4 * f64::from((hi - lo).length()));
-        let calc = self.calculation_instances();
-        let (level, floor_name) = match &w.floor {
-            Some(name) => {
-                let Some(s) = self.surface(name) else {
-                    return Err(err(format!(
-                        "no surface named '{name}', expected the floor to lay the workplane over"
-                    ))
-                    .with_hint(crate::known_names(
-                        self.surfaces.iter().map(|s| s.name.as_str()),
-                        "surfaces",
-                    )));
-                };
-                let tris = || {
-                    self.surfaces[s]
-                        .instances
-                        .iter()
-                        .flat_map(|&i| self.world_triangles(i))
-                        .map(|t| t.corners)
-                };
-                let mut found = levels(tris(), up, tolerance, true);
-                if found.is_empty() {
-                    found = levels(tris(), up, tolerance, false);
-                }
-                let best = found
-                    .into_iter()
-                    .reduce(|a, b| if b.area > a.area { b } else { a });
-                let Some(best) = best else {
-                    return Err(err(format!(
-                        "the floor '{name}' has no horizontal triangles, expected a floor level across the scene's up axis ({})",
-                        axis_name(up)
-                    ))
-                    .with_hint("name the floor surface (`invlight scene` lists them) or check --up"));
-                };
-                (best, name.clone())
-            }
-            None => {
-                let box_corners: Vec<DVec2> = box_corners
-                    .iter()
-                    .map(|p| DVec2::new(p.dot(e1).into(), p.dot(e2).into()))
-                    .collect();
-                let footprint = Rectangle::around(&box_corners, DVec2::X).area();
-                let tris = (0..self.instances.len())
-                    .filter(|&i| !calc[i])
-                    .flat_map(|i| self.world_triangles(InstanceId::from_index(i)))
-                    .map(|t| t.corners);
-                let found = levels(tris, up, tolerance, true)
-                    .into_iter()
-                    .find(|l| l.area >= FLOOR_SHARE * footprint);
-                match found {
-                    Some(l) => (l, "the lowest floor".to_string()),
-                    None => {
-                        let level = Level {
-                            height: bottom.into(),
-                            area: footprint,
-                            corners: box_corners,
-                        };
-                        (level, "the scene's bounds".to_string())
-                    }
-                }
-            }
-        };
+        let Room {
+            level,
+            floor_name,
+            top,
+            ..
+        } = self.room(w.floor.as_deref(), &err)?;
         let r = outline(&level.corners);
         let (b, length, width) = (
             f64::from(w.border),
@@ -462,11 +420,8 @@ impl Scene {
             ))
             .with_hint("give the height above the floor in metres (e.g. 0.85), or name the floor with floor=\"…\""));
         }
-        let (a, across) = (r.a, r.a.perp());
-        let at = |x: f64, y: f64| {
-            let p = a * x + across * y;
-            (e1.as_dvec3() * p.x + e2.as_dvec3() * p.y + up.as_dvec3() * height).as_vec3()
-        };
+        let up = self.up;
+        let at = |x: f64, y: f64| plan_point(up, r.a, x, y, height);
         let (x0, x1) = (r.along.0 + b, r.along.1 - b);
         let (y0, y1) = (r.across.0 + b, r.across.1 - b);
         let material = self.add_material(Material::diffuse(
@@ -481,6 +436,101 @@ impl Scene {
         let s = self.surface(&w.id).expect("the surface just added");
         self.make_calculation_surface(s);
         Ok(s)
+    }
+
+    /// The room a workplane or a task's areas are laid in: the floor level (with
+    /// `floor`, that surface's horizontal triangles facing up, or either way when none
+    /// faces up, at the height holding most of their area; without, the lowest height
+    /// at which upward-facing horizontal triangles of the scene, calculation surfaces
+    /// left out, cover a quarter of the footprint of its bounds, and failing that the
+    /// bottom of its bounds with their footprint), and the scene's extent along up.
+    pub(crate) fn room(
+        &self,
+        floor: Option<&str>,
+        err: &dyn Fn(String) -> Diagnostic,
+    ) -> Result<Room, Diagnostic> {
+        let Some((lo, hi)) = self.bounds() else {
+            return Err(err(
+                "the scene is empty, expected a room to lay it in".into()
+            ));
+        };
+        let up = self.up.normalize();
+        let (e1, e2) = plan_axes(up);
+        let box_corners = box_corners(lo, hi);
+        let (bottom, top) = box_corners
+            .iter()
+            .map(|p| p.dot(up))
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(b, t), h| {
+                (b.min(h), t.max(h))
+            });
+        let tolerance = 1e-3f64.max(1e-4 * f64::from((hi - lo).length()));
+        let calc = self.calculation_instances();
+        let (level, floor_name) = match floor {
+            Some(name) => {
+                let Some(s) = self.surface(name) else {
+                    return Err(err(format!(
+                        "no surface named '{name}', expected the floor to lay the workplane over"
+                    ))
+                    .with_hint(crate::known_names(
+                        self.surfaces.iter().map(|s| s.name.as_str()),
+                        "surfaces",
+                    )));
+                };
+                let tris = || {
+                    self.surfaces[s]
+                        .instances
+                        .iter()
+                        .flat_map(|&i| self.world_triangles(i))
+                        .map(|t| t.corners)
+                };
+                let mut found = levels(tris(), up, tolerance, Facing::Up);
+                if found.is_empty() {
+                    found = levels(tris(), up, tolerance, Facing::Either);
+                }
+                let best = found
+                    .into_iter()
+                    .reduce(|a, b| if b.area > a.area { b } else { a });
+                let Some(best) = best else {
+                    return Err(err(format!(
+                        "the floor '{name}' has no horizontal triangles, expected a floor level across the scene's up axis ({})",
+                        axis_name(up)
+                    ))
+                    .with_hint("name the floor surface (`invlight scene` lists them) or check --up"));
+                };
+                (best, name.to_string())
+            }
+            None => {
+                let box_corners: Vec<DVec2> = box_corners
+                    .iter()
+                    .map(|p| DVec2::new(p.dot(e1).into(), p.dot(e2).into()))
+                    .collect();
+                let footprint = Rectangle::around(&box_corners, DVec2::X).area();
+                let tris = (0..self.instances.len())
+                    .filter(|&i| !calc[i])
+                    .flat_map(|i| self.world_triangles(InstanceId::from_index(i)))
+                    .map(|t| t.corners);
+                let found = levels(tris, up, tolerance, Facing::Up)
+                    .into_iter()
+                    .find(|l| l.area >= FLOOR_SHARE * footprint);
+                match found {
+                    Some(l) => (l, "the lowest floor".to_string()),
+                    None => {
+                        let level = Level {
+                            height: bottom.into(),
+                            area: footprint,
+                            corners: box_corners,
+                        };
+                        (level, "the scene's bounds".to_string())
+                    }
+                }
+            }
+        };
+        Ok(Room {
+            level,
+            floor_name,
+            top,
+            tolerance,
+        })
     }
 
     /// A warning for measuring surface `s` when it cannot receive light as it is and is

@@ -41,6 +41,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod areas;
 mod atomic;
 mod calculation;
 mod collada;
@@ -63,6 +64,7 @@ mod validate;
 mod values;
 mod world;
 
+pub use areas::{AreaKind, BACKGROUND_BAND, ROOM_SURFACE_OFFSET, SURROUNDING_BAND, TaskArea};
 pub use atomic::write_atomically;
 pub use calculation::{Calculation, CalculationSurface, Workplane};
 pub use error::{Diagnostic, LoadError, PhotometryError};

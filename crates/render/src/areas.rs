@@ -1,0 +1,225 @@
+//! EN 12464-1's requirements on the areas around a task area and their verdicts: the
+//! immediate surrounding, the background, the walls and the ceiling
+//! ([`invlight_scene::AreaKind`]; the scene builds them), each judged as a task area is
+//! ([`crate::compliance`]) with its own maintained Ēm and U0.
+//!
+//! - **Immediate surrounding** (EN 12464-1:2021 §5.3.2, table of the relationship of
+//!   illuminances; 2011 Table 1): Ēm 500 lx around a task of ≥ 750 lx, 300 around 500,
+//!   200 around 300, 150 around 200, and the task's own Ēm at or below 150 lx; U0 ≥ 0.40.
+//!   A task value between the table's steps takes the row of the step below it.
+//! - **Background** (2021 §5.3.3; 2011 §4.3.3): Ēm ≥ ⅓ of the immediate surrounding's
+//!   required Ēm, U0 ≥ 0.10.
+//! - **Walls** and **ceiling** (2021 §5.2.4; 2011 §4.3.1): the task's [`Task::walls_em`]
+//!   and [`Task::ceiling_em`] (50 and 30 lx where no task is named), U0 ≥ 0.10.
+//!
+//! The verdicts of several areas are statements made together: with m areas judged,
+//! each is made at 1 − α/m (Bonferroni), so that all of them hold jointly at the run's
+//! confidence, as the criteria of one grid share its α.
+
+use crate::compliance::{Compliance, Requirement, Task, Verdict};
+use crate::map::IlluminanceMap;
+use invlight_scene::AreaKind;
+use invlight_stats::Confidence;
+use serde::{Deserialize, Serialize};
+
+/// U0 required on the immediate surrounding.
+pub const SURROUNDING_U0: f64 = 0.40;
+
+/// U0 required on the background, the walls and the ceiling.
+pub const ROOM_U0: f64 = 0.10;
+
+/// Required Ēm on the immediate surrounding of a task area lit to `task_em`, lx.
+pub fn surrounding_em(task_em: f64) -> f64 {
+    const TABLE: [(f64, f64); 4] = [
+        (750.0, 500.0),
+        (500.0, 300.0),
+        (300.0, 200.0),
+        (200.0, 150.0),
+    ];
+    TABLE
+        .iter()
+        .find(|&&(task, _)| task_em >= task)
+        .map_or(task_em, |&(_, around)| around.min(task_em))
+}
+
+/// What the area `kind` must meet around a task area required to meet `task`: its
+/// Ēm and U0 with the task's maintenance factor; `None` for the bands when the task's
+/// Ēm is not asked (they are derived from it).
+pub fn area_requirement(kind: AreaKind, task: &Requirement) -> Option<Requirement> {
+    let named: Option<&Task> = task.task.as_ref();
+    let (em, u0) = match kind {
+        AreaKind::Surrounding => (surrounding_em(task.em?), SURROUNDING_U0),
+        AreaKind::Background => (surrounding_em(task.em?) / 3.0, ROOM_U0),
+        AreaKind::Wall => (named.map_or(50.0, |t| t.walls_em), ROOM_U0),
+        AreaKind::Ceiling => (named.map_or(30.0, |t| t.ceiling_em), ROOM_U0),
+    };
+    Some(Requirement {
+        task: None,
+        em: Some(em),
+        u0: Some(u0),
+        maintenance_factor: task.maintenance_factor,
+    })
+}
+
+/// One area's verdict in `invlight map --json` (`areas[]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AreaReport {
+    /// The area in the standard's words: `immediate surrounding`, `background`,
+    /// `wall`, `ceiling`.
+    pub area: String,
+    /// The calculation surface measured.
+    pub surface: String,
+    /// The band's width, or the rectangle's two sides, m.
+    pub size: [f64; 2],
+    /// Columns and rows of its grid, and the cells' sides, m.
+    pub cells: [u32; 2],
+    /// ″
+    pub cell_size: [f32; 2],
+    /// Required maintained Ēm, lx.
+    pub required_em: f64,
+    /// Required U0.
+    pub required_u0: f64,
+    /// Maintained Ēm (the maintenance factor × the computed mean), lx.
+    pub em: f64,
+    /// Its one-sided lower and upper bounds, lx.
+    pub em_bounds: [f64; 2],
+    /// U0 = Emin/Ē over the cells.
+    pub u0: f64,
+    /// Its one-sided lower and upper bounds (the upper may be infinite, written null).
+    pub u0_bounds: [Option<f64>; 2],
+    /// The confidence every bound holds at, 1 − α/(2m) for m areas.
+    pub level: f64,
+    /// `meets`, `fails` or `cannot tell`.
+    pub verdict: String,
+}
+
+/// One area measured and judged.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AreaVerdict {
+    /// What it stands for.
+    pub kind: AreaKind,
+    /// Its calculation surface's name.
+    pub surface: String,
+    /// The band's width, or the rectangle's sides, m.
+    pub size: (f64, f64),
+    /// Its map.
+    pub map: IlluminanceMap,
+    /// Its compliance, at the share of the confidence the module doc gives.
+    pub compliance: Compliance,
+}
+
+impl AreaVerdict {
+    /// The areas `maps` (with their kinds, surface names and sizes) judged around a
+    /// task area required to meet `task`, jointly at `confidence`; areas without a
+    /// requirement (the bands when no Ēm is asked) are left out.
+    pub fn judge(
+        maps: Vec<(AreaKind, String, (f64, f64), IlluminanceMap)>,
+        task: &Requirement,
+        confidence: Confidence,
+    ) -> Vec<AreaVerdict> {
+        let judged: Vec<_> = maps
+            .into_iter()
+            .filter_map(|(kind, surface, size, map)| {
+                area_requirement(kind, task).map(|r| (kind, surface, size, map, r))
+            })
+            .collect();
+        let m = judged.len().max(1) as f64;
+        let share = Confidence::new(1.0 - (1.0 - confidence.level()) / m).unwrap_or(confidence);
+        judged
+            .into_iter()
+            .map(|(kind, surface, size, map, r)| AreaVerdict {
+                kind,
+                surface,
+                size,
+                compliance: map.compliance(&r, share),
+                map,
+            })
+            .collect()
+    }
+
+    /// The area's name as a report prints it: "wall 1", "immediate surrounding".
+    pub fn title(&self) -> String {
+        match self.kind {
+            AreaKind::Wall => self.surface.clone(),
+            kind => kind.name().to_string(),
+        }
+    }
+
+    /// Its `--json` form.
+    pub fn report(&self) -> AreaReport {
+        let c = &self.compliance;
+        let em = &c.criteria[0];
+        let u0 = &c.criteria[1];
+        let finite = |x: f64| x.is_finite().then_some(x);
+        AreaReport {
+            area: self.kind.name().into(),
+            surface: self.surface.clone(),
+            size: [self.size.0, self.size.1],
+            cells: [self.map.columns, self.map.rows],
+            cell_size: [self.map.cell_u, self.map.cell_v],
+            required_em: em.required,
+            required_u0: u0.required,
+            em: em.value,
+            em_bounds: [em.bounds.0, em.bounds.1],
+            u0: u0.value,
+            u0_bounds: [finite(u0.bounds.0), finite(u0.bounds.1)],
+            level: u0.level.min(em.level),
+            verdict: match c.verdict {
+                Verdict::Meets => "meets",
+                Verdict::Fails => "fails",
+                Verdict::CannotTell => "cannot tell",
+            }
+            .into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compliance::task;
+
+    #[test]
+    fn the_surrounding_follows_the_standards_table() {
+        for (task_em, around) in [
+            (1000.0, 500.0),
+            (750.0, 500.0),
+            (500.0, 300.0),
+            (400.0, 200.0),
+            (300.0, 200.0),
+            (200.0, 150.0),
+            (150.0, 150.0),
+            (100.0, 100.0),
+        ] {
+            assert_eq!(surrounding_em(task_em), around, "{task_em} lx");
+        }
+    }
+
+    #[test]
+    fn an_office_asks_its_areas_what_the_standard_does() {
+        let office = Requirement::of_task(task("office").unwrap(), 0.8);
+        let ask = |k| {
+            let r = area_requirement(k, &office).unwrap();
+            (r.em.unwrap(), r.u0.unwrap(), r.maintenance_factor)
+        };
+        assert_eq!(ask(AreaKind::Surrounding), (300.0, 0.40, 0.8));
+        assert_eq!(ask(AreaKind::Background), (100.0, 0.10, 0.8));
+        assert_eq!(ask(AreaKind::Wall), (75.0, 0.10, 0.8));
+        assert_eq!(ask(AreaKind::Ceiling), (50.0, 0.10, 0.8));
+        let corridor = Requirement::of_task(task("corridor").unwrap(), 1.0);
+        let r = area_requirement(AreaKind::Wall, &corridor).unwrap();
+        assert_eq!(r.em, Some(50.0));
+        // Only a uniformity asked: no Ēm for the bands to follow; walls still judged.
+        let u0_only = Requirement {
+            task: None,
+            em: None,
+            u0: Some(0.6),
+            maintenance_factor: 1.0,
+        };
+        assert!(area_requirement(AreaKind::Surrounding, &u0_only).is_none());
+        assert_eq!(
+            area_requirement(AreaKind::Ceiling, &u0_only).unwrap().em,
+            Some(30.0)
+        );
+    }
+}
