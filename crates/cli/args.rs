@@ -158,8 +158,9 @@ impl SceneArgs {
         let file = || self.load.fits(load_with(path, &options, lum)?, path, true);
         let mut read = None;
         let scene = configured_scene(path, self.config.as_deref(), file, |p| {
+            let scene = self.load.load_problem(p);
             read = Some(p.clone());
-            self.load.load_problem(&mut p.clone())
+            scene
         })?;
         Ok((scene, read))
     }

@@ -11,7 +11,7 @@ use invlight_render::{
     AreaVerdict, GridSpacing, MapPlan, MapSettings, MapTarget, illuminance_maps_across,
 };
 use invlight_report::{MapPage, Progress, areas_text, compliance_text, file_safe};
-use invlight_scene::{AreaKind, SURROUNDING_BAND};
+use invlight_scene::AreaKind;
 use invlight_trace::Accel;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -77,10 +77,12 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
     let requirement = args.require.requirement(mf)?;
     let areas = match requirement.as_ref().filter(|_| !args.no_areas) {
-        Some(_) => scene.add_task_areas(path, surface).unwrap_or_else(|e| {
-            crate::warn(Some(format!("{e}; the areas around it are not judged")));
-            Vec::new()
-        }),
+        Some(_) => scene
+            .add_task_areas(path, surface, &AreaKind::ALL)
+            .unwrap_or_else(|e| {
+                crate::warn(Some(format!("{e}; the areas around it are not judged")));
+                Vec::new()
+            }),
         None => Vec::new(),
     };
     let pool = args.trace.pool()?;
@@ -102,13 +104,15 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         side,
     }];
     // A band's grid has at least two cells across it; the others follow the rule.
-    targets.extend(areas.iter().map(|a| MapTarget {
-        surface: a.surface,
-        spacing: match a.kind {
-            AreaKind::Surrounding => GridSpacing::Metres(0.5 * SURROUNDING_BAND as f32),
-            _ => GridSpacing::Auto,
-        },
-        side: Side::Front,
+    targets.extend(areas.iter().map(|a| {
+        MapTarget {
+            surface: a.surface,
+            spacing: a
+                .kind
+                .spacing()
+                .map_or(GridSpacing::Auto, |m| GridSpacing::Metres(m as f32)),
+            side: Side::Front,
+        }
     }));
     let bar = Progress::photons(trace.photons, "this map");
     let report = |done: u64| bar.set(done);

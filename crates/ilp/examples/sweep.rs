@@ -184,7 +184,7 @@ struct SweepFit {
 }
 
 fn run(args: &Args) -> Result<(), Box<dyn Error>> {
-    let problem = Problem::read(&args.problem)?;
+    let mut problem = Problem::read(&args.problem)?;
     let mut scene = problem.load_scene(&LoadOptions::default(), None, None, &[])?;
     let binding = Binding::new(&problem, &mut scene)?;
     let (k, rect) = match binding

@@ -8,6 +8,7 @@
 //! photon layer measures them ([`invlight_photon::measure_with`]).
 
 pub use invlight_photon::{Side, en12464_spacing};
+use invlight_scene::AreaKind;
 use std::fmt;
 
 /// A surface an intention is about.
@@ -234,6 +235,30 @@ pub struct Constraint {
     /// The maintenance factor the file's illuminance limit was divided by
     /// (`<objectives maintenanceFactor>`); 1 for a ratio, or without one.
     pub maintenance_factor: f64,
+    /// The `<task>` that asked it, when one did rather than a `<constraint>`.
+    pub from_task: Option<FromTask>,
+}
+
+/// Which requirement of a `<task>` a constraint states: the task area's own, or one of
+/// the EN 12464-1 areas built around it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FromTask {
+    /// The task's name in EN 12464-1's table (`office`), or `task` for one given by its
+    /// figures alone.
+    pub task: String,
+    /// The area around the task area, or `None` for the task area itself.
+    pub area: Option<AreaKind>,
+}
+
+impl FromTask {
+    /// In words, for tables and reports: `EN 12464-1 office: immediate surrounding`.
+    pub fn words(&self) -> String {
+        format!(
+            "EN 12464-1 {}: {}",
+            self.task,
+            self.area.map_or("task area", AreaKind::name)
+        )
+    }
 }
 
 impl Constraint {
@@ -249,6 +274,17 @@ impl Constraint {
                 self.bound.attribute()
             ),
         }
+    }
+
+    /// The standard's name for it when a `<task>` asked it:
+    /// `EN 12464-1 office: immediate surrounding Ēm`.
+    pub fn standard_name(&self) -> Option<String> {
+        let task = self.from_task.as_ref()?;
+        let quantity = match self.bound {
+            Bound::MinUniformity(..) => "U0",
+            _ => "Ēm",
+        };
+        Some(format!("{} {quantity}", task.words()))
     }
 
     /// The limit as the file states it: maintained illuminance (EN 12464-1's Em is

@@ -82,7 +82,7 @@ pub use binding::{
 pub use cache::{Cache, Entry};
 pub use history::{Axes, Role, Visit, visits};
 pub use intention::{
-    Bound, Constraint, Feasibility, Goal, Grid, Side, SurfaceRef, en12464_spacing,
+    Bound, Constraint, Feasibility, FromTask, Goal, Grid, Side, SurfaceRef, en12464_spacing,
 };
 pub use invlight_scene::Diagnostic;
 pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};
@@ -96,7 +96,7 @@ pub use output::{
 };
 pub use photons::{EvaluationError, PhotonEvaluator, SideSplit};
 pub use problem::{
-    Anchor, LightGroup, PlacementSpec, Problem, SceneRef, VariableKind, VariableSpec,
+    Anchor, LightGroup, PlacementSpec, Problem, SceneRef, TaskSpec, VariableKind, VariableSpec,
 };
 pub use reading::{GridSpec, Quantity, Reading};
 pub use space::{

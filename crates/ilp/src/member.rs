@@ -76,7 +76,7 @@ pub fn configured_scene<E: From<Diagnostic>>(
     path: &Path,
     config: Option<&str>,
     file: impl FnOnce() -> Result<Scene, E>,
-    problem: impl FnOnce(&Problem) -> Result<Scene, E>,
+    problem: impl FnOnce(&mut Problem) -> Result<Scene, E>,
 ) -> Result<Scene, E> {
     let xml = path
         .extension()
@@ -91,8 +91,8 @@ pub fn configured_scene<E: From<Diagnostic>>(
             None => file(),
         };
     }
-    let read = Problem::read(path)?;
-    let mut scene = problem(&read)?;
+    let mut read = Problem::read(path)?;
+    let mut scene = problem(&mut read)?;
     if let Some(config) = config {
         let member: MemberRef = config
             .parse()

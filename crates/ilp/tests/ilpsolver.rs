@@ -35,7 +35,7 @@ fn cornell_problems_bind_to_cornell_dae() {
             DVec3::new(2.741, -3.607, 0.0),
         ),
     ] {
-        let problem = problem(example);
+        let mut problem = problem(example);
         let mut scene = problem
             .load_scene(&LoadOptions::default(), None, None, &[])
             .unwrap();

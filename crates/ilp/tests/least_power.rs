@@ -224,7 +224,7 @@ fn the_levels_found_decide_a_uniformity_they_were_chosen_to_meet() {
     // the trace, the levels returned must leave every constraint decided
     // (mean − z·σ ≥ bound) and the binding one not much more lit than that.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/open-office/problem.xml");
-    let pb = Problem::read(&path).unwrap();
+    let mut pb = Problem::read(&path).unwrap();
     let mut scene = pb
         .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
         .unwrap();

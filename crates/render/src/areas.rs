@@ -3,56 +3,23 @@
 //! ([`invlight_scene::AreaKind`]; the scene builds them), each judged as a task area is
 //! ([`crate::compliance`]) with its own maintained Ēm and U0.
 //!
-//! - **Immediate surrounding** (EN 12464-1:2021 §5.3.2, table of the relationship of
-//!   illuminances; 2011 Table 1): Ēm 500 lx around a task of ≥ 750 lx, 300 around 500,
-//!   200 around 300, 150 around 200, and the task's own Ēm at or below 150 lx; U0 ≥ 0.40.
-//!   A task value between the table's steps takes the row of the step below it.
-//! - **Background** (2021 §5.3.3; 2011 §4.3.3): Ēm ≥ ⅓ of the immediate surrounding's
-//!   required Ēm, U0 ≥ 0.10.
-//! - **Walls** and **ceiling** (2021 §5.2.4; 2011 §4.3.1): the task's [`Task::walls_em`]
-//!   and [`Task::ceiling_em`] (50 and 30 lx where no task is named), U0 ≥ 0.10.
+//! The figures are the standard's, from [`invlight_scene::en12464`].
 //!
 //! The verdicts of several areas are statements made together: with m areas judged,
 //! each is made at 1 − α/m (Bonferroni), so that all of them hold jointly at the run's
 //! confidence, as the criteria of one grid share its α.
 
-use crate::compliance::{Compliance, Requirement, Task, Verdict};
+use crate::compliance::{Compliance, Requirement, Verdict};
 use crate::map::IlluminanceMap;
 use invlight_scene::AreaKind;
 use invlight_stats::Confidence;
 use serde::{Deserialize, Serialize};
 
-/// U0 required on the immediate surrounding.
-pub const SURROUNDING_U0: f64 = 0.40;
-
-/// U0 required on the background, the walls and the ceiling.
-pub const ROOM_U0: f64 = 0.10;
-
-/// Required Ēm on the immediate surrounding of a task area lit to `task_em`, lx.
-pub fn surrounding_em(task_em: f64) -> f64 {
-    const TABLE: [(f64, f64); 4] = [
-        (750.0, 500.0),
-        (500.0, 300.0),
-        (300.0, 200.0),
-        (200.0, 150.0),
-    ];
-    TABLE
-        .iter()
-        .find(|&&(task, _)| task_em >= task)
-        .map_or(task_em, |&(_, around)| around.min(task_em))
-}
-
 /// What the area `kind` must meet around a task area required to meet `task`: its
 /// Ēm and U0 with the task's maintenance factor; `None` for the bands when the task's
 /// Ēm is not asked (they are derived from it).
 pub fn area_requirement(kind: AreaKind, task: &Requirement) -> Option<Requirement> {
-    let named: Option<&Task> = task.task.as_ref();
-    let (em, u0) = match kind {
-        AreaKind::Surrounding => (surrounding_em(task.em?), SURROUNDING_U0),
-        AreaKind::Background => (surrounding_em(task.em?) / 3.0, ROOM_U0),
-        AreaKind::Wall => (named.map_or(50.0, |t| t.walls_em), ROOM_U0),
-        AreaKind::Ceiling => (named.map_or(30.0, |t| t.ceiling_em), ROOM_U0),
-    };
+    let (em, u0) = kind.required(task.em, task.task.as_ref())?;
     Some(Requirement {
         task: None,
         em: Some(em),
@@ -177,23 +144,7 @@ impl AreaVerdict {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::compliance::task;
-
-    #[test]
-    fn the_surrounding_follows_the_standards_table() {
-        for (task_em, around) in [
-            (1000.0, 500.0),
-            (750.0, 500.0),
-            (500.0, 300.0),
-            (400.0, 200.0),
-            (300.0, 200.0),
-            (200.0, 150.0),
-            (150.0, 150.0),
-            (100.0, 100.0),
-        ] {
-            assert_eq!(surrounding_em(task_em), around, "{task_em} lx");
-        }
-    }
+    use invlight_scene::en12464::task;
 
     #[test]
     fn an_office_asks_its_areas_what_the_standard_does() {

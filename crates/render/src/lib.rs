@@ -40,15 +40,11 @@ mod plan;
 mod plot;
 mod tonemap;
 
-pub use areas::{
-    AreaReport, AreaVerdict, ROOM_U0, SURROUNDING_U0, area_requirement, surrounding_em,
-};
+pub use areas::{AreaReport, AreaVerdict, area_requirement};
 pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
-pub use compliance::{
-    Compliance, Criterion, Requirement, TASKS, Task, Verdict, assess, plain, task,
-};
+pub use compliance::{Compliance, Criterion, Requirement, Verdict, assess, plain};
 pub use false_colour::{auto_scale, false_colour, legend_width};
 pub use glare::{
     GlareError, GlareSource, Observer, Ugr, eye_illuminance, glare_sources, position_index, ugr_of,
@@ -61,6 +57,7 @@ pub use image::RgbImage;
 pub use integrator::{
     AreaLights, IlluminanceImage, Image, Integrator, RenderSettings, render, render_illuminance,
 };
+pub use invlight_scene::en12464::{ROOM_U0, SURROUNDING_U0, TASKS, Task, surrounding_em, task};
 pub use map::{
     GridSpacing, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
     MapSummary, MapTarget, illuminance_map, illuminance_map_across, illuminance_maps_across,

@@ -49,7 +49,7 @@ fn every_area_reads_the_point_sources_flux_over_its_area() {
         },
     });
     let areas = scene
-        .add_task_areas(Path::new("room.gltf"), task)
+        .add_task_areas(Path::new("room.gltf"), task, &AreaKind::ALL)
         .expect("a horizontal desk in a closed room");
     assert_eq!(areas.len(), 7);
     let accel = Accel::with_movable(&scene, &[]);

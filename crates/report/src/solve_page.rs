@@ -651,8 +651,11 @@ fn constraint_list(b: &Binding, m: &Member, z: f64, z_one_sided: f64) -> String 
                 ),
             )
         };
+        let named = c
+            .standard_name()
+            .map_or(String::new(), |s| format!(" ({})", escape(&s)));
         s += &format!(
-            "<li>{}: {}{unit} [{}, {}]{maintained}, {sign} {limit}: <b>{}</b></li>",
+            "<li>{}{named}: {}{unit} [{}, {}]{maintained}, {sign} {limit}: <b>{}</b></li>",
             escape(&c.label()),
             significant(e.mean),
             significant(i.low),

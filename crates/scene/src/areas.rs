@@ -37,7 +37,7 @@ pub const BACKGROUND_BAND: f64 = 3.0;
 pub const ROOM_SURFACE_OFFSET: f64 = 0.01;
 
 /// Which of EN 12464-1's areas a surface stands for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum AreaKind {
     /// The band around the task area.
     Surrounding,
@@ -50,6 +50,25 @@ pub enum AreaKind {
 }
 
 impl AreaKind {
+    /// Every kind, in the order [`Scene::add_task_areas`] builds them.
+    pub const ALL: [AreaKind; 4] = [
+        AreaKind::Surrounding,
+        AreaKind::Background,
+        AreaKind::Wall,
+        AreaKind::Ceiling,
+    ];
+
+    /// The grid spacing the area is measured with, m, where EN 12464-1's rule for its
+    /// extent would not fit it: the surrounding band gets two cells across its 0.5 m
+    /// (the rule, from the band's outer size, gives cells wider than the band, which
+    /// then covers none of them by half). `None`: the rule.
+    pub fn spacing(self) -> Option<f64> {
+        match self {
+            AreaKind::Surrounding => Some(0.5 * SURROUNDING_BAND),
+            _ => None,
+        }
+    }
+
     /// The area in the standard's words.
     pub fn name(self) -> &'static str {
         match self {
@@ -137,12 +156,13 @@ impl Scene {
     /// Builds EN 12464-1's areas around the task area `task` (a horizontal planar
     /// surface) as calculation surfaces, as the module doc says: the immediate
     /// surrounding and the background (left out where the room leaves no room for
-    /// them), the four walls and the ceiling. `scene` is the scene file, named in
-    /// errors.
+    /// them), the four walls and the ceiling, those of `kinds` only. `scene` is the
+    /// scene file, named in errors.
     pub fn add_task_areas(
         &mut self,
         scene: &Path,
         task: SurfaceId,
+        kinds: &[AreaKind],
     ) -> Result<Vec<TaskArea>, LoadError> {
         let task_name = self.surfaces[task].name.clone();
         let err = |message: String| {
@@ -217,7 +237,7 @@ impl Scene {
             ),
         ] {
             let strips = outer.frame(within);
-            if strips.is_empty() {
+            if strips.is_empty() || !kinds.contains(&kind) {
                 continue;
             }
             let quads = strips
@@ -254,6 +274,9 @@ impl Scene {
             0.5 * (floor + ceiling),
         );
         for (n, (p, q)) in walls.into_iter().enumerate() {
+            if !kinds.contains(&AreaKind::Wall) {
+                break;
+            }
             let quad = [
                 at(p.0, p.1, f),
                 at(q.0, q.1, f),
@@ -264,9 +287,11 @@ impl Scene {
             let length = ((q.0 - p.0).powi(2) + (q.1 - p.1).powi(2)).sqrt();
             areas.push(self.area(AreaKind::Wall, surface, (length, c - f)));
         }
-        let quad = [(x.0, y.0), (x.1, y.0), (x.1, y.1), (x.0, y.1)].map(|(x, y)| at(x, y, c));
-        let surface = self.add_area("ceiling", vec![facing(quad, centre)]);
-        areas.push(self.area(AreaKind::Ceiling, surface, (x.1 - x.0, y.1 - y.0)));
+        if kinds.contains(&AreaKind::Ceiling) {
+            let quad = [(x.0, y.0), (x.1, y.0), (x.1, y.1), (x.0, y.1)].map(|(x, y)| at(x, y, c));
+            let surface = self.add_area("ceiling", vec![facing(quad, centre)]);
+            areas.push(self.area(AreaKind::Ceiling, surface, (x.1 - x.0, y.1 - y.0)));
+        }
         Ok(areas)
     }
 
@@ -364,7 +389,9 @@ mod tests {
     #[test]
     fn the_bands_frame_the_task_area_within_the_room() {
         let (mut s, desk) = office();
-        let areas = s.add_task_areas(Path::new("office.gltf"), desk).unwrap();
+        let areas = s
+            .add_task_areas(Path::new("office.gltf"), desk, &AreaKind::ALL)
+            .unwrap();
         let kinds: Vec<_> = areas.iter().map(|a| a.kind).collect();
         use AreaKind::*;
         assert_eq!(
@@ -393,7 +420,9 @@ mod tests {
     #[test]
     fn the_walls_and_ceiling_face_into_the_room_just_inside_it() {
         let (mut s, desk) = office();
-        let areas = s.add_task_areas(Path::new("office.gltf"), desk).unwrap();
+        let areas = s
+            .add_task_areas(Path::new("office.gltf"), desk, &AreaKind::ALL)
+            .unwrap();
         let centre = Vec3::new(3.0, 1.5, 2.0);
         let e = ROOM_SURFACE_OFFSET as f32;
         let mut sum = 0.0;
@@ -421,13 +450,29 @@ mod tests {
     }
 
     #[test]
+    fn only_the_kinds_asked_are_built() {
+        let (mut s, desk) = office();
+        let before = s.surfaces.len();
+        let kinds = [AreaKind::Surrounding, AreaKind::Ceiling];
+        let areas = s
+            .add_task_areas(Path::new("office.gltf"), desk, &kinds)
+            .unwrap();
+        let built: Vec<AreaKind> = areas.iter().map(|a| a.kind).collect();
+        assert_eq!(built, kinds);
+        assert_eq!(s.surfaces.len(), before + 2);
+        assert!(s.surface("wall 1").is_none() && s.surface("background").is_none());
+    }
+
+    #[test]
     fn a_task_area_filling_the_room_has_no_bands_and_names_stay_unique() {
         let (mut s, _) = office();
         let floor = s.surface("Floor").unwrap();
         let grey = s.add_material(Material::diffuse("White", Vec3::ONE));
         let mesh = s.add_mesh(Mesh::quad([Vec3::ZERO; 4], grey));
         s.add_instance("ceiling", mesh, Mat4::IDENTITY);
-        let areas = s.add_task_areas(Path::new("office.gltf"), floor).unwrap();
+        let areas = s
+            .add_task_areas(Path::new("office.gltf"), floor, &AreaKind::ALL)
+            .unwrap();
         assert!(areas.iter().all(|a| a.kind != AreaKind::Surrounding));
         assert!(areas.iter().all(|a| a.kind != AreaKind::Background));
         assert_eq!(areas.last().unwrap().name, "ceiling (EN 12464-1)");
@@ -448,7 +493,9 @@ mod tests {
         ));
         s.add_instance("Board", board, Mat4::IDENTITY);
         let id = s.surface("Board").unwrap();
-        let e = s.add_task_areas(Path::new("office.gltf"), id).unwrap_err();
+        let e = s
+            .add_task_areas(Path::new("office.gltf"), id, &AreaKind::ALL)
+            .unwrap_err();
         let text = e.to_string();
         assert!(text.contains("not one horizontal plane"), "{text}");
         assert!(text.contains("--no-areas"), "{text}");

@@ -46,6 +46,7 @@ mod atomic;
 mod calculation;
 mod collada;
 pub mod daylight;
+pub mod en12464;
 mod error;
 mod files;
 mod gltf;

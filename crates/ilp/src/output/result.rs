@@ -139,6 +139,10 @@ pub struct ConstraintInfo {
     /// ″
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub maintained_limit: Option<f64>,
+    /// The standard's name for it, when a `<task>` asked it:
+    /// `EN 12464-1 office: immediate surrounding Ēm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub standard: Option<String>,
 }
 
 impl ConstraintInfo {
@@ -153,6 +157,7 @@ impl ConstraintInfo {
             unit: c.unit().into(),
             maintenance_factor: (c.maintenance_factor != 1.0).then_some(c.maintenance_factor),
             maintained_limit: (c.maintenance_factor != 1.0).then(|| c.maintained_limit()),
+            standard: c.standard_name(),
         }
     }
 }
@@ -689,8 +694,12 @@ impl ResultFile {
                     (Some(m), Some(f)) => format!(" ({}{cu} maintained ÷ MF {f})", significant(m)),
                     _ => String::new(),
                 };
+                let named = info
+                    .standard
+                    .as_ref()
+                    .map_or(String::new(), |s| format!(" ({s})"));
                 out += &format!(
-                    "       {}: {}{cu} [{}, {}], {sign} {}{cu}{maintained}: {}\n",
+                    "       {}{named}: {}{cu} [{}, {}], {sign} {}{cu}{maintained}: {}\n",
                     c.label,
                     significant(c.estimate.mean),
                     significant(c.estimate.low),

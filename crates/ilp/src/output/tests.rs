@@ -631,6 +631,7 @@ fn a_layout_at_full_output_short_of_its_minimum_gets_a_lamp_count() {
         unit: "lx".into(),
         maintenance_factor: None,
         maintained_limit: None,
+        standard: None,
     };
     let constraints = [info("minLux", 625.0), info("minUniformity", 0.6)];
     let member = |levels: Vec<f64>, lux: f64, u0: f64| ResultMember {

@@ -162,7 +162,7 @@ mod tests {
     #[test]
     fn a_problem_builds_its_workplane_and_measures_it() {
         let dir = tempfile::tempdir().unwrap();
-        let p = lamp_room(
+        let mut p = lamp_room(
             dir.path(),
             "<workplane id=\"Task\" height=\"0.85\" border=\"0.5\"/>\n<calculationSurface surface=\"Desk\"/>",
         );
@@ -188,7 +188,7 @@ mod tests {
     #[test]
     fn a_workplane_with_no_room_left_names_its_line() {
         let dir = tempfile::tempdir().unwrap();
-        let p = lamp_room(
+        let mut p = lamp_room(
             dir.path(),
             "\n<workplane id=\"Task\" height=\"0.85\" border=\"2\"/>",
         );

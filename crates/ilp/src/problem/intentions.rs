@@ -3,6 +3,7 @@
 //! `maximizeUniformity`, `minimizePower`, `maximizeDaylightFactor`) and any number of
 //! `<constraint>`s, each a surface and one bound.
 
+use super::task::TaskSpec;
 use super::{Node, Reader};
 use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
 use invlight_scene::Diagnostic;
@@ -16,17 +17,33 @@ const GOALS: &[&str] = &[
     "maximizeDaylightFactor",
 ];
 
+/// What `<objectives>` asks.
+pub(super) struct Intentions {
+    pub goal: Goal,
+    pub goal_line: u32,
+    pub constraints: Vec<Constraint>,
+    pub tasks: Vec<TaskSpec>,
+}
+
 impl Reader<'_, '_> {
-    /// The goal of `objectives`, with its line, and its constraints in file order.
+    /// The goal of `objectives`, with its line, its constraints in file order (a
+    /// `<task>`'s on its task area after the `<constraint>`s), and its `<task>`s;
+    /// `workplanes` are the scene's workplane ids, which a `<task>` may default to.
     pub(super) fn intentions(
         &self,
         objectives: Node,
-    ) -> Result<(Goal, u32, Vec<Constraint>), Diagnostic> {
+        workplanes: &[String],
+    ) -> Result<Intentions, Diagnostic> {
         let mut goal: Option<(Goal, u32)> = None;
         let mut unknown: Option<Node> = None;
         let mut constraints = Vec::new();
+        let mut tasks: Vec<TaskSpec> = Vec::new();
         for o in self.elements(objectives) {
             let name = o.tag_name().name();
+            if name == "task" {
+                tasks.push(self.task(o, workplanes)?);
+                continue;
+            }
             if name == "constraint" {
                 let c = self.constraint(o)?;
                 if let Some(first) = constraints
@@ -49,7 +66,12 @@ impl Reader<'_, '_> {
                 continue;
             }
             let Some(parsed) = self.goal(o)? else {
-                self.push_warning(self.unknown_element(o, "objective", GOALS, ", or <constraint>"));
+                self.push_warning(self.unknown_element(
+                    o,
+                    "objective",
+                    GOALS,
+                    ", <constraint> or <task>",
+                ));
                 unknown.get_or_insert(o);
                 continue;
             };
@@ -87,11 +109,34 @@ impl Reader<'_, '_> {
                 ),
             ),
         })?;
-        Ok((goal, goal_line, constraints))
+        for t in &tasks {
+            for c in t.task_constraints() {
+                if let Some(first) = constraints.iter().find(|d| d.label() == c.label()) {
+                    return Err(Diagnostic::at_line(
+                        self.path,
+                        t.line,
+                        format!(
+                            "<task> asks {} of '{}', which the constraint on line {} already bounds",
+                            c.bound.attribute(),
+                            c.surface.name,
+                            first.line
+                        ),
+                    )
+                    .with_hint("give the figure the task should ask as em=\"…\" or u0=\"…\" on <task>, and leave out the <constraint>"));
+                }
+                constraints.push(c);
+            }
+        }
+        Ok(Intentions {
+            goal,
+            goal_line,
+            constraints,
+            tasks,
+        })
     }
 
     /// A surface reference: `surface` and `side`.
-    fn surface_ref(&self, node: Node) -> Result<SurfaceRef, Diagnostic> {
+    pub(super) fn surface_ref(&self, node: Node) -> Result<SurfaceRef, Diagnostic> {
         let side = match node.attribute("side").map(str::trim) {
             None => Side::Both,
             Some(s) => Side::parse(s).ok_or_else(|| {
@@ -111,7 +156,7 @@ impl Reader<'_, '_> {
     }
 
     /// `grid`: `auto` (EN 12464-1) or a spacing in metres.
-    fn grid(&self, node: Node) -> Result<Grid, Diagnostic> {
+    pub(super) fn grid(&self, node: Node) -> Result<Grid, Diagnostic> {
         match node.attribute("grid").map(str::trim) {
             None | Some("auto") => Ok(Grid::Auto),
             Some(_) => match self.real(node, "grid", "auto or a spacing in metres")? {
@@ -128,7 +173,7 @@ impl Reader<'_, '_> {
     }
 
     /// A positive illuminance attribute.
-    fn lux(&self, node: Node, attr: &str) -> Result<Option<f64>, Diagnostic> {
+    pub(super) fn lux(&self, node: Node, attr: &str) -> Result<Option<f64>, Diagnostic> {
         match self.real(node, attr, "an illuminance (lx)")? {
             Some(x) if x <= 0.0 => Err(self.error(
                 node,
@@ -253,6 +298,7 @@ impl Reader<'_, '_> {
             bound,
             line: self.line(c),
             maintenance_factor: 1.0,
+            from_task: None,
         })
     }
 }

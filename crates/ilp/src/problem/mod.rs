@@ -22,6 +22,7 @@ mod intentions;
 mod scene;
 mod search;
 mod sun_time;
+mod task;
 mod variables;
 
 pub(crate) use sun_time::SunClock;
@@ -30,10 +31,12 @@ use crate::intention::{Bound, Constraint, Goal};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
 pub use groups::LightGroup;
+use intentions::Intentions;
 use invlight_scene::daylight::{Date, Daylight, DaylightError, DaylightFlags, SunSchedule};
 use invlight_scene::{Calculation, Diagnostic, LoadOptions, Luminaire, Scene, UpAxis, nearest};
 use invlight_stats::Confidence;
 use std::path::{Path, PathBuf};
+pub use task::TaskSpec;
 
 /// Which point of a placed object the placement point P of its rectangle stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -260,8 +263,12 @@ pub struct Problem {
     pub goal: Goal,
     /// Line of the goal's element.
     pub goal_line: u32,
-    /// What must hold as well.
+    /// What must hold as well: the `<constraint>`s, then what each `<task>` asks of
+    /// its task area, then — once [`Problem::load_scene`] has built them — of the areas
+    /// around it.
     pub constraints: Vec<Constraint>,
+    /// `<task>`s: EN 12464-1 tasks whose requirements are among the constraints.
+    pub tasks: Vec<TaskSpec>,
     /// `maxIterations` (default 1000).
     pub max_iterations: u64,
     /// `fastEvaluationQuality`, q of §4.7 (default 0.25, the thesis' value).
@@ -336,14 +343,16 @@ impl Problem {
     /// placed at the middle of a `<sunTime>`'s range, or spread over the instants of a
     /// `<sunTime objective="mean">` ([`Problem::sun_schedule`]). A missing file is named with the problem file's
     /// line: its path is relative to the problem file, not to the current directory.
+    /// Each `<task>`'s areas are built on the scene and their requirements join the
+    /// constraints ([`Problem::tasks`]), which is why the problem is changed.
     pub fn load_scene(
-        &self,
+        &mut self,
         base: &LoadOptions,
         scale: Option<f32>,
         up: Option<UpAxis>,
         luminaires: &[Luminaire],
     ) -> Result<Scene, Diagnostic> {
-        let path = &self.scene.path;
+        let path = &self.scene.path.clone();
         if !path.exists() {
             let dir = self.path.parent().unwrap_or(Path::new("."));
             return Err(Diagnostic::at_line(
@@ -366,6 +375,7 @@ impl Problem {
         let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
         scene.set_luminaires(path, luminaires, &options)?;
         scene.set_calculation(path, &self.scene.calculation)?;
+        self.build_task_areas(&mut scene)?;
         // A sun below the horizon was warned of with its line when the file was read.
         let daylight = |e: DaylightError| Diagnostic::new(&self.path, format!("daylight: {e}"));
         self.daylight.apply_sun(&mut scene).map_err(daylight)?;
@@ -648,7 +658,18 @@ impl<'a, 'i> Reader<'a, 'i> {
             )
         })?;
         let search = self.search(objectives)?;
-        let (goal, goal_line, mut constraints) = self.intentions(objectives)?;
+        let workplanes: Vec<String> = scene
+            .calculation
+            .workplanes
+            .iter()
+            .map(|w| w.id.clone())
+            .collect();
+        let Intentions {
+            goal,
+            goal_line,
+            mut constraints,
+            tasks,
+        } = self.intentions(objectives, &workplanes)?;
         for c in &mut constraints {
             let new = c.bound.for_new(search.maintenance_factor);
             if new != c.bound {
@@ -679,6 +700,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             goal,
             goal_line,
             constraints,
+            tasks,
             max_iterations: search.max_iterations,
             fast_quality: search.fast_quality,
             strategy: search.strategy,

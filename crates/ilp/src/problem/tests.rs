@@ -534,7 +534,7 @@ fn a_missing_scene_says_where_paths_are_relative_to() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("problem.xml");
     std::fs::write(&path, "<input>\n<scene path=\"nowhere.gltf\"/><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>").unwrap();
-    let p = Problem::read(&path).unwrap();
+    let mut p = Problem::read(&path).unwrap();
     let e = p
         .load_scene(&LoadOptions::default(), None, None, &[])
         .unwrap_err();
