@@ -66,10 +66,12 @@ mod emit;
 mod estimator;
 mod grid;
 mod measure;
+mod measure_report;
 mod path;
 mod roulette;
 mod sampler;
 mod sampling;
+mod tally;
 
 pub use cells::{GridMeasurement, Uniformity};
 pub use channels::{Components, Side};
@@ -80,8 +82,11 @@ pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_tr
 pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_rule, en12464_spacing};
 pub use measure::{
-    DaylightFactor, Estimator, GridRequest, MeasureReport, Measurement, Request, SurfaceReport,
-    behind_warning, measure, measure_across, measure_more, measure_with, much_from_behind,
+    Estimator, GridRequest, Measurement, Request, measure, measure_across, measure_more,
+    measure_with,
+};
+pub use measure_report::{
+    DaylightFactor, MeasureReport, SurfaceReport, behind_warning, much_from_behind,
 };
 pub use path::{PathVisitor, fresnel_dielectric, reflect, refract, trace_photon};
 pub use roulette::{
