@@ -6,7 +6,7 @@ use crate::InputError;
 use crate::args::{ReportArgs, SceneArgs, TraceArgs};
 use crate::render::save_image;
 use clap::Args;
-use invlight_photon::{Estimator, Side};
+use invlight_photon::{Estimator, GridValues, Side};
 use invlight_render::{
     AreaVerdict, GridSpacing, MapPlan, MapSettings, MapTarget, illuminance_maps_across,
 };
@@ -43,6 +43,13 @@ pub struct MapArgs {
     /// with smaller errors.
     #[arg(long)]
     pub arrivals_only: bool,
+    /// Read each cell as the mean illuminance over it instead of the illuminance at its
+    /// centre. By default a grid is read at its points, as EN 12464-1 judges it: the
+    /// point, spot and photometric lights' direct light computed exactly at each cell's
+    /// centre, plus the photons' cell mean of the light that has bounced. A problem's
+    /// constraint with values="cell-means" asks the same.
+    #[arg(long)]
+    pub cell_means: bool,
     /// Prefix of the files written: PREFIX.csv (one row per cell) and PREFIX.png (the
     /// plan with isolux lines). Default: map-SURFACE in the current directory.
     #[arg(long, short = 'o', value_name = "PREFIX")]
@@ -91,12 +98,13 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let accel = Accel::with_movable(&scene, &[]);
     let (file, name) = (path.display(), &args.surface);
     let bad = |e| InputError(format!("{file}: surface '{name}': {e}"));
-    let (spacing, side) = as_the_problem_reads(&args, problem.as_ref());
+    let (spacing, side, values) = as_the_problem_reads(&args, problem.as_ref());
     let settings = MapSettings {
         spacing,
         side,
         trace,
         estimator: Estimator::arrivals_only(args.arrivals_only),
+        values,
     };
     let mut targets = vec![MapTarget {
         surface,
@@ -184,8 +192,13 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
 fn as_the_problem_reads(
     args: &MapArgs,
     problem: Option<&invlight_ilp::Problem>,
-) -> (GridSpacing, Side) {
+) -> (GridSpacing, Side, GridValues) {
     let (mut grid, mut side) = (args.grid, args.side);
+    let mut values = if args.cell_means {
+        GridValues::CellMeans
+    } else {
+        GridValues::Points
+    };
     let path = &args.scene.scene;
     if let Some(problem) = problem.filter(|_| grid.is_none() || side.is_none()) {
         let on = |c: &&invlight_ilp::Constraint| c.surface.name == args.surface;
@@ -201,10 +214,16 @@ fn as_the_problem_reads(
                 side = Some(c.surface.side);
                 taken.push(format!("side {}", c.surface.side.name()));
             }
+            if let (false, Some(g)) = (args.cell_means, c.bound.grid())
+                && g.values == GridValues::CellMeans
+            {
+                values = g.values;
+                taken.push("cell means".to_string());
+            }
             if let (None, Some(g)) = (grid, c.bound.grid()) {
-                let g = match g {
-                    invlight_ilp::Grid::Auto => GridSpacing::Auto,
-                    invlight_ilp::Grid::Spacing(m) => GridSpacing::Metres(m as f32),
+                let g = match g.spacing {
+                    invlight_ilp::Spacing::Auto => GridSpacing::Auto,
+                    invlight_ilp::Spacing::Metres(m) => GridSpacing::Metres(m as f32),
                 };
                 grid = Some(g);
                 taken.push(match g {
@@ -226,5 +245,6 @@ fn as_the_problem_reads(
     (
         grid.unwrap_or(GridSpacing::Metres(0.25)),
         side.unwrap_or(Side::Both),
+        values,
     )
 }

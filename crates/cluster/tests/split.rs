@@ -4,8 +4,8 @@
 use invlight_cluster::Local;
 use invlight_photon::{
     BLOCK_MEMORY, CHUNK, Cluster, Components, Departure, Emitters, Estimator, GridRequest,
-    Measurement, Pack, PathVisitor, Request, Side, SurfaceGrid, TraceSettings, measure_across,
-    measure_more, measure_with, trace_chunks, trace_shared,
+    GridValues, Measurement, Pack, PathVisitor, Request, Side, SurfaceGrid, TraceSettings,
+    measure_across, measure_more, measure_with, trace_chunks, trace_shared,
 };
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Rgb, Scene, Vec3};
 use invlight_trace::{Accel, Interaction};
@@ -68,6 +68,7 @@ fn a_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
             target: 0,
             side: Side::Front,
             grid,
+            values: GridValues::Points,
         }],
         components: &components,
         estimator: Estimator::Connected,
@@ -171,6 +172,7 @@ fn a_packed_measurement_reads_back_the_same() {
                 target: 0,
                 side: Side::Back,
                 grid: grid.clone(),
+                values: GridValues::Points,
             }],
             components: &components,
             estimator: Estimator::Connected,

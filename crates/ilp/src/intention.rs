@@ -7,7 +7,7 @@
 //! grid by default (`grid="auto"`, [`en12464_spacing`]), or a spacing in metres; the
 //! photon layer measures them ([`invlight_photon::measure_with`]).
 
-pub use invlight_photon::{Side, en12464_spacing};
+pub use invlight_photon::{GridValues, Side, en12464_spacing};
 use invlight_scene::AreaKind;
 use std::fmt;
 
@@ -29,14 +29,41 @@ impl fmt::Display for SurfaceRef {
     }
 }
 
-/// The grid uniformity and point values are read on.
+/// The grid uniformity and point values are read on: its spacing, and what its cells
+/// read — the illuminance at their centres, as EN 12464-1 judges a grid (the default),
+/// or their means (`values="cell-means"`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum Grid {
+pub struct Grid {
+    /// Its spacing.
+    pub spacing: Spacing,
+    /// What a cell reads.
+    pub values: GridValues,
+}
+
+impl Grid {
+    /// EN 12464-1's grid: its spacing, read at points.
+    pub const AUTO: Grid = Grid {
+        spacing: Spacing::Auto,
+        values: GridValues::Points,
+    };
+
+    /// Cells at most `metres` wide, read at points.
+    pub fn metres(metres: f64) -> Grid {
+        Grid {
+            spacing: Spacing::Metres(metres),
+            values: GridValues::Points,
+        }
+    }
+}
+
+/// A grid's spacing.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Spacing {
     /// EN 12464-1:2021's spacing for the surface's size ([`en12464_spacing`]).
     #[default]
     Auto,
     /// Cells at most this wide, m.
-    Spacing(f64),
+    Metres(f64),
 }
 
 /// What a configuration should achieve above all.

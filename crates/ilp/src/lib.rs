@@ -82,7 +82,8 @@ pub use binding::{
 pub use cache::{Cache, Entry};
 pub use history::{Axes, Role, Visit, visits};
 pub use intention::{
-    Bound, Constraint, Feasibility, FromTask, Goal, Grid, Side, SurfaceRef, en12464_spacing,
+    Bound, Constraint, Feasibility, FromTask, Goal, Grid, GridValues, Side, Spacing, SurfaceRef,
+    en12464_spacing,
 };
 pub use invlight_scene::Diagnostic;
 pub use invlight_stats::{Comparison, Confidence, Estimate, Interval, compare};

@@ -4,7 +4,7 @@
 //! point values need, and for each intention the quantity it reads (a side's mean, a
 //! grid's U0 or Emin, the lamps' power).
 
-use crate::intention::{Bound, Goal, Grid, Side, SurfaceRef};
+use crate::intention::{Bound, Goal, Grid, Side, Spacing, SurfaceRef};
 use crate::problem::Problem;
 use crate::vns::Evaluation;
 use invlight_photon::{GridError, GridRequest, Measurement, SurfaceGrid};
@@ -274,6 +274,7 @@ impl Reading {
                     side: g.side,
                     grid: lay(scene, self.surfaces[g.target], g.grid)
                         .map_err(|e| (self.names[g.target].clone(), e))?,
+                    values: g.grid.values,
                 })
             })
             .collect()
@@ -328,8 +329,8 @@ impl Reading {
 
 /// The grid `grid` on `surface`.
 fn lay(scene: &Scene, surface: SurfaceId, grid: Grid) -> Result<SurfaceGrid, GridError> {
-    match grid {
-        Grid::Auto => SurfaceGrid::en12464(scene, surface),
-        Grid::Spacing(p) => SurfaceGrid::new(scene, surface, p as f32),
+    match grid.spacing {
+        Spacing::Auto => SurfaceGrid::en12464(scene, surface),
+        Spacing::Metres(p) => SurfaceGrid::new(scene, surface, p as f32),
     }
 }

@@ -223,6 +223,10 @@ pub struct GridMeasurement {
     pub(crate) sums: CellSums,
     pub(crate) photons: u64,
     pub(crate) flux: f64,
+    /// For a grid read at points ([`crate::GridValues::Points`]): each cell's centre's
+    /// computed direct light per component, lx (cells × K), which the sums leave out;
+    /// empty when the cells read means.
+    pub(crate) direct: Vec<f64>,
 }
 
 /// U0 and the figures it is made of, at one dimming of the lights.
@@ -251,6 +255,7 @@ impl GridMeasurement {
             sums,
             photons: 0,
             flux: 0.0,
+            direct: Vec::new(),
         }
     }
 
@@ -280,14 +285,46 @@ impl GridMeasurement {
         self.sums.hits[i]
     }
 
-    /// The mean illuminance of cell `i` at component weights `w` (one per component,
-    /// the dimming levels), lx; `None` for a cell the surface does not cover.
+    /// Whether a cell's value is the illuminance at its centre
+    /// ([`crate::GridValues::Points`]) rather than its mean.
+    pub fn at_points(&self) -> bool {
+        !self.direct.is_empty()
+    }
+
+    /// The computed direct light at cell `i`'s centre at weights `w`, lx: 0 when the
+    /// cells read means.
+    fn direct_of(&self, i: usize, w: &[f64]) -> f64 {
+        let k = self.sums.components;
+        self.direct
+            .get(i * k..(i + 1) * k)
+            .map_or(0.0, |d| d.iter().zip(w).map(|(d, w)| d * w).sum())
+    }
+
+    /// The value of cell `i` at component weights `w` (one per component, the dimming
+    /// levels), lx: the illuminance at its centre when the grid is read at points (the
+    /// computed direct light plus the photons' mean of the rest over the cell, whose
+    /// interval it keeps), else its mean; `None` for a cell the surface does not cover.
     pub fn cell(&self, i: usize, w: &[f64]) -> Option<Estimate> {
         if !self.grid.is_covered(i) {
             return None;
         }
         let (sum, square) = (self.sums.total_of(i, w), self.sums.square_of(i, w));
-        Some(self.estimate(sum, square, self.grid.areas[i], w))
+        let mut e = self.estimate(sum, square, self.grid.areas[i], w);
+        e.mean += self.direct_of(i, w);
+        Some(e)
+    }
+
+    /// The cells Emin and Emax are read on, and whose centres a grid read at points
+    /// averages: those the surface covers at least half of, or every covered cell when
+    /// none is.
+    pub fn points(&self) -> Vec<usize> {
+        let covered = (0..self.grid.cells()).filter(|&i| self.grid.is_covered(i));
+        let full: Vec<usize> = covered.clone().filter(|&i| self.grid.is_full(i)).collect();
+        if full.is_empty() {
+            covered.collect()
+        } else {
+            full
+        }
     }
 
     /// The covered area, m².
@@ -298,23 +335,28 @@ impl GridMeasurement {
             .sum()
     }
 
-    /// The grid's mean illuminance at weights `w`, lx.
+    /// The grid's mean illuminance at weights `w`, lx: the whole grid's light over its
+    /// covered area; read at points, the mean of the points' computed direct light plus
+    /// that mean of the rest (the photons' indirect light is smooth, and its area mean
+    /// keeps the covariance with each cell that U0's interval needs).
     pub fn average(&self, w: &[f64]) -> Estimate {
         let t = &self.sums.total;
-        self.estimate(t.total(w), t.product(w, w), self.area(), w)
+        let mut e = self.estimate(t.total(w), t.product(w, w), self.area(), w);
+        if self.at_points() {
+            let points = self.points();
+            let direct: f64 = points.iter().map(|&i| self.direct_of(i, w)).sum();
+            e.mean += direct / points.len().max(1) as f64;
+        }
+        e
     }
 
     /// Emin, Eavg, Emax and U0 at weights `w`.
     pub fn uniformity(&self, w: &[f64]) -> Uniformity {
-        let cells: Vec<(usize, Estimate)> = (0..self.grid.cells())
+        let pool: Vec<(usize, Estimate)> = self
+            .points()
+            .into_iter()
             .filter_map(|i| self.cell(i, w).map(|e| (i, e)))
             .collect();
-        let full: Vec<(usize, Estimate)> = cells
-            .iter()
-            .copied()
-            .filter(|&(i, _)| self.grid.is_full(i))
-            .collect();
-        let pool = if full.is_empty() { &cells } else { &full };
         let (min_cell, min) = pool
             .iter()
             .copied()

@@ -97,6 +97,18 @@ pub enum Lobe<'a> {
 }
 
 impl Lobe<'_> {
+    /// Whether a photon leaving by this lobe leaves a point, spot or photometric light:
+    /// only a light's departure has these lobes (bounces leave by the cosine or a delta
+    /// lobe), so an arrival or connection from one is that light's direct light, which
+    /// a grid read at points computes instead (`direct.rs`).
+    #[inline]
+    pub fn leaves_point_source(&self) -> bool {
+        matches!(
+            self,
+            Lobe::Sphere | Lobe::Spot { .. } | Lobe::Goniometric { .. }
+        )
+    }
+
     /// The factor r(w) = I(w)/(Φ·p(w)) on the power of a photon leaving along the unit
     /// vector `w` (see the module doc): 1 for every lobe but the goniometric one, and 0
     /// where that one's density is 0.

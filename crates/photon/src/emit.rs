@@ -55,6 +55,18 @@ pub struct EmitSample<'a> {
     pub source: u32,
 }
 
+/// A light whose direct light is computed at points ([`Emitters::point_source`]).
+#[derive(Debug, Clone)]
+pub(crate) struct PointSource<'a> {
+    /// Its emission profile: intensity toward ω is `flux` · p(ω) · r(ω)
+    /// ([`Lobe::pdf_and_weight`]).
+    pub lobe: Lobe<'a>,
+    /// Its luminous flux, lm, undimmed.
+    pub flux: f64,
+    /// The points its light leaves from, each carrying an equal share.
+    pub points: Vec<Vec3>,
+}
+
 /// What a source of [`Emitters`] is in the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SourceOrigin {
@@ -318,6 +330,64 @@ impl Emitters {
     /// Whether the scene has no light at all.
     pub fn is_empty(&self) -> bool {
         self.total_flux() <= 0.0
+    }
+
+    /// Source `i` as a light whose direct light at a point is computed rather than
+    /// traced (`direct.rs`): a point, spot or photometric light, with the lobe its
+    /// photons leave by, its luminous flux and the points of its luminous opening its
+    /// light is taken to leave from (`n` × `n` stratified over the opening, the midpoint
+    /// of each stratum; one for a point). `None` for the sun, the sky and emissive
+    /// triangles, whose direct light the photons carry.
+    pub(crate) fn point_source(&self, i: usize, n: u32) -> Option<PointSource<'_>> {
+        let at = |position: Vec3| vec![position];
+        let (lobe, points) = match self.sources[i] {
+            Source::Point { position, .. } => (Lobe::Sphere, at(position)),
+            Source::Spot {
+                position,
+                axis,
+                cos_inner,
+                cos_outer,
+                flat_share,
+                ..
+            } => (
+                Lobe::Spot {
+                    axis,
+                    cos_inner,
+                    cos_outer,
+                    flat_share,
+                },
+                at(position),
+            ),
+            Source::Goniometric {
+                position,
+                frame,
+                ref photometry,
+                ..
+            } => {
+                let points = match photometry.opening {
+                    Opening::Point => at(position),
+                    opening => {
+                        let mid = |k: u32| (k as f32 + 0.5) / n as f32;
+                        (0..n * n)
+                            .map(|k| position + frame * opening.point(mid(k % n), mid(k / n)))
+                            .collect()
+                    }
+                };
+                let lobe = Lobe::Goniometric {
+                    to_local: frame.transpose(),
+                    photometry,
+                };
+                (lobe, points)
+            }
+            Source::Directional { .. } | Source::Sky { .. } | Source::Triangle { .. } => {
+                return None;
+            }
+        };
+        Some(PointSource {
+            lobe,
+            flux: self.flux[i],
+            points,
+        })
     }
 
     /// Draws a photon. Must not be called when [`Emitters::is_empty`]. Every light kind

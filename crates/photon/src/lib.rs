@@ -54,14 +54,16 @@
 /// The version of the numbers a seed gives: raised whenever a change to the tracer or
 /// its estimators changes them (a search's `run.json` records it, and `--resume`
 /// refuses to mix rows of two versions, whose common random numbers no longer pair).
-/// 2: the roulette's share and connections by solid angle.
-pub const ESTIMATOR_VERSION: u32 = 2;
+/// 2: the roulette's share and connections by solid angle; 3: grids read at their
+/// points (the point lights' direct light computed there).
+pub const ESTIMATOR_VERSION: u32 = 3;
 
 mod cells;
 mod channels;
 mod chunks;
 mod cluster;
 mod connect;
+mod direct;
 mod emit;
 mod estimator;
 mod grid;
@@ -78,12 +80,13 @@ pub use channels::{Components, Side};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shared};
 pub use connect::{Connection, Departure, Lobe, SOLID_ANGLE_TRIANGLES, SolidAngles, Targets};
+pub use direct::OPENING_SAMPLES;
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
 pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_rule, en12464_spacing};
 pub use measure::{
-    Estimator, GridRequest, Measurement, Request, measure, measure_across, measure_more,
-    measure_with,
+    Estimator, GridRequest, GridValues, Measurement, Request, measure, measure_across,
+    measure_more, measure_with,
 };
 pub use measure_report::{
     DaylightFactor, MeasureReport, SurfaceReport, behind_warning, much_from_behind,

@@ -12,6 +12,7 @@ use crate::channels::{Components, Side, SurfaceTallies, side_weights};
 use crate::chunks::{CHUNK, TraceSettings};
 use crate::cluster::{Cluster, cluster, trace_shared_from};
 use crate::connect::Targets;
+use crate::direct::direct_on_grid;
 use crate::emit::Emitters;
 use crate::estimator::{GROUP, photons_traced};
 use crate::grid::SurfaceGrid;
@@ -101,6 +102,37 @@ pub struct GridRequest {
     pub side: Side,
     /// The grid ([`SurfaceGrid::new`] or [`SurfaceGrid::en12464`] of that surface).
     pub grid: SurfaceGrid,
+    /// What a cell's value is: the illuminance at its centre, or its mean.
+    pub values: GridValues,
+}
+
+/// What a grid's cell reads ([`GridRequest::values`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GridValues {
+    /// The illuminance at the cell's centre, as EN 12464-1 takes it: the point, spot and
+    /// photometric lights' direct light computed there exactly, plus the photons' cell
+    /// mean of the rest (`direct.rs`).
+    #[default]
+    Points,
+    /// The photons' mean over the cell, all light together.
+    CellMeans,
+}
+
+impl GridValues {
+    /// `points` or `cell-means`, as files and flags name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            GridValues::Points => "points",
+            GridValues::CellMeans => "cell-means",
+        }
+    }
+
+    /// The values named `name` ([`GridValues::name`]).
+    pub fn parse(name: &str) -> Option<GridValues> {
+        [GridValues::Points, GridValues::CellMeans]
+            .into_iter()
+            .find(|v| v.name() == name)
+    }
 }
 
 /// What a measurement found.
@@ -190,6 +222,7 @@ impl Measurement {
         for g in &self.grids {
             g.sums.pack(out);
             out.extend([g.photons, g.flux.to_bits()]);
+            reals(out, &g.direct);
         }
         reals(out, &self.component_flux);
         out.extend([self.escaped.to_bits(), self.flux.to_bits()]);
@@ -239,6 +272,7 @@ impl Measurement {
                 let mut m = GridMeasurement::new(g.grid.clone(), g.side, sums);
                 m.photons = word(words);
                 m.flux = f64::from_bits(word(words));
+                m.direct = reals(words);
                 m
             })
             .collect();
@@ -461,6 +495,12 @@ fn trace_into(
     let shapes = Targets::new(scene, targets);
     let connect = request.estimator == Estimator::Connected;
     let flux = emitters.total_flux();
+    let direct = |g: &GridRequest| match g.values {
+        GridValues::Points => {
+            direct_on_grid(&emitters, accel, &g.grid, g.side, &plan.component_of, k)
+        }
+        GridValues::CellMeans => Vec::new(),
+    };
     let mut result = from.unwrap_or_else(|| Measurement {
         photons: 0,
         rays: 0,
@@ -482,6 +522,7 @@ fn trace_into(
                     CellTallies::new(g.grid.cells(), k).sums,
                 );
                 m.flux = flux;
+                m.direct = direct(g);
                 m
             })
             .collect(),

@@ -7,7 +7,7 @@ use crate::cells::CellTallies;
 use crate::channels::{SurfaceTallies, channel};
 use crate::cluster::Pack;
 use crate::connect::{Departure, Targets};
-use crate::measure::GridRequest;
+use crate::measure::{GridRequest, GridValues};
 use crate::path::PathVisitor;
 use crate::sampler::Sampler;
 use glam::Vec3;
@@ -75,18 +75,28 @@ pub(crate) struct ChunkTally<'a> {
     pub(crate) solid: Vec<Option<f64>>,
 }
 
+/// How light reached a target: by the photon's own ray (an arrival) or a connection,
+/// and whether straight from a point, spot or photometric light.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Arrival {
+    arrived: bool,
+    direct: bool,
+}
+
 impl ChunkTally<'_> {
     /// The current photon, of component `k`, brings `lumens` to target `t` at `point`
     /// on its front (`front`) or back.
     #[inline]
-    fn add(&mut self, t: u32, k: u32, front: bool, point: Vec3, lumens: f64, arrived: bool) {
+    fn add(&mut self, t: u32, k: u32, front: bool, point: Vec3, lumens: f64, from: Arrival) {
         let plan = self.plan;
         self.surfaces
             .add(t, channel(front, k, plan.components), lumens);
         for &g in &plan.grids_of[t as usize] {
             let request = &plan.grids[g];
-            if request.side.counts(front) {
-                self.cells[g].add(request.grid.cell_of(point), k, lumens, arrived);
+            // A grid read at points has its point lights' direct light computed there.
+            let computed = from.direct && request.values == GridValues::Points;
+            if request.side.counts(front) && !computed {
+                self.cells[g].add(request.grid.cell_of(point), k, lumens, from.arrived);
             }
         }
     }
@@ -103,7 +113,11 @@ impl PathVisitor for ChunkTally<'_> {
                 self.solid[t] = solid.map(|s| s.total);
                 if let Some(c) = targets.connect(t, from, solid.as_ref(), accel, sampler) {
                     self.connection_rays += 1;
-                    self.add(t as u32, k, c.front, c.point, c.lumens, false);
+                    let from = Arrival {
+                        arrived: false,
+                        direct: from.lobe.leaves_point_source(),
+                    };
+                    self.add(t as u32, k, c.front, c.point, c.lumens, from);
                 }
             }
         }
@@ -136,7 +150,11 @@ impl PathVisitor for ChunkTally<'_> {
                 None => 1.0,
             };
             self.surfaces.hit(t);
-            self.add(t, k, front, at.point, (lumens * w) as f64, true);
+            let from = Arrival {
+                arrived: true,
+                direct: from.lobe.leaves_point_source(),
+            };
+            self.add(t, k, front, at.point, (lumens * w) as f64, from);
         }
     }
 

@@ -8,8 +8,8 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle};
 use invlight_photon::{
-    Components, Estimator, GridRequest, Request, Side, SurfaceGrid, TraceSettings, measure,
-    measure_with,
+    Components, Estimator, GridRequest, GridValues, Request, Side, SurfaceGrid, TraceSettings,
+    measure, measure_with,
 };
 use invlight_scene::{Mat4, Material, Mesh, Scene, Vec3, Workplane};
 use invlight_trace::Accel;
@@ -101,6 +101,7 @@ fn a_workplane_reads_the_lamp_and_nothing_from_behind() {
                 target: 0,
                 side: Side::Front,
                 grid: grid.clone(),
+                values: GridValues::CellMeans,
             }],
             components: &components,
             estimator,

@@ -8,7 +8,7 @@ mod common;
 
 use common::{Z, assert_near, point, rect, rect_solid_angle};
 use invlight_photon::{
-    Alone, Components, Estimator, GridRequest, Measurement, Request, Side, SurfaceGrid,
+    Alone, Components, Estimator, GridRequest, GridValues, Measurement, Request, Side, SurfaceGrid,
     TraceSettings, measure_more, measure_with,
 };
 use invlight_scene::{Mat4, Material, Scene, Vec3};
@@ -73,6 +73,7 @@ fn uniformity_intervals_cover_the_truth() {
                 target: 0,
                 side: Side::Front,
                 grid: grid.clone(),
+                values: GridValues::CellMeans,
             }],
             components: &components,
             estimator: Estimator::Connected,
@@ -299,6 +300,7 @@ fn a_continued_measurement_is_the_measurement_at_once() {
             target: 0,
             side: Side::Front,
             grid: SurfaceGrid::new(&scene, floor, 0.25).unwrap(),
+            values: GridValues::Points,
         }],
         components: &components,
         estimator: Estimator::Connected,

@@ -417,6 +417,7 @@ mod tests {
             spacing: 1.0,
             spacing_rule: String::new(),
             side: invlight_photon::Side::Both,
+            values: invlight_photon::GridValues::CellMeans,
             front_back: (482.0, 0.0),
         };
         assert_eq!(map.emin_cells().len(), 1);

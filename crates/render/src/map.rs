@@ -13,7 +13,7 @@
 
 use glam::Vec3;
 use invlight_photon::{
-    Cluster, Components, Estimator, GridError, GridRequest, Request, Side, SurfaceGrid,
+    Cluster, Components, Estimator, GridError, GridRequest, GridValues, Request, Side, SurfaceGrid,
     TraceSettings, behind_warning, cluster, en12464_rule, en12464_spacing, measure_across,
     photons_traced,
 };
@@ -92,6 +92,9 @@ pub struct MapSettings {
     pub trace: TraceSettings,
     /// Whether departures are connected to the surface (see the module doc).
     pub estimator: Estimator,
+    /// What a cell reads: the illuminance at its centre (EN 12464-1's points, the
+    /// default) or its mean.
+    pub values: GridValues,
 }
 
 /// Why a grid cannot be measured.
@@ -152,6 +155,8 @@ pub struct IlluminanceMap {
     pub spacing_rule: String,
     /// The side whose light was counted.
     pub side: Side,
+    /// What a cell holds: the illuminance at its centre, or its mean.
+    pub values: GridValues,
     /// Cells row by row (row 0 at v = 0); `None` where the surface covers no area.
     pub cells: Vec<Option<MapCell>>,
     /// Photons emitted: the settings' count rounded up to whole stratified groups.
@@ -262,6 +267,7 @@ pub fn illuminance_maps_across(
                 target: i,
                 side: t.side,
                 grid: grid.clone(),
+                values: settings.values,
             })
             .collect(),
         components: &components,
@@ -300,6 +306,7 @@ pub fn illuminance_maps_across(
                 spacing: target.spacing.metres(grid),
                 spacing_rule: target.spacing.rule(grid),
                 side: target.side,
+                values: settings.values,
                 cells,
                 photons: measured.photons,
                 mean: uniformity.average,
@@ -535,7 +542,13 @@ impl IlluminanceMap {
                 emax = emax.max(c.estimate.mean);
             }
         }
-        let eavg = if area > 0.0 { sum / area } else { 0.0 };
+        // Read at points, Eavg is the points' mean as the measurement made it; of cell
+        // means, their area-weighted mean.
+        let eavg = match self.values {
+            GridValues::Points => self.mean.mean,
+            GridValues::CellMeans if area > 0.0 => sum / area,
+            GridValues::CellMeans => 0.0,
+        };
         if emin > emax {
             (emin, emax) = (eavg, eavg);
         }

@@ -4,7 +4,7 @@
 //! the bands' frame shape or the walls' orientation.
 
 use glam::{Mat4, Vec3};
-use invlight_photon::{Estimator, TraceSettings, cluster};
+use invlight_photon::{Estimator, GridValues, TraceSettings, cluster};
 use invlight_render::{GridSpacing, MapSettings, MapTarget, illuminance_maps_across};
 use invlight_scene::{AreaKind, Light, LightKind, Material, Mesh, Scene};
 use invlight_trace::Accel;
@@ -62,6 +62,7 @@ fn every_area_reads_the_point_sources_flux_over_its_area() {
             ..TraceSettings::default()
         },
         estimator: Estimator::Connected,
+        values: GridValues::CellMeans,
     };
     let targets: Vec<MapTarget> = areas
         .iter()

@@ -3,7 +3,7 @@
 //! that do not depend on the number of threads; the plot files.
 
 use glam::{Mat4, Vec3};
-use invlight_photon::{Estimator, GridError, Side, TraceSettings};
+use invlight_photon::{Estimator, GridError, GridValues, Side, TraceSettings};
 use invlight_render::{
     AreaLights, GridSpacing, IlluminanceImage, Image, Integrator, MapError, MapSettings, Mark,
     Paths, PhotonMap, PhotonSettings, PlanAxis, PlanFrame, PlotKind, PlotPoint, RenderSettings,
@@ -472,6 +472,7 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
                 ..TraceSettings::default()
             },
             estimator,
+            values: GridValues::CellMeans,
         };
         let floor = scene.surface("Floor").unwrap();
         let map = illuminance_map(&scene, &accel, floor, &settings, None).unwrap();
@@ -562,6 +563,7 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
             ..TraceSettings::default()
         },
         estimator: Estimator::Connected,
+        values: GridValues::Points,
     };
     let back_settings = back;
     let back = illuminance_map(&scene, &accel, floor, &back, None).unwrap();
@@ -603,6 +605,7 @@ fn grids_need_a_plane_and_do_not_depend_on_threads() {
             ..TraceSettings::default()
         },
         estimator: Estimator::Connected,
+        values: GridValues::Points,
     };
     assert!(matches!(
         illuminance_map(

@@ -12,7 +12,7 @@ use invlight_ilp::{
     Binding, Confidence, Diagnostic, Isoc, Member, Problem, Record, ResultFile, RunFile, Search,
     Solutions, Standing, Strategy,
 };
-use invlight_photon::{Alone, Estimator, GridError, TraceSettings};
+use invlight_photon::{Alone, Estimator, GridError, GridValues, TraceSettings};
 use invlight_render::{
     ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map_across, plain,
 };
@@ -63,7 +63,7 @@ impl From<ChartError> for ReportError {
 
 impl GridOptions {
     /// `photons` photons traced with `seed` and the bounce cap `max_bounces`, the cells
-    /// at EN 12464-1's spacing.
+    /// at EN 12464-1's spacing and read at its points.
     pub fn en(photons: u64, seed: u64, max_bounces: u32) -> GridOptions {
         GridOptions {
             trace: TraceSettings {
@@ -73,6 +73,7 @@ impl GridOptions {
                 ..TraceSettings::default()
             },
             spacing: GridSpacing::Auto,
+            values: GridValues::Points,
         }
     }
 }
@@ -179,6 +180,8 @@ pub struct GridOptions {
     pub trace: TraceSettings,
     /// The cell size.
     pub spacing: GridSpacing,
+    /// What a cell reads: the illuminance at its centre, or its mean.
+    pub values: GridValues,
 }
 
 /// A solve's report, ready to write.
@@ -517,6 +520,7 @@ impl<'a> SolveReport<'a> {
                 side,
                 trace: g.trace,
                 estimator: Estimator::Connected,
+                values: g.values,
             };
             // Nothing moves: one world-space tree, as `invlight map` builds. The page is
             // rank 0's alone in a cluster job (the others have ended): its own trace.

@@ -5,7 +5,7 @@
 
 use super::task::TaskSpec;
 use super::{Node, Reader};
-use crate::intention::{Bound, Constraint, Goal, Grid, Side, SurfaceRef};
+use crate::intention::{Bound, Constraint, Goal, Grid, GridValues, Side, Spacing, SurfaceRef};
 use invlight_scene::Diagnostic;
 
 const GOALS: &[&str] = &[
@@ -155,21 +155,38 @@ impl Reader<'_, '_> {
         })
     }
 
-    /// `grid`: `auto` (EN 12464-1) or a spacing in metres.
+    /// `grid`: `auto` (EN 12464-1) or a spacing in metres; `values`: `points` (the
+    /// illuminance at each cell's centre, as EN 12464-1 reads a grid) or `cell-means`.
     pub(super) fn grid(&self, node: Node) -> Result<Grid, Diagnostic> {
-        match node.attribute("grid").map(str::trim) {
-            None | Some("auto") => Ok(Grid::Auto),
+        let spacing = match node.attribute("grid").map(str::trim) {
+            None | Some("auto") => Spacing::Auto,
             Some(_) => match self.real(node, "grid", "auto or a spacing in metres")? {
-                Some(m) if m > 0.0 => Ok(Grid::Spacing(m)),
-                _ => Err(self.error(
+                Some(m) if m > 0.0 => Spacing::Metres(m),
+                _ => {
+                    return Err(self.error(
+                        node,
+                        format!(
+                            "'grid' of <{}> is not positive, expected auto or a spacing in metres",
+                            node.tag_name().name()
+                        ),
+                    ));
+                }
+            },
+        };
+        let values = match node.attribute("values").map(str::trim) {
+            None => GridValues::Points,
+            Some(v) => GridValues::parse(v).ok_or_else(|| {
+                self.error(
                     node,
                     format!(
-                        "'grid' of <{}> is not positive, expected auto or a spacing in metres",
+                        "'values' of <{}> is '{v}', expected points or cell-means",
                         node.tag_name().name()
                     ),
-                )),
-            },
-        }
+                )
+                .with_hint("points: the illuminance at each grid point, as EN 12464-1 judges a grid; cell-means: the mean over each cell")
+            })?,
+        };
+        Ok(Grid { spacing, values })
     }
 
     /// A positive illuminance attribute.
@@ -217,7 +234,7 @@ impl Reader<'_, '_> {
                 }
             }
             "maximizeUniformity" => {
-                self.check_attributes(o, &["surface", "side", "grid"]);
+                self.check_attributes(o, &["surface", "side", "grid", "values"]);
                 Goal::MaximizeUniformity {
                     surface: self.surface_ref(o)?,
                     grid: self.grid(o)?,
@@ -247,7 +264,10 @@ impl Reader<'_, '_> {
             "minPointLux",
             "minDaylightFactor",
         ];
-        self.check_attributes(c, &[&["surface", "side", "grid"][..], &BOUNDS].concat());
+        self.check_attributes(
+            c,
+            &[&["surface", "side", "grid", "values"][..], &BOUNDS].concat(),
+        );
         let given: Vec<&str> = BOUNDS
             .into_iter()
             .filter(|b| c.attribute(*b).is_some())
@@ -284,14 +304,16 @@ impl Reader<'_, '_> {
                 self.grid(c)?,
             ),
         };
-        if c.attribute("grid").is_some() && bound.grid().is_none() {
-            self.warn(
-                c,
-                format!(
-                    "'grid' of a {} constraint ignored: it bounds the mean",
-                    bound.attribute()
-                ),
-            );
+        for attribute in ["grid", "values"] {
+            if c.attribute(attribute).is_some() && bound.grid().is_none() {
+                self.warn(
+                    c,
+                    format!(
+                        "'{attribute}' of a {} constraint ignored: it bounds the mean",
+                        bound.attribute()
+                    ),
+                );
+            }
         }
         Ok(Constraint {
             surface: self.surface_ref(c)?,

@@ -189,7 +189,7 @@ impl Problem {
                     name: a.name,
                     side: Side::Front,
                 };
-                let grid = a.kind.spacing().map_or(Grid::Auto, Grid::Spacing);
+                let grid = a.kind.spacing().map_or(Grid::AUTO, Grid::metres);
                 let mut lux = spec.constraint(surface.clone(), Bound::MinLux(em), Some(a.kind));
                 lux.bound = lux.bound.for_new(self.maintenance_factor);
                 lux.maintenance_factor = self.maintenance_factor;

@@ -432,11 +432,11 @@ fn intentions_read_and_their_mistakes_are_errors() {
     );
     assert_eq!(
         p.constraints[1].bound,
-        Bound::MinUniformity(0.6, Grid::Auto)
+        Bound::MinUniformity(0.6, Grid::AUTO)
     );
     assert_eq!(
         p.constraints[3].bound,
-        Bound::MinPointLux(300.0, Grid::Spacing(0.25))
+        Bound::MinPointLux(300.0, Grid::metres(0.25))
     );
     assert_eq!(
         p.variables[0].kind,
