@@ -343,9 +343,19 @@ impl Rows {
                         ratio: None,
                     });
                 }
+                (Bound::MinLux(b) | Bound::MaxLux(b), Quantity::Average { grid }) => {
+                    let (a, c) = linear(&|w| m.grids[grid].average(w).mean);
+                    rows.push(Row {
+                        constraint: i,
+                        a,
+                        rhs: b - c,
+                        lower: bound.is_lower(),
+                        ratio: None,
+                    });
+                }
                 (Bound::MinPointLux(b, _), Quantity::MinPoint { grid }) => {
                     let g = &m.grids[grid];
-                    for cell in counted_cells(g) {
+                    for cell in g.points() {
                         let (a, c) = linear(&|w| g.cell(cell, w).map_or(0.0, |e| e.mean));
                         rows.push(Row {
                             constraint: i,
@@ -359,7 +369,7 @@ impl Rows {
                 (Bound::MinUniformity(u, _), Quantity::Uniformity { grid }) => {
                     let g = &m.grids[grid];
                     let (avg, avg_c) = linear(&|w| g.average(w).mean);
-                    for cell in counted_cells(g) {
+                    for cell in g.points() {
                         let (a, c) = linear(&|w| g.cell(cell, w).map_or(0.0, |e| e.mean));
                         rows.push(Row {
                             constraint: i,
@@ -375,20 +385,6 @@ impl Rows {
         }
         Rows(rows)
     }
-}
-
-/// The cells whose least mean is Emin: those the surface covers at least half of, or
-/// every covered cell when none is ([`invlight_photon::GridMeasurement::uniformity`]).
-fn counted_cells(g: &invlight_photon::GridMeasurement) -> Vec<usize> {
-    let covered: Vec<usize> = (0..g.grid.cells())
-        .filter(|&i| g.grid.is_covered(i))
-        .collect();
-    let full: Vec<usize> = covered
-        .iter()
-        .copied()
-        .filter(|&i| g.grid.is_full(i))
-        .collect();
-    if full.is_empty() { covered } else { full }
 }
 
 /// Whether every constraint of a problem is one the program can hold: the lamps'

@@ -264,6 +264,10 @@ pub struct Constraint {
     pub maintenance_factor: f64,
     /// The `<task>` that asked it, when one did rather than a `<constraint>`.
     pub from_task: Option<FromTask>,
+    /// For a mean bound (`minLux`, `maxLux`) given a `grid`: the grid whose values'
+    /// mean is bounded, EN 12464-1's Ēm (the mean of its points); `None`: the surface's
+    /// mean illuminance.
+    pub average_over: Option<Grid>,
 }
 
 /// Which requirement of a `<task>` a constraint states: the task area's own, or one of

@@ -33,6 +33,12 @@ pub enum Quantity {
         /// The side.
         side: Side,
     },
+    /// The mean of a grid's values, lx: EN 12464-1's Ēm, the mean of its points (of
+    /// its cells' means when it reads means: the surface's mean).
+    Average {
+        /// Index in [`Reading::grids`].
+        grid: usize,
+    },
     /// U0 over a grid.
     Uniformity {
         /// Index in [`Reading::grids`].
@@ -104,9 +110,12 @@ impl Reading {
         };
         for c in &problem.constraints {
             let q = match c.bound {
-                Bound::MinLux(_) | Bound::MaxLux(_) => {
-                    reading.mean(problem, scene, &c.surface, c.line)?
-                }
+                Bound::MinLux(_) | Bound::MaxLux(_) => match c.average_over {
+                    Some(grid) => Quantity::Average {
+                        grid: reading.grid(problem, scene, &c.surface, grid, c.line)?,
+                    },
+                    None => reading.mean(problem, scene, &c.surface, c.line)?,
+                },
                 Bound::MinUniformity(_, grid) => Quantity::Uniformity {
                     grid: reading.grid(problem, scene, &c.surface, grid, c.line)?,
                 },
@@ -248,7 +257,9 @@ impl Reading {
             Quantity::Mean { target, side } | Quantity::DaylightFactor { target, side, .. } => {
                 Some((self.surfaces[target], side))
             }
-            Quantity::Uniformity { grid } | Quantity::MinPoint { grid } => {
+            Quantity::Average { grid }
+            | Quantity::Uniformity { grid }
+            | Quantity::MinPoint { grid } => {
                 let g = &self.grids[grid];
                 Some((self.surfaces[g.target], g.side))
             }
@@ -285,6 +296,7 @@ impl Reading {
     pub fn read(&self, m: &Measurement, w: &[f64], power: f64) -> Evaluation {
         let quantity = |q: &Quantity| match *q {
             Quantity::Mean { target, side } => m.estimate_of(target, side, w),
+            Quantity::Average { grid } => m.grids[grid].average(w),
             Quantity::Uniformity { grid } => m.grids[grid].uniformity(w).u0,
             Quantity::MinPoint { grid } => m.grids[grid].uniformity(w).min,
             Quantity::Power => Estimate {

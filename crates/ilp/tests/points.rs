@@ -61,6 +61,7 @@ fn a_layout_uniform_by_cell_means_but_not_at_the_points_is_infeasible() {
             line: 1,
             maintenance_factor: 1.0,
             from_task: None,
+            average_over: None,
         };
         let request = Request {
             surfaces: &[floor],

@@ -15,11 +15,14 @@
 //! light's level, so the least-power program keeps the direct part per component as it
 //! keeps the photons' tallies.
 //!
-//! A light with a luminous opening is taken as [`OPENING_SAMPLES`]² points spread over
-//! it, each carrying an equal share of its intensity (the far-field table applied at
-//! each), so a linear luminaire close to a point is not treated as a point source; a
-//! point source is one point. The sun, the sky and emissive surfaces keep their direct
-//! light in the photons.
+//! A light with a luminous opening is taken, at a point nearer than [`FIVE_TIMES`] its
+//! largest dimension, as [`OPENING_SAMPLES`]² points spread over it, each carrying an
+//! equal share of its intensity (the far-field table applied at each), so a linear
+//! luminaire close to a point is not treated as a point source. Farther away it is one
+//! point at its photometric centre: the photometric distance rule (the inverse-square
+//! law holds to about 1 % beyond five times a source's largest dimension; IES LM-63 and
+//! CIE 121 measure luminaires at such distances). The sun, the sky and emissive surfaces
+//! keep their direct light in the photons.
 
 use crate::channels::Side;
 use crate::emit::Emitters;
@@ -31,6 +34,10 @@ use rayon::prelude::*;
 /// Points per side of a luminous opening's stratified points: 16 for a rectangle,
 /// disk or ellipse.
 pub const OPENING_SAMPLES: u32 = 4;
+
+/// The distance, in the opening's largest dimension, beyond which a luminaire is one
+/// point (the module doc's five-times rule).
+pub const FIVE_TIMES: f32 = 5.0;
 
 /// The direct illuminance, lx, of every point, spot and photometric light of
 /// `emitters` at each cell's centre of `grid`, counted on `side`, per component
@@ -61,9 +68,15 @@ pub(crate) fn direct_on_grid(
             return;
         }
         for (c, source) in &sources {
-            let share = source.flux / source.points.len() as f64;
+            let far = [source.centre];
+            let points = if y.distance(source.centre) >= FIVE_TIMES * source.size {
+                &far[..]
+            } else {
+                &source.points[..]
+            };
+            let share = source.flux / points.len() as f64;
             let mut e = 0.0;
-            for &x in &source.points {
+            for &x in points {
                 e += share
                     * at_point(accel, x, y, grid.normal, side, |w| {
                         let (pdf, weight) = source.lobe.pdf_and_weight(w);

@@ -63,6 +63,10 @@ pub(crate) struct PointSource<'a> {
     pub lobe: Lobe<'a>,
     /// Its luminous flux, lm, undimmed.
     pub flux: f64,
+    /// Its photometric centre.
+    pub centre: Vec3,
+    /// The largest dimension of its luminous opening, m (0 for a point).
+    pub size: f32,
     /// The points its light leaves from, each carrying an equal share.
     pub points: Vec<Vec3>,
 }
@@ -339,8 +343,8 @@ impl Emitters {
     /// of each stratum; one for a point). `None` for the sun, the sky and emissive
     /// triangles, whose direct light the photons carry.
     pub(crate) fn point_source(&self, i: usize, n: u32) -> Option<PointSource<'_>> {
-        let at = |position: Vec3| vec![position];
-        let (lobe, points) = match self.sources[i] {
+        let at = |position: Vec3| (position, 0.0, vec![position]);
+        let (lobe, (centre, size, points)) = match self.sources[i] {
             Source::Point { position, .. } => (Lobe::Sphere, at(position)),
             Source::Spot {
                 position,
@@ -368,9 +372,11 @@ impl Emitters {
                     Opening::Point => at(position),
                     opening => {
                         let mid = |k: u32| (k as f32 + 0.5) / n as f32;
-                        (0..n * n)
+                        let [a, b] = opening.extents();
+                        let points = (0..n * n)
                             .map(|k| position + frame * opening.point(mid(k % n), mid(k / n)))
-                            .collect()
+                            .collect();
+                        (position, a.max(b), points)
                     }
                 };
                 let lobe = Lobe::Goniometric {
@@ -386,6 +392,8 @@ impl Emitters {
         Some(PointSource {
             lobe,
             flux: self.flux[i],
+            centre,
+            size,
             points,
         })
     }

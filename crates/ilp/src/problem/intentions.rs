@@ -304,16 +304,19 @@ impl Reader<'_, '_> {
                 self.grid(c)?,
             ),
         };
-        for attribute in ["grid", "values"] {
-            if c.attribute(attribute).is_some() && bound.grid().is_none() {
-                self.warn(
-                    c,
-                    format!(
-                        "'{attribute}' of a {} constraint ignored: it bounds the mean",
-                        bound.attribute()
-                    ),
-                );
-            }
+        let gridded = c.attribute("grid").is_some() || c.attribute("values").is_some();
+        let average_over = match bound {
+            Bound::MinLux(_) | Bound::MaxLux(_) if gridded => Some(self.grid(c)?),
+            _ => None,
+        };
+        if gridded && bound.grid().is_none() && average_over.is_none() {
+            self.warn(
+                c,
+                format!(
+                    "'grid' and 'values' of a {} constraint ignored: it bounds the mean",
+                    bound.attribute()
+                ),
+            );
         }
         Ok(Constraint {
             surface: self.surface_ref(c)?,
@@ -321,6 +324,7 @@ impl Reader<'_, '_> {
             line: self.line(c),
             maintenance_factor: 1.0,
             from_task: None,
+            average_over,
         })
     }
 }

@@ -50,17 +50,22 @@ impl TaskSpec {
                 task: self.name(),
                 area,
             }),
+            average_over: None,
         }
     }
 
-    /// The task area's own constraints: Ēm (maintained) and U0 on its grid.
+    /// The task area's own constraints: Ēm (maintained, the mean of its grid's points
+    /// as EN 12464-1 takes it) and U0 on that grid.
     pub(super) fn task_constraints(&self) -> Vec<Constraint> {
         let em = self.em.map(Bound::MinLux);
         let u0 = self.u0.map(|u| Bound::MinUniformity(u, self.grid));
         [em, u0]
             .into_iter()
             .flatten()
-            .map(|b| self.constraint(self.surface.clone(), b, None))
+            .map(|b| Constraint {
+                average_over: Some(self.grid),
+                ..self.constraint(self.surface.clone(), b, None)
+            })
             .collect()
     }
 }
@@ -191,6 +196,7 @@ impl Problem {
                 };
                 let grid = a.kind.spacing().map_or(Grid::AUTO, Grid::metres);
                 let mut lux = spec.constraint(surface.clone(), Bound::MinLux(em), Some(a.kind));
+                lux.average_over = Some(grid);
                 lux.bound = lux.bound.for_new(self.maintenance_factor);
                 lux.maintenance_factor = self.maintenance_factor;
                 let even = spec.constraint(surface, Bound::MinUniformity(u0, grid), Some(a.kind));
@@ -264,13 +270,16 @@ mod tests {
         for n in 1..=4 {
             assert!(has(&format!("wall {n}"), "Em", 75.0), "{asked:?}");
         }
-        // Every illuminance is maintained: the search holds the new installation to ÷ MF.
+        // Every illuminance is maintained: the search holds the new installation to ÷ MF;
+        // and every Ēm is the mean of its grid's points, as EN 12464-1 takes it.
         for c in p
             .constraints
             .iter()
             .filter(|c| c.bound.attribute() == "minLux")
         {
             assert!((c.bound.limit() - c.maintained_limit() / 0.8).abs() < 1e-9);
+            let grid = c.average_over.expect("Em over a grid");
+            assert_eq!(grid.values, crate::GridValues::Points, "{}", c.surface.name);
         }
         // Each area is a calculation surface of the scene the search traces.
         for c in &p.constraints {

@@ -519,12 +519,33 @@ fn intentions_read_and_their_mistakes_are_errors() {
         let e = parse(&text).unwrap_err();
         assert!(e.to_string().contains(what), "{conditions}: {e}");
     }
-    // 'grid' on a bound of the mean is ignored with a warning.
+    // 'grid' on a bound of the mean makes it the mean of the grid's points (Ēm); on a
+    // daylight factor it is ignored with a warning.
     let p = parse(&wrap(
         "<minimizePower/><constraint surface=\"D\" minLux=\"5\" grid=\"1\"/>",
     ))
     .unwrap();
+    assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+    assert_eq!(p.constraints[0].average_over, Some(Grid::metres(1.0)));
+    let p = parse(&wrap(
+        "<minimizePower/><constraint surface=\"D\" minLux=\"5\" values=\"cell-means\"/>",
+    ))
+    .unwrap();
+    let over = p.constraints[0].average_over.unwrap();
+    assert_eq!(over.values, crate::GridValues::CellMeans);
+    let p = parse(&wrap(
+        "<minimizePower/><constraint surface=\"D\" minDaylightFactor=\"2\" grid=\"1\"/>",
+    ))
+    .unwrap();
     assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    let e = parse(&wrap(
+        "<minimizePower/><constraint surface=\"D\" minUniformity=\"0.5\" values=\"centres\"/>",
+    ))
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("expected points or cell-means"),
+        "{e}"
+    );
 }
 
 /// A scene path that does not exist is named with the problem file's line and the
