@@ -3097,3 +3097,67 @@ fn map_with_a_task_judges_the_areas_around_the_task_area() {
     let alone = json(args(&["--no-areas"]));
     assert!(alone.get("areas").is_none());
 }
+
+/// A problem without variables checks the design as it is authored: one evaluation, the
+/// table and result.json say whether it meets its constraints; equal `min` and `max` on
+/// a `<lightPower>` fix that lamp's level.
+#[test]
+fn a_fixed_design_is_checked_as_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let office = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/open-office");
+    for f in ["scene.gltf", "scene.bin", "downlight.ldt"] {
+        std::fs::copy(office.join(f), dir.path().join(f)).unwrap();
+    }
+    let original = std::fs::read_to_string(office.join("problem.xml")).unwrap();
+    let without: String = original
+        .lines()
+        .filter(|l| !l.contains("<lightInSurface") && !l.contains("<lightPower"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let solve = |problem: &str, name: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, problem).unwrap();
+        let out = dir.path().join(format!("{name}.out"));
+        let o = invlight([
+            "solve",
+            path.to_str().unwrap(),
+            "--output",
+            out.to_str().unwrap(),
+            "-n",
+            "50000",
+            "--no-images",
+            "--no-report",
+        ]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let result: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("result.json")).unwrap())
+                .unwrap();
+        (text(&o.stdout), result)
+    };
+    // The authored row of six lamps lights the desk well past 500 lx but unevenly.
+    let (table, result) = solve(&without, "fixed.xml");
+    assert!(
+        table.contains("The design as authored (the problem has no variables) does not meet"),
+        "{table}"
+    );
+    assert_eq!(result["evaluations"].as_u64(), Some(1), "{result}");
+    assert!(result["isoc"].as_array().unwrap().is_empty());
+    let u0 = &result["closest"][0]["constraints"][1];
+    assert_eq!(u0["verdict"], "infeasible", "{u0}");
+    let loose = without.replace("minUniformity=\"0.6\"", "minUniformity=\"0.2\"");
+    let (table, result) = solve(&loose, "loose.xml");
+    assert!(table.contains("meets every constraint"), "{table}");
+    assert_eq!(result["isoc"].as_array().unwrap().len(), 1);
+    // Lamp 1 fixed at 50 %, the others free to dim: its level stays 0.5.
+    let fixed_level = without.replace(
+        "</conditions>",
+        "<lightPower id=\"Lamp1\" min=\"0.5\" max=\"0.5\"/><lightPower id=\"Lamp2\" min=\"0.1\" max=\"1\"/></conditions>",
+    );
+    let (_, result) = solve(&fixed_level, "level.xml");
+    let member = result["isoc"]
+        .get(0)
+        .or_else(|| result["closest"].get(0))
+        .unwrap();
+    let level = &member["variables"]["Lamp1"];
+    assert!((f64_of(&level["value"]) - 0.5).abs() < 1e-12, "{member}");
+}

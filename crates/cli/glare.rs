@@ -218,14 +218,16 @@ fn table(r: &Rated, confidence: Confidence, worst: bool) -> String {
     s + "\n"
 }
 
-/// A UGR as tables print it (to a tenth; an infinite bound as ∞).
+/// A UGR as tables print it: to a tenth, "< 10" below CIE 117's scale (10, the
+/// threshold of discomfort, to 30; the formula's lower values mean nothing more than
+/// "no discomfort"), an infinite upper bound as ∞.
 fn rating(x: f64) -> String {
-    if x.is_finite() {
+    if x < 10.0 {
+        "< 10".into()
+    } else if x.is_finite() {
         format!("{x:.1}")
-    } else if x > 0.0 {
-        "∞".into()
     } else {
-        "−∞".into()
+        "∞".into()
     }
 }
 
@@ -254,4 +256,18 @@ fn sources(sources: &[GlareSource]) -> String {
         );
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rating;
+
+    #[test]
+    fn a_rating_below_cie_117s_scale_reads_below_10() {
+        assert_eq!(rating(-6.1), "< 10");
+        assert_eq!(rating(f64::NEG_INFINITY), "< 10");
+        assert_eq!(rating(9.96), "< 10");
+        assert_eq!(rating(19.04), "19.0");
+        assert_eq!(rating(f64::INFINITY), "∞");
+    }
 }

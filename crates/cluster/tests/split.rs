@@ -29,6 +29,7 @@ fn room() -> Scene {
     scene.add_instance("Ceiling", ceiling, Mat4::IDENTITY);
     for (name, x) in [("Left", -0.5), ("Right", 0.6)] {
         scene.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: name.into(),
             kind: LightKind::Point {
                 position: Vec3::new(x, 0.2, 1.5),

@@ -334,6 +334,17 @@ impl Constraint {
         }
     }
 
+    /// The one-sided bound of an estimate that decides it at the one-sided `z`:
+    /// mean − z·σ against a lower limit, mean + z·σ against an upper one
+    /// ([`Feasibility::of`]).
+    pub fn one_sided_bound(&self, e: &invlight_stats::Estimate, z: f64) -> f64 {
+        if self.bound.is_lower() {
+            e.mean - z * e.std_error
+        } else {
+            e.mean + z * e.std_error
+        }
+    }
+
     /// Its verdict for an estimate of its quantity, at the one-sided `z`.
     pub fn verdict(&self, e: &invlight_stats::Estimate, z: f64) -> Feasibility {
         Feasibility::of(e.mean, e.std_error, z, &self.bound)

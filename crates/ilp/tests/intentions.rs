@@ -45,6 +45,7 @@ fn patch(s: &mut Scene, name: &str, (x1, x2): (f32, f32), (z1, z2): (f32, f32)) 
 
 fn lamp(s: &mut Scene, name: &str, at: Vec3, cd: f32) {
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: name.into(),
         kind: LightKind::Point {
             position: at,

@@ -48,6 +48,7 @@ fn scene() -> Scene {
     }
     for (name, x) in ["LampA", "LampB"].iter().zip(LAMPS_X) {
         s.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: (*name).into(),
             kind: LightKind::Point {
                 position: p(x, LAMP_Y, Z),

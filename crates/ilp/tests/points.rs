@@ -27,6 +27,7 @@ fn floor_under_a_lamp() -> Scene {
     ));
     scene.add_instance("Floor", floor, Mat4::IDENTITY);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(1.5, 0.5, 0.9),

@@ -220,6 +220,7 @@ fn lamp_scene() -> (Scene, Problem) {
         p(0., 1.1, 4.),
     );
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: p(0., 1.1, 0.),
@@ -317,6 +318,7 @@ fn statue_scene() -> (Scene, Problem) {
     s.add_instance("Statue", flat_box, Mat4::IDENTITY);
     let lamp = p(1.3, 0.8, 2.7);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: lamp,
@@ -406,6 +408,7 @@ fn skylight_lets_the_sun_onto_the_board() {
     );
     let sun = DVec3::new(0.3, -1.0, 0.0).normalize();
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: sun.as_vec3(),
@@ -439,6 +442,7 @@ fn wall_scene(cap: Option<f64>) -> (Scene, Problem) {
     let walls = s.add_material(Material::diffuse("Walls", Vec3::splat(0.3)));
     room(&mut s, 4.0, 2.5, 4.0, black, black, walls);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: Vec3::new(2.0, 1.25, 2.0),
@@ -513,6 +517,7 @@ fn sun_through_window_onto_board() {
         black,
     );
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: hemi.direction(0.4, 0.5).as_vec3(),
@@ -703,6 +708,7 @@ fn light_aim_puts_the_beam_on_an_off_axis_desk() {
         black,
     );
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: lamp.as_vec3(),
@@ -760,6 +766,7 @@ fn hole_size_grows_a_skylight_up_to_a_cap() {
     ));
     s.add_instance("Skylight", glass, Mat4::IDENTITY);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: Vec3::NEG_Y,
@@ -817,6 +824,7 @@ fn object_rotation_turns_a_luminaire_toward_a_wall() {
     let black = s.add_material(Material::diffuse("Black", Vec3::ZERO));
     room(&mut s, 4.0, 3.0, 4.0, black, black, black);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(2.0, 2.9, 2.0),
@@ -943,6 +951,7 @@ fn skylight_goes_over_the_board_for_the_most_daylight_factor() {
     );
     // A sun that would light the board through a skylight elsewhere: it must be off.
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: DVec3::new(0.6, -1.0, 0.0).normalize().as_vec3(),

@@ -38,6 +38,7 @@
 //! scene.lights.push(Light {
 //!     name: "Lamp".into(),
 //!     kind: LightKind::Point { position: Vec3::new(0.0, 0.0, 1.0), intensity: Vec3::ONE },
+//!     c0: Vec3::X,
 //! });
 //! let accel = Accel::new(&scene);
 //! let settings = TraceSettings { photons: 20_000, ..TraceSettings::default() };

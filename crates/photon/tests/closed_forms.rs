@@ -268,6 +268,7 @@ fn sun_on_a_tilted_plane() {
     let plane = scene.add_mesh(rect(-1.0, 1.0, -0.5, 0.5, 0.0, grey));
     scene.add_instance("Roof", plane, Mat4::from_rotation_x(tilt));
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: -Vec3::Z,
@@ -314,6 +315,7 @@ fn glass_slab_transmits_by_fresnel() {
     scene.add_instance("Slab", slab, Mat4::IDENTITY);
     scene.add_instance("Target", target, Mat4::IDENTITY);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: -Vec3::Z,
@@ -335,6 +337,7 @@ fn spot_light_flux_reaches_the_floor() {
     scene.add_instance("Floor", floor, Mat4::IDENTITY);
     let (inner, outer) = (0.3f32, 0.6f32);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: Vec3::new(1.0, 0.0, 2.0),
@@ -615,6 +618,7 @@ fn sun_through_a_hole_in_the_roof() {
     // must both pass through the hole and nowhere else.
     let mut scene = roof_with_hole(2.0);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: -Vec3::Z,

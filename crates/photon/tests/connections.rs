@@ -149,6 +149,7 @@ fn spot_point_and_panel_draw_what_their_pdf_says() {
     let axis = Vec3::new(0.3, -0.2, -1.0).normalize();
     let (inner, outer) = (0.35f32, 0.6f32);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: Vec3::ZERO,
@@ -219,6 +220,7 @@ fn sun_photons_start_uniformly_on_the_disk_of_its_lobe() {
 
 fn sun(direction: Vec3, lux: f32) -> Light {
     Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction,
@@ -390,6 +392,7 @@ fn spot_across_its_cap_and_ring() {
     let patch = scene.add_mesh(rect(x0, x1, y0, y1, 0.0, black));
     scene.add_instance("Patch", patch, Mat4::IDENTITY);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: at,
@@ -495,6 +498,7 @@ fn a_thin_target_lit_from_both_sides() {
     let axis = Vec3::new(-0.2, 0.1, 1.0).normalize();
     let at = Vec3::new(0.3, 0.0, -0.8);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: at,

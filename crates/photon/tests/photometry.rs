@@ -45,6 +45,7 @@ fn data(name: &str) -> Photometry {
 /// A goniometric light at `position` turned by `frame`.
 fn luminaire(photometry: Photometry, position: Vec3, frame: Mat3) -> Light {
     Light {
+        c0: invlight_scene::Vec3::X,
         name: "Luminaire".into(),
         kind: LightKind::Goniometric {
             position,

@@ -198,3 +198,78 @@ fn each_point_reads_what_a_small_receptor_there_measures() {
     );
     assert!(p.mean - c.mean > Z * (p.std_error.powi(2) + c.std_error.powi(2)).sqrt());
 }
+
+/// The direct illuminance at two points of a black floor 1 m from the foot of a linear
+/// luminaire (tests/data/photometry/linear.ldt, 1.5 m long, its length along C90) hung
+/// 2 m up in a Y-up scene, one along +X and one along +Z, with the point light it is
+/// given to carrying `c0` (its node's local +X) and the fitting turned `rotation`
+/// degrees about its aim.
+fn along_and_across(c0: Vec3, rotation: f32) -> (f64, f64) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/photometry/linear.ldt");
+    let table = invlight_scene::read_photometry(&path).unwrap();
+    let mut scene = Scene::default();
+    scene.up = Vec3::Y;
+    let black = scene.add_material(Material::diffuse("Black", Vec3::ZERO));
+    let floor = scene.add_mesh(Mesh::quad(
+        [
+            Vec3::new(-2.0, 0.0, -2.0),
+            Vec3::new(-2.0, 0.0, 2.0),
+            Vec3::new(2.0, 0.0, 2.0),
+            Vec3::new(2.0, 0.0, -2.0),
+        ],
+        black,
+    ));
+    scene.add_instance("Floor", floor, Mat4::IDENTITY);
+    let lamp = Vec3::new(0.25, 2.0, 0.25);
+    scene.lights.push(invlight_scene::Light {
+        c0,
+        ..point("Lamp", lamp, 1.0)
+    });
+    scene
+        .set_photometry("Lamp", std::sync::Arc::new(table), 1.0)
+        .unwrap();
+    scene.lights[0].kind.turn_about_aim(rotation);
+    let accel = Accel::new(&scene);
+    let id = scene.surface("Floor").unwrap();
+    let grid = SurfaceGrid::new(&scene, id, 0.5).unwrap();
+    let components = Components::one(&scene);
+    let surfaces = [id];
+    let m = measure_with(
+        &scene,
+        &accel,
+        &request(&surfaces, &grid, GridValues::Points, &components),
+        &settings(4096, 1),
+        None,
+    );
+    let at = |p: Vec3| {
+        let i = (0..grid.cells())
+            .find(|&i| grid.centre(i).distance(p) < 1e-4)
+            .expect("a grid point there");
+        m.grids[0].cell(i, &[1.0]).unwrap().mean
+    };
+    (
+        at(Vec3::new(1.25, 0.0, 0.25)),
+        at(Vec3::new(0.25, 0.0, 1.25)),
+    )
+}
+
+#[test]
+fn turning_a_linear_luminaire_a_quarter_turn_swaps_along_and_across() {
+    let (x, z) = along_and_across(Vec3::X, 0.0);
+    // Across the luminaire (C0, along X) it sends more at 27° than along its length.
+    assert!(x > 1.1 * z, "across {x} lx, along {z} lx");
+    // Its node turned a quarter turn about the vertical (local +X now along −Z), or the
+    // fitting turned 90° on its mounting: the two points trade their light.
+    for (c0, rotation) in [(Vec3::NEG_Z, 0.0), (Vec3::X, 90.0)] {
+        let (tx, tz) = along_and_across(c0, rotation);
+        assert!(
+            (tx / z - 1.0).abs() < 1e-4,
+            "{c0}, {rotation}°: {tx} vs {z}"
+        );
+        assert!(
+            (tz / x - 1.0).abs() < 1e-4,
+            "{c0}, {rotation}°: {tz} vs {x}"
+        );
+    }
+}

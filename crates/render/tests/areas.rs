@@ -42,6 +42,7 @@ fn every_area_reads_the_point_sources_flux_over_its_area() {
     let source = Vec3::new(2.2, 2.0, 1.7);
     let intensity = 100.0;
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: source,

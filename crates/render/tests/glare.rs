@@ -41,6 +41,7 @@ fn wall_scene() -> Scene {
     let mesh = scene.add_mesh(Mesh::quad(corners, m));
     scene.add_instance("Wall", mesh, Mat4::IDENTITY);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: Vec3::X,
@@ -56,6 +57,7 @@ fn with_panel(mut scene: Scene, at: Vec3, multiplier: f32) -> Scene {
     std::fs::write(&path, PANEL).unwrap();
     let photometry = read_photometry(&path).unwrap();
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Panel".into(),
         kind: LightKind::Goniometric {
             position: at,
@@ -190,6 +192,7 @@ fn a_luminaire_behind_the_eye_or_hidden_adds_nothing() {
 fn a_point_light_in_view_is_refused_not_guessed() {
     let mut scene = wall_scene();
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Bulb".into(),
         kind: LightKind::Point {
             position: Vec3::new(2.0, 0.0, 1.0),

@@ -97,6 +97,7 @@ fn lit_plane(kd: f32) -> (Scene, Vec<LightKind>) {
     ];
     for (i, kind) in lights.iter().enumerate() {
         scene.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: format!("l{i}"),
             kind: kind.clone(),
         });
@@ -329,6 +330,7 @@ fn small_room() -> Scene {
     ));
     scene.add_instance("Lamp", panel, Mat4::IDENTITY);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "bulb".into(),
         kind: LightKind::Point {
             position: Vec3::new(1.5, 0.5, 1.5),
@@ -436,6 +438,7 @@ fn grid_cells_match_the_closed_form_under_a_point_light() {
     scene.add_instance("Floor", quad, Mat4::IDENTITY);
     let (light, intensity) = (Vec3::new(0.7, 1.3, 1.0), 100.0f64);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "bulb".into(),
         kind: LightKind::Point {
             position: light,

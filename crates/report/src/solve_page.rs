@@ -311,7 +311,16 @@ impl<'a> SolveReport<'a> {
             Some(best) => {
                 let e = &best.evaluation.goal;
                 let i = e.interval(f.isoc.z());
-                let opening = if feasible {
+                let opening = if b.specs.is_empty() {
+                    format!(
+                        "The design as authored (the problem has no variables) <b>{}</b> every constraint at {level} % confidence. {} is <b>{}{unit}</b> [{}, {}]:",
+                        if feasible { "meets" } else { "does not meet" },
+                        escape(&capitalised(&goal.words())),
+                        significant(e.mean),
+                        significant(i.low),
+                        significant(i.high)
+                    )
+                } else if feasible {
                     format!(
                         "{} is <b>{}{unit}</b> [{}, {}] ({level} % confidence) when:",
                         escape(&capitalised(&goal.words())),
@@ -659,9 +668,10 @@ fn constraint_list(b: &Binding, m: &Member, z: f64, z_one_sided: f64) -> String 
             .standard_name()
             .map_or(String::new(), |s| format!(" ({})", escape(&s)));
         s += &format!(
-            "<li>{}{named}: {}{unit} [{}, {}]{maintained}, {sign} {limit}: <b>{}</b></li>",
+            "<li>{}{named}: {}{unit} ({sign} {}{unit} at the run's confidence, one-sided; two-sided interval [{}, {}]){maintained}, {sign} {limit}: <b>{}</b></li>",
             escape(&c.label()),
             significant(e.mean),
+            invlight_stats::significant_beside(c.one_sided_bound(e, z_one_sided), c.bound.limit()),
             significant(i.low),
             significant(i.high),
             c.verdict(e, z_one_sided).name()

@@ -21,6 +21,11 @@ pub struct Light {
     pub name: String,
     /// What kind of light, with its placement and strength.
     pub kind: LightKind,
+    /// The world direction a photometric file's C0 plane takes when one is given to
+    /// this point or spot light (`<luminaire>`, [`crate::Scene::set_photometry`]): the
+    /// node's local +X, so that a luminaire turned with its node in the modeller is
+    /// turned in the scene; +X where the file gives no frame.
+    pub c0: Vec3,
 }
 
 /// The kinds of non-area light.
@@ -180,6 +185,16 @@ impl LightKind {
         {
             *frame = to;
             *tilt = tilt_factor(photometry, -to.z_axis, up);
+        }
+    }
+
+    /// Turns a goniometric light by `degrees` about its aim (its local −Z), C0 toward
+    /// C90: counter-clockwise seen from above for a luminaire aimed down, as a designer
+    /// turns a fitting on its mounting (`<luminaire rotation>`). Other lights are
+    /// unchanged.
+    pub fn turn_about_aim(&mut self, degrees: f32) {
+        if let LightKind::Goniometric { frame, .. } = self {
+            *frame *= Mat3::from_rotation_z(degrees.to_radians());
         }
     }
 

@@ -170,6 +170,7 @@ mod tests {
         let e = s.require_light(p).unwrap_err();
         assert!(e.message.contains("no point, spot"), "{e}");
         s.lights.push(Light {
+            c0: glam::Vec3::X,
             name: "Off".into(),
             kind: LightKind::Point {
                 position: Vec3::Z,

@@ -31,6 +31,9 @@ pub struct Luminaire {
     pub file: PathBuf,
     /// Factor on the file's candela (> 0).
     pub multiplier: f32,
+    /// Degrees it is turned about its aim from the orientation its light gives it (its
+    /// node's), C0 toward C90 ([`crate::LightKind::turn_about_aim`]); 0 by default.
+    pub rotation: f32,
     /// The problem file and line that asked for it; `None` for the command line.
     pub origin: Option<(PathBuf, u32)>,
 }
@@ -61,6 +64,7 @@ impl FromStr for Luminaire {
                     light: light.trim().to_string(),
                     file: PathBuf::from(file.trim()),
                     multiplier,
+                    rotation: 0.0,
                     origin: None,
                 })
             }
@@ -180,6 +184,9 @@ impl Scene {
                         "name a point or spot light of the scene: `invlight scene` lists them",
                     )
                 })?;
+            if let Some(light) = self.light(&l.light) {
+                self.lights[light].kind.turn_about_aim(l.rotation);
+            }
         }
         self.validate()
             .map_err(|e| LoadError::at(scene, e.place(), e.to_string()).with_hint(e.hint()))

@@ -375,8 +375,9 @@ impl Scene {
 
     /// Makes the point or spot light `name` the luminaire `photometry` describes, with
     /// its candela × `multiplier`, at the light's position: a spot keeps its aim, a point
-    /// light is aimed down (−[`Scene::up`]); C0 lies along world +X as far as the aim
-    /// allows (see [`aimed_frame`]). An IES tilt factor is applied for the angle between
+    /// light is aimed down (−[`Scene::up`]); C0 lies along the light's [`Light::c0`]
+    /// (its node's local +X) as far as the aim allows (see [`aimed_frame`]), so a
+    /// luminaire turned with its node is turned in the scene. An IES tilt factor is applied for the angle between
     /// the aim and straight down. A goniometric light keeps its position and frame and
     /// takes the new table.
     pub fn set_photometry(
@@ -396,12 +397,12 @@ impl Scene {
             });
         };
         let (position, frame) = match &light.kind {
-            LightKind::Point { position, .. } => (*position, aimed_frame(-up, Vec3::X)),
+            LightKind::Point { position, .. } => (*position, aimed_frame(-up, light.c0)),
             LightKind::Spot {
                 position,
                 direction,
                 ..
-            } => (*position, aimed_frame(*direction, Vec3::X)),
+            } => (*position, aimed_frame(*direction, light.c0)),
             LightKind::Goniometric {
                 position, frame, ..
             } => (*position, *frame),

@@ -135,6 +135,7 @@ fn bounds_are_inclusive() {
     // A point lamp of exactly MAX_FLUX (4π·I = MAX_FLUX).
     let intensity = (MAX_FLUX / (4.0 * std::f64::consts::PI)) as f32 * 0.999;
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(0.0, m, 0.0),

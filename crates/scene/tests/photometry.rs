@@ -501,6 +501,7 @@ fn set_photometry_replaces_point_and_spot_lights() {
     let flood = Arc::new(read("floodlight.ies"));
     let mut scene = Scene::default();
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(0.0, 3.0, 0.0),
@@ -509,6 +510,7 @@ fn set_photometry_replaces_point_and_spot_lights() {
     });
     let aim = Vec3::new(0.5, -(3.0f32.sqrt()) / 2.0, 0.0);
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Spot".into(),
         kind: LightKind::Spot {
             position: Vec3::new(1.0, 3.0, 0.0),
@@ -519,6 +521,7 @@ fn set_photometry_replaces_point_and_spot_lights() {
         },
     });
     scene.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: Vec3::NEG_Y,
@@ -743,4 +746,53 @@ fn the_ballast_lamp_factor_applies_before_2002_only() {
         let p = with(header);
         assert_eq!(p.intensity(0.0, 0.0), 100.0 * factor, "{header}");
     }
+}
+
+/// A glTF point light's node turned a quarter turn about the vertical turns the
+/// photometric file given to it (`<luminaire>`, `--luminaire`): C0 follows the node's
+/// local +X instead of staying on world +X, and `rotation` turns it further about its
+/// aim.
+#[test]
+fn a_luminaire_follows_its_nodes_rotation_and_its_own() {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/hostile/lamp_floor.gltf"),
+    )
+    .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(data("linear.ldt"), dir.path().join("linear.ldt")).unwrap();
+    let c0 = |gltf: &str, rotation: f32| {
+        let path = dir.path().join("room.gltf");
+        std::fs::write(&path, gltf).unwrap();
+        let luminaire = invlight_scene::Luminaire {
+            light: "Lamp".into(),
+            file: dir.path().join("linear.ldt"),
+            multiplier: 1.0,
+            rotation,
+            origin: None,
+        };
+        let scene = invlight_scene::load_with(&path, &LoadOptions::default(), &[luminaire])
+            .unwrap_or_else(|e| panic!("{e}"));
+        match &scene.lights[0].kind {
+            LightKind::Goniometric { frame, .. } => {
+                // Aimed down (−Y, the file's up being +Y) whichever way it is turned.
+                assert!(frame.z_axis.distance(Vec3::Y) < 1e-5, "{frame:?}");
+                frame.x_axis
+            }
+            k => panic!("{k:?}"),
+        }
+    };
+    assert!(c0(&text, 0.0).distance(Vec3::X) < 1e-5);
+    // A quarter turn about +Y: local +X goes to −Z.
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let turned = text.replacen(
+        "\"translation\"",
+        &format!("\"rotation\": [0, {s}, 0, {s}],\n   \"translation\""),
+        1,
+    );
+    assert_ne!(turned, text);
+    assert!(c0(&turned, 0.0).distance(Vec3::NEG_Z) < 1e-5);
+    // The fitting's own quarter turn, C0 toward C90, does the same from the unturned
+    // node, and undoes the node's turn when negative.
+    assert!(c0(&text, 90.0).distance(Vec3::NEG_Z) < 1e-5);
+    assert!(c0(&turned, -90.0).distance(Vec3::X) < 1e-5);
 }

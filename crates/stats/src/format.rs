@@ -19,6 +19,21 @@ pub fn significant(x: f64) -> String {
     }
 }
 
+/// `x` as [`significant`] prints it, with as many more decimals (up to six) as it takes
+/// to read different from `limit` when it is: a one-sided bound of 500.03 lx beside a
+/// limit of 500 lx reads `500.03`, not `500.0`, so the reader sees which side it is on.
+pub fn significant_beside(x: f64, limit: f64) -> String {
+    let plain = significant(x);
+    if x == limit || !x.is_finite() || plain.contains('e') || plain != significant(limit) {
+        return plain;
+    }
+    let decimals = plain.split_once('.').map_or(0, |(_, d)| d.len());
+    (decimals + 1..=decimals + 6)
+        .map(|d| (format!("{x:.d$}"), format!("{limit:.d$}")))
+        .find(|(a, b)| a != b)
+        .map_or(plain, |(a, _)| a)
+}
+
 /// A long duration in words: "3.2 hours" below two days, "12 days" above.
 pub fn hours_or_days(d: std::time::Duration) -> String {
     let h = d.as_secs_f64() / 3600.0;
@@ -38,6 +53,16 @@ mod tests {
         use std::time::Duration;
         assert_eq!(hours_or_days(Duration::from_secs(11_520)), "3.2 hours");
         assert_eq!(hours_or_days(Duration::from_secs(12 * 86_400)), "12 days");
+    }
+
+    #[test]
+    fn a_bound_beside_its_limit_shows_the_side_it_is_on() {
+        assert_eq!(significant_beside(500.03, 500.0), "500.03");
+        assert_eq!(significant_beside(499.996, 500.0), "499.996");
+        assert_eq!(significant_beside(0.60004, 0.6), "0.60004");
+        assert_eq!(significant_beside(0.60049, 0.6), "0.6005");
+        assert_eq!(significant_beside(512.3, 500.0), "512.3");
+        assert_eq!(significant_beside(500.0, 500.0), "500.0");
     }
 
     #[test]

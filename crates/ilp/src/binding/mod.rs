@@ -156,6 +156,10 @@ pub struct LuminaireUse {
     pub multiplier: Option<f64>,
     /// The light's flux as authored (the table's times its multiplier), lm.
     pub lm: f64,
+    /// Degrees a problem file's `<luminaire rotation>` turned it about its aim; `None`
+    /// when not turned.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation: Option<f64>,
 }
 
 /// What `minimizePower` minimises: electrical watts when every electric light's
@@ -204,8 +208,15 @@ impl Binding {
         for spec in &problem.variables {
             let err = |msg: String| Diagnostic::at_line(path, spec.line, msg);
             let (domain, target) = bind(problem, spec, scene, &targets, &err, &mut warnings)?;
-            if let VariableKind::SunTime { from, to, step, .. } = spec.kind {
-                steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
+            match spec.kind {
+                VariableKind::SunTime { from, to, step, .. } => {
+                    steps.push((variables.len(), ((to - from) / step).round() as u32 + 1));
+                }
+                // A level fixed by equal min and max is one cell: nothing to search.
+                VariableKind::LightPower { min, max } if min == max => {
+                    steps.push((variables.len(), 1));
+                }
+                _ => {}
             }
             initial.extend(initial_coords(scene, &domain, &target));
             if let Target::Power { dimmed, .. } = &target
@@ -270,6 +281,13 @@ impl Binding {
                         path: photometry.source.as_ref().map(|s| s.path.clone()),
                         multiplier: Some(f64::from(invlight_scene::luminance(*multiplier))),
                         lm: f64::from(invlight_scene::luminance(l.kind.flux())),
+                        rotation: problem
+                            .scene
+                            .luminaires
+                            .iter()
+                            .rev()
+                            .find(|u| u.light == l.name && u.rotation != 0.0)
+                            .map(|u| f64::from(u.rotation)),
                     }),
                     _ => None,
                 })

@@ -35,6 +35,7 @@ fn scene() -> Scene {
         Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0)),
     );
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(1.0, 1.0, 2.5),
@@ -42,6 +43,7 @@ fn scene() -> Scene {
         },
     });
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: Vec3::new(0.0, 0.6, -0.8),
@@ -377,6 +379,7 @@ fn power_in_watts_when_every_lamp_has_them() {
     assert!((b.power(&half) - 20.0).abs() < 1e-9, "{}", b.power(&half));
     // One lamp without watts: lumens for all, not a sum of watts and lumens.
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Bare".into(),
         kind: LightKind::Point {
             position: Vec3::new(2.0, 1.0, 2.5),
@@ -654,6 +657,7 @@ fn a_light_group_shares_one_level_and_one_aim() {
     let mut s = scene();
     for (name, x) in [("A", 1.5f32), ("B", 2.5)] {
         s.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: name.into(),
             kind: LightKind::Spot {
                 position: Vec3::new(x, 1.5, 2.5),
@@ -750,6 +754,7 @@ fn interchangeable_lamps_read_as_the_array_they_form() {
     let mut s = scene();
     for name in ["A", "B", "C", "D"] {
         s.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: name.into(),
             kind: LightKind::Point {
                 position: Vec3::new(2.0, 1.5, 2.5),
@@ -799,6 +804,7 @@ fn scene_with_six_lamps() -> Scene {
     let mut s = scene();
     for k in 1..=6 {
         s.lights.push(Light {
+            c0: invlight_scene::Vec3::X,
             name: format!("L{k}"),
             kind: LightKind::Point {
                 position: Vec3::new(0.5 * k as f32, 0.5, 2.5),

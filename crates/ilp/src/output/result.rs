@@ -172,6 +172,11 @@ pub struct ResultConstraint {
     pub estimate: ResultEstimate,
     /// `feasible`, `infeasible` or `undecided`, one-sided at the run's confidence.
     pub verdict: String,
+    /// The one-sided bound that decides it, at the run's confidence: mean − z·σ for a
+    /// lower limit (`minLux`, `minUniformity` …), mean + z·σ for an upper one
+    /// (`maxLux`), z one-sided. Absent in files written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bound: Option<f64>,
 }
 
 /// A member's estimate.
@@ -496,6 +501,7 @@ impl ResultMember {
                     label: c.label(),
                     estimate: estimate(e),
                     verdict: c.verdict(e, z_one_sided).name().into(),
+                    bound: Some(c.one_sided_bound(e, z_one_sided)),
                 })
                 .collect(),
             violation: None,
@@ -586,6 +592,13 @@ impl ResultFile {
             }
         };
         let mut out = match (self.isoc.len(), self.closest.is_empty()) {
+            // A problem without variables checks the design as it is.
+            (0, false) if binding.specs.is_empty() => format!(
+                "The design as authored (the problem has no variables) does not meet every constraint at {level} % confidence:\n"
+            ),
+            (_, _) if binding.specs.is_empty() && !self.isoc.is_empty() => format!(
+                "The design as authored (the problem has no variables) meets every constraint at {level} % confidence:\n"
+            ),
             _ if self.unlit => format!(
                 "No configuration tried lights {}: none could be told from 0 at {level} % confidence. The initial one:\n",
                 self.objective
@@ -698,12 +711,24 @@ impl ResultFile {
                     .standard
                     .as_ref()
                     .map_or(String::new(), |s| format!(" ({s})"));
+                // The one-sided bound is what decides a one-sided constraint; a file
+                // written before it was recorded shows its two-sided interval.
+                let read = match c.bound {
+                    Some(b) => format!(
+                        "{}{cu} ({sign} {}{cu} at {level} %, one-sided)",
+                        significant(c.estimate.mean),
+                        invlight_stats::significant_beside(b, info.limit)
+                    ),
+                    None => format!(
+                        "{}{cu} [{}, {}]",
+                        significant(c.estimate.mean),
+                        significant(c.estimate.low),
+                        significant(c.estimate.high)
+                    ),
+                };
                 out += &format!(
-                    "       {}{named}: {}{cu} [{}, {}], {sign} {}{cu}{maintained}: {}\n",
+                    "       {}{named}: {read}, {sign} {}{cu}{maintained}: {}\n",
                     c.label,
-                    significant(c.estimate.mean),
-                    significant(c.estimate.low),
-                    significant(c.estimate.high),
                     significant(info.limit),
                     c.verdict
                 );

@@ -63,7 +63,10 @@ impl LuminaireUse {
         let m = self
             .multiplier
             .map_or("?".into(), |m| (m as f32).to_string());
-        format!("{}={file} ×{m}", self.light)
+        let turned = self
+            .rotation
+            .map_or(String::new(), |r| format!(" turned {}°", r as f32));
+        format!("{}={file} ×{m}{turned}", self.light)
     }
 }
 

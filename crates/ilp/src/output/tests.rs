@@ -41,6 +41,7 @@ fn binding() -> (Binding, Scene) {
     ));
     s.add_instance("Floor, left", floor, Mat4::IDENTITY);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Sun".into(),
         kind: LightKind::Directional {
             direction: -Vec3::Y,
@@ -169,6 +170,7 @@ fn resume_checks_the_luminaire_files() {
         path: None,
         multiplier: Some(1.0),
         lm: 3000.0,
+        rotation: None,
     };
     let dir = Path::new("/out");
     let old = RunFile::new(&settings(), 7, &[lamp("downlight.ies")]);
@@ -204,8 +206,8 @@ fn resume_checks_the_luminaire_files() {
 }
 
 /// The same file name is not the same lamp: a resume is refused when the file read is
-/// another one (a same-named file in another folder), its multiplier differs, or the
-/// file was edited (its flux differs), naming what differs; a folder of schema 1, which
+/// another one (a same-named file in another folder), its multiplier or its turn about
+/// its aim differs, or the file was edited (its flux differs), naming what differs; a folder of schema 1, which
 /// recorded names alone, resumes on the names.
 #[test]
 fn resume_checks_the_luminaires_path_multiplier_and_flux() {
@@ -215,6 +217,7 @@ fn resume_checks_the_luminaires_path_multiplier_and_flux() {
         path: Some(path.into()),
         multiplier: Some(multiplier),
         lm,
+        rotation: None,
     };
     let dir = Path::new("/out");
     let old = RunFile::new(&settings(), 7, &[lamp("/a/lamp.ldt", 2.0, 3000.0)]);
@@ -237,6 +240,13 @@ fn resume_checks_the_luminaires_path_multiplier_and_flux() {
         (
             lamp("/a/lamp.ldt", 2.0, 2000.0),
             "the flux of Lamp 2000.0 lm (the folder has 3000.0 lm: its file lamp.ldt changed)",
+        ),
+        (
+            LuminaireUse {
+                rotation: Some(90.0),
+                ..lamp("/a/lamp.ldt", 2.0, 3000.0)
+            },
+            "luminaires Lamp=/a/lamp.ldt ×2 turned 90° (the folder has Lamp=/a/lamp.ldt ×2)",
         ),
     ] {
         let e = resume(new).unwrap_err().to_string();
@@ -377,6 +387,7 @@ fn constraints_and_levels_round_trip() {
     ));
     s.add_instance("Desk", floor, Mat4::IDENTITY);
     s.lights.push(Light {
+        c0: invlight_scene::Vec3::X,
         name: "Lamp".into(),
         kind: LightKind::Point {
             position: Vec3::new(0.5, 1.0, -0.5),
@@ -640,6 +651,7 @@ fn a_layout_at_full_output_short_of_its_minimum_gets_a_lamp_count() {
         constraints: [("minLux", lux), ("minUniformity", u0)]
             .iter()
             .map(|&(b, mean)| ResultConstraint {
+                bound: None,
                 label: format!("Desks.{b}"),
                 estimate: estimate(mean),
                 verdict: "infeasible".into(),

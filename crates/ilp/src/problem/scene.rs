@@ -62,7 +62,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 continue;
             }
-            self.check_attributes(e, &["light", "file", "multiplier"]);
+            self.check_attributes(e, &["light", "file", "multiplier", "rotation"]);
             let what = "a positive factor on the file's candela";
             let multiplier = match self.real(e, "multiplier", what)? {
                 Some(m) if m <= 0.0 || m as f32 > f32::MAX => {
@@ -73,10 +73,22 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 m => m.unwrap_or(1.0) as f32,
             };
+            let rotation = match self.real(e, "rotation", "degrees about its aim")? {
+                Some(r) if !r.is_finite() || r.abs() > 360.0 => {
+                    return Err(self
+                        .error(
+                            e,
+                            format!("'rotation' of <luminaire> is {r}, expected degrees in [-360, 360]"),
+                        )
+                        .with_hint("rotation=\"90\" turns the luminaire a quarter turn about its aim, C0 toward C90"));
+                }
+                r => r.unwrap_or(0.0) as f32,
+            };
             out.push(Luminaire {
                 light: self.required(e, "light")?,
                 file: PathBuf::from(self.required(e, "file")?),
                 multiplier,
+                rotation,
                 origin: Some((self.path.to_path_buf(), self.line(e))),
             });
         }

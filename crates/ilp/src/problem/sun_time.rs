@@ -339,6 +339,7 @@ fn sun_time_light(scene: &mut Scene, id: &str) -> Result<LightId, SunTimeError> 
         });
     }
     scene.lights.push(invlight_scene::Light {
+        c0: invlight_scene::Vec3::X,
         name: id.into(),
         kind: LightKind::Directional {
             direction: -scene.up,

@@ -500,8 +500,8 @@ fn intentions_read_and_their_mistakes_are_errors() {
     }
     for (conditions, what) in [
         (
-            "<lightPower id=\"L\" min=\"0.5\" max=\"0.5\"/>",
-            "min < max",
+            "<lightPower id=\"L\" min=\"0.6\" max=\"0.5\"/>",
+            "min ≤ max",
         ),
         ("<lightPower id=\"L\" min=\"-1\"/>", "≥ 0"),
         (
@@ -728,4 +728,22 @@ fn a_light_array_reads_its_lamps_and_ranges() {
     );
     let p = with(r#"<lightArray id="G" lights="L1 L2" surface="C" columns="2" row="1"/>"#);
     assert!(p.is_err(), "rows is required");
+}
+
+/// `<luminaire rotation>` turns a fitting about its aim, in degrees; a turn past a
+/// whole turn or not a number names its line.
+#[test]
+fn a_luminaire_takes_its_rotation() {
+    let with = |attrs: &str| {
+        parse(&format!(
+            "<input><scene path=\"s.gltf\">\n<luminaire light=\"L\" file=\"l.ldt\" {attrs}/></scene><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>"
+        ))
+    };
+    assert_eq!(with("").unwrap().scene.luminaires[0].rotation, 0.0);
+    assert_eq!(
+        with("rotation=\"90\"").unwrap().scene.luminaires[0].rotation,
+        90.0
+    );
+    let e = with("rotation=\"400\"").unwrap_err().to_string();
+    assert!(e.contains(":2:") && e.contains("[-360, 360]"), "{e}");
 }

@@ -85,14 +85,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 variables.push(spec);
             }
         }
-        if variables.is_empty() {
-            return Err(self
-                .error(
-                    conditions,
-                    "no variables in <conditions>, expected at least one",
-                )
-                .with_hint(format!("variables are: {}", VARIABLES.join(", "))));
-        }
+
         Ok(Conditions {
             cells_per_dimension,
             variables,
@@ -354,11 +347,13 @@ impl<'a, 'i> Reader<'a, 'i> {
             }
         };
         let (min, max) = (level("min", 0.0)?, level("max", 1.0)?);
-        if min >= max {
-            return Err(self.error(
-                v,
-                format!("<lightPower> has min {min} ≥ max {max}, expected min < max"),
-            ));
+        if min > max {
+            return Err(self
+                .error(
+                    v,
+                    format!("<lightPower> has min {min} > max {max}, expected min ≤ max"),
+                )
+                .with_hint("equal min and max fix the level: min=\"0.8\" max=\"0.8\""));
         }
         Ok(VariableKind::LightPower { min, max })
     }

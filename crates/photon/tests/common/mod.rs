@@ -30,6 +30,7 @@ pub fn assert_near(e: &Estimate, exact: f64, informative: f64, what: &str) {
 /// A point light of `cd` candela, white.
 pub fn point(name: &str, position: Vec3, cd: f32) -> Light {
     Light {
+        c0: invlight_scene::Vec3::X,
         name: name.into(),
         kind: LightKind::Point {
             position,

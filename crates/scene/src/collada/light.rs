@@ -92,6 +92,7 @@ pub(super) fn light(
         }
     };
     Ok(Some(Light {
+        c0: glam::Vec3::X,
         name: name.to_string(),
         kind,
     }))

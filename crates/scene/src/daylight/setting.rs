@@ -370,6 +370,7 @@ impl SunSchedule {
             up += 1;
             let beam = lux.unwrap_or_else(|| sun.clear_sky_direct_normal());
             scene.lights.push(Light {
+                c0: glam::Vec3::X,
                 name: format!("{SUN_NAME} {date} {time}"),
                 kind: LightKind::Directional {
                     direction: sun.travel(&compass),
@@ -392,6 +393,7 @@ pub fn set_sun(scene: &mut Scene, direction: Vec3, lux: f64) -> Result<(), Dayli
     match sun_light(scene)? {
         Some(l) => scene.lights[l].kind = kind,
         None => scene.lights.push(Light {
+            c0: glam::Vec3::X,
             name: SUN_NAME.into(),
             kind,
         }),

@@ -89,6 +89,7 @@ impl Builder<'_> {
             })
             .unwrap_or_else(|| format!("{EXT}.lights[{index}]"));
         self.scene.lights.push(Light {
+            c0: glam::Vec3::X,
             name,
             kind: LightKind::Goniometric {
                 position,

@@ -296,7 +296,10 @@ impl Builder<'_> {
             .clone()
             .or_else(|| light.name.clone())
             .unwrap_or_else(|| format!("lights[{l}]"));
-        self.scene.lights.push(Light { name, kind });
+        // A photometric file given to this light later takes its C0 from the node's
+        // local +X (the node's rotation turns the luminaire about its aim).
+        let c0 = world.transform_vector3(Vec3::X).normalize_or(Vec3::X);
+        self.scene.lights.push(Light { name, kind, c0 });
         Ok(())
     }
 
