@@ -3094,8 +3094,19 @@ fn map_with_a_task_judges_the_areas_around_the_task_area() {
         assert!(low < em && em < high && low > 0.0, "{a}");
         assert!(["meets", "fails", "cannot tell"].contains(&a["verdict"].as_str().unwrap()));
     }
+    // The summary's verdict is the worst of the task area's and the areas'.
+    let verdicts: Vec<&str> = areas
+        .iter()
+        .map(|a| a["verdict"].as_str().unwrap())
+        .collect();
+    let overall = mapped["overall"].as_str().expect("overall");
+    if verdicts.contains(&"fails") {
+        assert_eq!(overall, "fails");
+    } else {
+        assert!(overall == "cannot tell" || verdicts.iter().all(|v| *v == "meets"));
+    }
     let alone = json(args(&["--no-areas"]));
-    assert!(alone.get("areas").is_none());
+    assert!(alone.get("areas").is_none() && alone.get("overall").is_none());
 }
 
 /// A problem without variables checks the design as it is authored: one evaluation, the
@@ -3160,4 +3171,43 @@ fn a_fixed_design_is_checked_as_it_is() {
         .unwrap();
     let level = &member["variables"]["Lamp1"];
     assert!((f64_of(&level["value"]) - 0.5).abs() < 1e-12, "{member}");
+}
+
+/// `map --task` on a problem whose `<task>` built EN 12464-1's areas with its scene
+/// judges those areas, under their own names, instead of building a second set.
+#[test]
+fn map_of_a_task_problem_judges_the_areas_it_built() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/open-office/task.xml");
+    let prefix = dir.path().join("task");
+    let mapped = json([
+        "map",
+        problem.to_str().unwrap(),
+        "-s",
+        "TaskArea",
+        "--task",
+        "office",
+        "-n",
+        "50000",
+        "-o",
+        prefix.to_str().unwrap(),
+        "--json",
+    ]);
+    let surfaces: Vec<&str> = mapped["areas"]
+        .as_array()
+        .expect("areas[]")
+        .iter()
+        .map(|a| a["surface"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        surfaces,
+        [
+            "immediate surrounding",
+            "wall 1",
+            "wall 2",
+            "wall 3",
+            "wall 4",
+            "ceiling"
+        ]
+    );
 }

@@ -83,14 +83,22 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     scene.require_light(path)?;
     let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
     let requirement = args.require.requirement(mf)?;
-    let areas = match requirement.as_ref().filter(|_| !args.no_areas) {
-        Some(_) => scene
+    // A problem's <task> on this surface built its areas with the scene: judge those.
+    let built = problem.as_ref().and_then(|p| {
+        p.tasks
+            .iter()
+            .find(|t| t.surface.name == args.surface && !t.built.is_empty())
+            .map(|t| t.built.clone())
+    });
+    let areas = match (requirement.as_ref().filter(|_| !args.no_areas), built) {
+        (Some(_), Some(built)) => built,
+        (Some(_), None) => scene
             .add_task_areas(path, surface, &AreaKind::ALL)
             .unwrap_or_else(|e| {
                 crate::warn(Some(format!("{e}; the areas around it are not judged")));
                 Vec::new()
             }),
-        None => Vec::new(),
+        (None, _) => Vec::new(),
     };
     let pool = args.trace.pool()?;
     let start = Instant::now();
@@ -152,6 +160,10 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
             .collect();
         let judged = AreaVerdict::judge(measured, r, confidence);
         report.areas = judged.iter().map(AreaVerdict::report).collect();
+        if !report.areas.is_empty() {
+            let task = map.compliance(r, confidence).verdict;
+            report.overall = Some(invlight_render::overall(task, &report.areas).0.into());
+        }
     }
 
     let prefix = args
@@ -177,8 +189,19 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         // The verdict the page states, with the page's confidence.
         let verdict = requirement.as_ref().map_or(String::new(), |r| {
             let confidence = invlight_ilp::Confidence::new(report.confidence).unwrap_or_default();
-            compliance_text(&map.compliance(r, confidence))
-                + &areas_text(&report.areas, report.confidence)
+            let task = map.compliance(r, confidence);
+            // With areas, the worst verdict comes first: the task area's alone would
+            // say "meets" above an area that fails.
+            let overall = if report.areas.is_empty() {
+                String::new()
+            } else {
+                let (worst, deciding) = invlight_render::overall(task.verdict, &report.areas);
+                format!(
+                    "EN 12464-1, the task area and every area around it: {worst} ({}: {worst})\n",
+                    deciding.join(", ")
+                )
+            };
+            overall + &compliance_text(&task) + &areas_text(&report.areas, report.confidence)
         });
         crate::print(&(report.summary() + &verdict + &written))?;
     }

@@ -141,10 +141,71 @@ impl AreaVerdict {
     }
 }
 
+/// The verdict on a task area (`task`) and the areas around it together: the worst of
+/// theirs — it fails if one fails, cannot be told if one cannot, and meets only when
+/// every one meets — with the names of the areas that decide it (the task area's as
+/// "task area"), so that a summary never says "meets" above an area that fails.
+pub fn overall(task: Verdict, areas: &[AreaReport]) -> (&'static str, Vec<String>) {
+    let name = |v: Verdict| match v {
+        Verdict::Meets => "meets",
+        Verdict::Fails => "fails",
+        Verdict::CannotTell => "cannot tell",
+    };
+    let verdicts = std::iter::once(("task area".to_string(), name(task))).chain(
+        areas
+            .iter()
+            .map(|a| (a.surface.clone(), a.verdict.as_str())),
+    );
+    let all: Vec<(String, &str)> = verdicts.collect();
+    let worst = ["fails", "cannot tell"]
+        .into_iter()
+        .find(|w| all.iter().any(|(_, v)| v == w))
+        .unwrap_or("meets");
+    let deciding = all
+        .iter()
+        .filter(|(_, v)| *v == worst)
+        .map(|(n, _)| n.clone())
+        .collect();
+    (worst, deciding)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use invlight_scene::en12464::task;
+
+    /// The summary's verdict is the worst: one failing area fails the whole, whatever
+    /// the task area's own verdict, and it names the area.
+    #[test]
+    fn the_overall_verdict_is_the_worst_areas() {
+        let area = |surface: &str, verdict: &str| AreaReport {
+            area: "wall".into(),
+            surface: surface.into(),
+            size: [1.0, 1.0],
+            cells: [1, 1],
+            cell_size: [1.0, 1.0],
+            required_em: 75.0,
+            required_u0: 0.1,
+            em: 80.0,
+            em_bounds: [79.0, 81.0],
+            u0: 0.5,
+            u0_bounds: [Some(0.4), Some(0.6)],
+            level: 0.95,
+            verdict: verdict.into(),
+        };
+        let areas = [area("wall 1", "meets"), area("wall 2", "fails")];
+        assert_eq!(
+            overall(Verdict::Meets, &areas),
+            ("fails", vec!["wall 2".to_string()])
+        );
+        let unsure = [area("wall 1", "cannot tell"), area("wall 2", "meets")];
+        assert_eq!(overall(Verdict::Meets, &unsure).0, "cannot tell");
+        assert_eq!(
+            overall(Verdict::Fails, &unsure),
+            ("fails", vec!["task area".to_string()])
+        );
+        assert_eq!(overall(Verdict::Meets, &areas[..1]).0, "meets");
+    }
 
     #[test]
     fn an_office_asks_its_areas_what_the_standard_does() {

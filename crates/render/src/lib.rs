@@ -40,7 +40,7 @@ mod plan;
 mod plot;
 mod tonemap;
 
-pub use areas::{AreaReport, AreaVerdict, area_requirement};
+pub use areas::{AreaReport, AreaVerdict, area_requirement, overall};
 pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};

@@ -378,6 +378,11 @@ pub struct MapReport {
     /// immediate surrounding, the background, the walls and the ceiling.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<crate::AreaReport>,
+    /// With areas, the verdict on the task area and every area around it together:
+    /// the worst of theirs (`fails` if one fails, else `cannot tell` if one cannot be
+    /// told, else `meets`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overall: Option<String>,
 }
 
 /// A row of the map's CSV: one cell.
@@ -524,6 +529,7 @@ impl IlluminanceMap {
             u0: summary.u0,
             u0_std_error: self.u0.std_error,
             areas: Vec::new(),
+            overall: None,
         }
     }
 

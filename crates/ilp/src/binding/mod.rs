@@ -12,6 +12,7 @@
 mod aim;
 mod array;
 mod colour;
+mod fittings;
 mod hole;
 mod layout;
 mod placement;
@@ -134,6 +135,8 @@ pub struct Binding {
     sources: (usize, bool),
     /// The scene's lights' names, by light index.
     light_names: Vec<String>,
+    /// The moved luminaires' outlines, which no candidate may overlap.
+    fittings: Vec<fittings::Fitting>,
 }
 
 /// A light that emits a photometric file's candela table, as a run used it.
@@ -294,6 +297,7 @@ impl Binding {
                 .collect(),
             level_solver: None,
             light_names: scene.lights.iter().map(|l| l.name.clone()).collect(),
+            fittings: Vec::new(),
             sources: (
                 scene.lights.len(),
                 scene.sky.is_some() || scene.materials.iter().any(|m| m.is_emissive()),
@@ -304,6 +308,7 @@ impl Binding {
             binding.light_power,
             binding.power_unit,
         ) = binding.component_power(scene);
+        binding.fittings = fittings::fittings(scene, &binding.targets);
         binding.solve_levels(problem.confidence);
         Ok(binding)
     }
@@ -481,7 +486,8 @@ impl Binding {
     }
 
     /// Why `config` is not worth tracing, if it is not: it puts an object or light
-    /// outside the scene ([`Binding::leaves_scene`]), or two interchangeable lamps in
+    /// outside the scene ([`Binding::leaves_scene`]), two luminaires' outlines over
+    /// each other (`fittings.rs`), or two interchangeable lamps in
     /// one cell of their rectangle, which no design means (two fixtures in one spot)
     /// and which would make every split of their levels look like another answer.
     pub fn refusal(&self, config: &Configuration) -> Option<String> {
@@ -502,6 +508,9 @@ impl Binding {
                     ));
                 }
             }
+        }
+        if let Some(why) = self.overlapping_fittings(config) {
+            return Some(why);
         }
         let cell = self.space.cell(config);
         let place = |v: usize| {

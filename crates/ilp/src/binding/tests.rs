@@ -980,3 +980,54 @@ fn a_clear_sky_follows_the_sun_time() {
         }
     }
 }
+
+/// Linear luminaires (1.52 m long along C90, here along y) in a `<lightArray>` over the
+/// 2 m × 1 m placement rectangle: two rows half a spacing from its edges stand 0.5 m
+/// apart, end to end closer than their length, and are refused, while two columns
+/// stand side by side 1 m apart; turned a quarter turn, the columns collide and the
+/// rows do not.
+#[test]
+fn an_array_whose_fittings_overlap_is_refused() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/photometry/linear.ldt");
+    let table = std::sync::Arc::new(invlight_scene::read_photometry(&path).unwrap());
+    let binding = |turn: f32| {
+        let mut s = scene_with_six_lamps();
+        for k in 1..=4 {
+            let name = format!("L{k}");
+            s.set_photometry(&name, table.clone(), 1.0).unwrap();
+            let l = s.light(&name).unwrap();
+            s.lights[l].kind.turn_about_aim(turn);
+        }
+        Binding::new(
+            &problem(
+                "<lightArray id=\"Grid\" lights=\"L1 L2 L3 L4\" surface=\"Floor__Geometry\" columns=\"1..2\" rows=\"1..2\"/>",
+            ),
+            &mut s,
+        )
+        .unwrap()
+    };
+    let shape = |b: &Binding, columns, rows| {
+        b.configuration(&[VariableValue::Array(crate::space::ArrayShape {
+            columns,
+            rows,
+            walls: [0.5, 0.5],
+        })])
+        .unwrap()
+    };
+    let along_y = binding(0.0);
+    let why = along_y
+        .refusal(&shape(&along_y, 1, 2))
+        .expect("rows 0.5 m apart, fittings 1.52 m long");
+    assert!(
+        why.contains("over each other") && why.contains("0.50 m apart"),
+        "{why}"
+    );
+    assert_eq!(along_y.refusal(&shape(&along_y, 2, 1)), None);
+    let along_x = binding(90.0);
+    let why = along_x
+        .refusal(&shape(&along_x, 2, 1))
+        .expect("columns 1 m apart, fittings 1.52 m long");
+    assert!(why.contains("1.00 m apart"), "{why}");
+    assert_eq!(along_x.refusal(&shape(&along_x, 1, 2)), None);
+}

@@ -12,7 +12,7 @@ use super::{Node, Problem, Reader};
 use crate::Diagnostic;
 use crate::intention::{Bound, Constraint, FromTask, Grid, Side, SurfaceRef};
 use invlight_scene::en12464::{TASKS, Task, task};
-use invlight_scene::{AreaKind, Scene};
+use invlight_scene::{AreaKind, Scene, TaskArea};
 
 /// A `<task>`: what its task area must receive and which areas around it are judged.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,6 +30,9 @@ pub struct TaskSpec {
     pub grid: Grid,
     /// The areas built around it (`areas`, default all).
     pub areas: Vec<AreaKind>,
+    /// The areas as [`Problem::load_scene`] built them on the scene (empty before it):
+    /// `invlight map` judges these rather than building them twice.
+    pub built: Vec<TaskArea>,
     /// Line of its element.
     pub line: u32,
 }
@@ -154,6 +157,7 @@ impl Reader<'_, '_> {
             u0,
             grid: self.grid(t)?,
             areas,
+            built: Vec::new(),
             line: self.line(t),
         })
     }
@@ -167,7 +171,7 @@ impl Problem {
     pub(super) fn build_task_areas(&mut self, scene: &mut Scene) -> Result<(), Diagnostic> {
         self.constraints
             .retain(|c| c.from_task.as_ref().is_none_or(|t| t.area.is_none()));
-        for spec in self.tasks.iter().filter(|t| !t.areas.is_empty()) {
+        for spec in self.tasks.iter_mut().filter(|t| !t.areas.is_empty()) {
             let at = |message: String| Diagnostic::at_line(&self.path, spec.line, message);
             let name = &spec.surface.name;
             let Some(surface) = scene.surface(name) else {
@@ -186,6 +190,7 @@ impl Problem {
                         "make the task area one horizontal plane (a <workplane>), or give areas=\"none\" to ask the task area alone",
                     )
                 })?;
+            spec.built = areas.clone();
             for a in areas {
                 let Some((em, u0)) = a.kind.required(spec.em, spec.task.as_ref()) else {
                     continue;

@@ -1,0 +1,225 @@
+//! Luminaires that would stand in one another: a candidate whose moved fittings'
+//! outlines overlap is refused before it is traced. A photometric file gives the
+//! luminaire's outline (EULUMDAT's luminaire length and width, or the luminous opening
+//! where the file gives no more); two 1.5 m linear fittings 1.37 m apart cannot be
+//! installed, and a search that traced them would answer with a layout no one can
+//! build.
+//!
+//! Each outline is a rectangle (or a disk) in its luminaire's C0–C90 plane, centred on
+//! its photometric centre; two overlap unless an axis separates them (the separating
+//! axis theorem for two convex outlines in one plane: the four edge directions, and for
+//! a disk the line between the centres).
+
+use super::{Binding, Target, VariableValue};
+use crate::space::{Configuration, Domain};
+use glam::DVec3;
+use invlight_scene::{LightKind, Opening, Scene};
+
+/// A luminaire a placement variable moves, with its outline.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Fitting {
+    /// The index of the variable that moves it.
+    variable: usize,
+    /// Its light's name.
+    name: String,
+    /// Where it stands for its variable.
+    anchor: Anchor,
+    /// Its C0 and C90 directions.
+    axes: [DVec3; 2],
+    /// Half its outline along them, m (a disk's radius twice).
+    half: [f64; 2],
+    /// Whether the outline is a disk or an ellipse (taken as its bounding disk).
+    round: bool,
+}
+
+/// How a fitting's photometric centre follows its variable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Anchor {
+    /// Moved with a placement: the variable's point plus this offset (the centre less
+    /// the reference point, as authored).
+    Moved(DVec3),
+    /// Lamp `k` of a `<lightArray>`, where the array's shape puts it, plus its offset
+    /// from the placement rectangle; off (not placed) past the shape's lamps.
+    InArray { k: u32, offset: DVec3 },
+}
+
+impl Fitting {
+    /// Half its outline's extent along the unit direction `a` in its plane.
+    fn reach(&self, a: DVec3) -> f64 {
+        if self.round {
+            self.half[0].max(self.half[1])
+        } else {
+            self.half[0] * self.axes[0].dot(a).abs() + self.half[1] * self.axes[1].dot(a).abs()
+        }
+    }
+}
+
+/// The outlines of the luminaires `targets` move, from their photometric files; lights
+/// without a file or without dimensions are left out.
+pub(super) fn fittings(scene: &Scene, targets: &[Target]) -> Vec<Fitting> {
+    let mut out = Vec::new();
+    for (variable, target) in targets.iter().enumerate() {
+        let lights: Vec<(invlight_scene::LightId, Anchor)> = match target {
+            Target::Move(m) => m
+                .lights
+                .iter()
+                .map(|&(light, p)| (light, Anchor::Moved(p.as_dvec3() - m.reference)))
+                .collect(),
+            Target::Array(a) => (0..)
+                .zip(&a.lamps)
+                .map(|(k, &(light, offset, _))| (light, Anchor::InArray { k, offset }))
+                .collect(),
+            _ => continue,
+        };
+        for (light, anchor) in lights {
+            let l = &scene.lights[light];
+            let LightKind::Goniometric {
+                frame, photometry, ..
+            } = &l.kind
+            else {
+                continue;
+            };
+            let outline = photometry
+                .luminaire
+                .map(|(o, _)| o)
+                .unwrap_or(photometry.opening);
+            let [a, b] = outline.extents();
+            if outline == Opening::Point || a <= 0.0 || b <= 0.0 {
+                continue;
+            }
+            out.push(Fitting {
+                variable,
+                name: l.name.clone(),
+                anchor,
+                axes: [frame.x_axis.as_dvec3(), frame.y_axis.as_dvec3()],
+                half: [0.5 * f64::from(a), 0.5 * f64::from(b)],
+                round: !matches!(outline, Opening::Rectangle { .. }),
+            });
+        }
+    }
+    out
+}
+
+/// Whether outlines `f` at `p` and `g` at `q` overlap (see the module doc).
+fn overlap(f: &Fitting, p: DVec3, g: &Fitting, q: DVec3) -> bool {
+    let d = q - p;
+    let normal = f.axes[0].cross(f.axes[1]).normalize_or_zero();
+    let across = d - normal * d.dot(normal);
+    let mut axes = vec![f.axes[0], f.axes[1], g.axes[0], g.axes[1]];
+    if f.round || g.round {
+        axes.push(across.normalize_or_zero());
+    }
+    // Outlines a fitting's height apart or more, one above the other, do not touch.
+    if d.dot(normal).abs() > 1e-3 {
+        return false;
+    }
+    axes.into_iter()
+        .filter(|a| a.length_squared() > 0.5)
+        .all(|a| d.dot(a).abs() < f.reach(a) + g.reach(a) - 1e-9)
+}
+
+impl Binding {
+    /// The first two moved luminaires whose outlines overlap at `config`, as a reason
+    /// to refuse it.
+    pub(super) fn overlapping_fittings(&self, config: &Configuration) -> Option<String> {
+        if self.fittings.len() < 2 {
+            return None;
+        }
+        let values = self.values(config);
+        let at = |f: &Fitting| match (f.anchor, &values[f.variable]) {
+            (Anchor::Moved(offset), VariableValue::Position { point, .. }) => Some(*point + offset),
+            (Anchor::InArray { k, offset }, _) => {
+                let (Domain::Array(a), Target::Array(lamps)) = (
+                    &self.space.variables()[f.variable].domain,
+                    &self.targets[f.variable],
+                ) else {
+                    return None;
+                };
+                let shape = a.shape(self.space.slice(config, f.variable));
+                (k < shape.lamps()).then(|| {
+                    let (s, t) = shape.place(k);
+                    lamps.rect.point(s, t) + offset
+                })
+            }
+            _ => None,
+        };
+        // Lights moved by one placement keep their authored places among themselves.
+        let rigid = |f: &Fitting, g: &Fitting| {
+            f.variable == g.variable && matches!(f.anchor, Anchor::Moved(_))
+        };
+        for (k, f) in self.fittings.iter().enumerate() {
+            let Some(p) = at(f) else { continue };
+            for g in self.fittings[k + 1..].iter().filter(|g| !rigid(f, g)) {
+                if let Some(q) = at(g)
+                    && overlap(f, p, g, q)
+                {
+                    return Some(format!(
+                        "it puts the fittings of '{}' and '{}' over each other ({:.2} m apart)",
+                        f.name,
+                        g.name,
+                        p.distance(q)
+                    ));
+                }
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn linear(x: f64, turned: bool) -> (Fitting, DVec3) {
+        let (c0, c90) = if turned {
+            (DVec3::Y, -DVec3::X)
+        } else {
+            (DVec3::X, DVec3::Y)
+        };
+        let f = Fitting {
+            variable: 0,
+            name: "L".into(),
+            anchor: Anchor::Moved(DVec3::ZERO),
+            axes: [c0, c90],
+            // 1.5 m long along C90, 0.1 m wide.
+            half: [0.05, 0.75],
+            round: false,
+        };
+        (f, DVec3::new(x, 0.0, 0.0))
+    }
+
+    /// Two 1.5 m fittings side by side overlap only when closer than their width; end
+    /// to end, closer than their length.
+    #[test]
+    fn outlines_overlap_as_the_fittings_would() {
+        let (a, p) = linear(0.0, false);
+        let (b, q) = linear(0.2, false);
+        assert!(!overlap(&a, p, &b, q), "side by side 0.2 m apart");
+        let (b, q) = linear(0.08, false);
+        assert!(overlap(&a, p, &b, q), "0.08 m apart, 0.1 m wide");
+        // Turned a quarter turn their lengths lie along the line between them.
+        let (a, p) = linear(0.0, true);
+        let (b, q) = linear(1.37, true);
+        assert!(overlap(&a, p, &b, q), "end to end 1.37 m apart, 1.5 m long");
+        let (b, q) = linear(1.6, true);
+        assert!(!overlap(&a, p, &b, q));
+        // A disk of 0.17 m beside another.
+        let disk = |x: f64| {
+            (
+                Fitting {
+                    variable: 0,
+                    name: "D".into(),
+                    anchor: Anchor::Moved(DVec3::ZERO),
+                    axes: [DVec3::X, DVec3::Y],
+                    half: [0.085, 0.085],
+                    round: true,
+                },
+                DVec3::new(x, x, 0.0),
+            )
+        };
+        let ((a, p), (b, q)) = (disk(0.0), disk(0.1));
+        assert!(overlap(&a, p, &b, q), "0.14 m apart, 0.17 m across");
+        let (b, q) = disk(0.13);
+        assert!(!overlap(&a, p, &b, q), "0.18 m apart");
+    }
+}
