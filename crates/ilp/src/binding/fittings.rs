@@ -119,6 +119,20 @@ fn overlap(f: &Fitting, p: DVec3, g: &Fitting, q: DVec3) -> bool {
 }
 
 impl Binding {
+    /// The clear gaps, m, between neighbouring fittings of `variable` (a placement of
+    /// interchangeable lamps, or a `<lightArray>`) whose centres stand `spacing` apart
+    /// along the unit directions `axes`: what an installer measures between two
+    /// fittings, edge to edge. `None` when its luminaires have no outline.
+    pub(super) fn gaps(
+        &self,
+        variable: usize,
+        spacing: [f64; 2],
+        axes: [DVec3; 2],
+    ) -> Option<[f64; 2]> {
+        let f = self.fittings.iter().find(|f| f.variable == variable)?;
+        Some([0, 1].map(|i| spacing[i] - 2.0 * f.reach(axes[i])))
+    }
+
     /// The first two moved luminaires whose outlines overlap at `config`, as a reason
     /// to refuse it.
     pub(super) fn overlapping_fittings(&self, config: &Configuration) -> Option<String> {

@@ -52,6 +52,12 @@ pub struct ArrayLayout {
     /// of the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub from_walls: Option<[f64; 2]>,
+    /// The clear gap between neighbouring fittings along the columns and the rows, m
+    /// (the spacing less the luminaires' outline, from their photometric file): what an
+    /// installer reads between two fittings; absent when the luminaires have no
+    /// outline. Meaningless along an axis of one column or row.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub between: Option<[f64; 2]>,
 }
 
 /// The regular array `points` (in a plane's coordinates, m) form, each of its distinct
@@ -154,10 +160,12 @@ impl Binding {
                     1 => 0.0,
                     n => (l[n - 1] - l[0]) / (n - 1) as f64,
                 };
+                let spacing = [spacing(&columns), spacing(&rows)];
                 ArrayLayout {
                     columns: columns.len() as u32,
                     rows: rows.len() as u32,
-                    spacing: [spacing(&columns), spacing(&rows)],
+                    spacing,
+                    between: self.gaps(first, spacing, [u, v]),
                     deviation,
                     from_walls: self.bounds.and_then(|b| {
                         Some([
@@ -185,7 +193,12 @@ impl Binding {
     /// levels and the lamps it leaves off.
     fn array_layouts(&self, values: &[VariableValue]) -> Vec<Layout> {
         let mut out = Vec::new();
-        for ((value, target), spec) in values.iter().zip(&self.targets).zip(&self.specs) {
+        for (variable, ((value, target), spec)) in values
+            .iter()
+            .zip(&self.targets)
+            .zip(&self.specs)
+            .enumerate()
+        {
             let (VariableValue::Array(shape), Target::Array(lamps), VariableKind::LightArray(a)) =
                 (value, target, &spec.kind)
             else {
@@ -212,13 +225,15 @@ impl Binding {
                 rect.e1.normalize(),
                 rect.e1.cross(rect.e2).cross(rect.e1).normalize(),
             );
+            let spacing = [
+                spacing(shape.columns, shape.walls[0], rect.e1),
+                spacing(shape.rows, shape.walls[1], rect.e2),
+            ];
             let array = ArrayLayout {
                 columns: shape.columns,
                 rows: shape.rows,
-                spacing: [
-                    spacing(shape.columns, shape.walls[0], rect.e1),
-                    spacing(shape.rows, shape.walls[1], rect.e2),
-                ],
+                spacing,
+                between: self.gaps(variable, spacing, [u, v]),
                 deviation: 0.0,
                 from_walls: self.bounds.and_then(|b| {
                     Some([
@@ -314,6 +329,15 @@ fn describe(
                 m(a.spacing[0]),
                 m(a.spacing[1])
             );
+            if let Some(g) = a.between {
+                // Along an axis of one column or row there is no neighbour to stand apart from.
+                let gap = |i: usize, n: u32| if n > 1 { m(g[i]) } else { "—".into() };
+                s += &format!(
+                    " ({} × {} between fittings)",
+                    gap(0, a.columns),
+                    gap(1, a.rows)
+                );
+            }
             if let Some(w) = a.from_walls {
                 s += &format!(", {} × {} from the walls", m(w[0]), m(w[1]));
             }
@@ -423,10 +447,25 @@ mod tests {
             spacing: [2.4, 2.4],
             deviation: 0.0,
             from_walls: Some([1.2, 1.2]),
+            between: None,
         };
         assert_eq!(
             describe(&lights, "LampZone", Some(&array), &[0.72; 6], &[]),
             "Lamp1 … Lamp6 on LampZone: a 2 × 3 array (2 rows of 3), 2.40 m × 2.40 m apart, 1.20 m × 1.20 m from the walls; all at 72 %"
+        );
+        // Fittings 1.52 m long along the rows: the gap an installer measures.
+        let fitted = ArrayLayout {
+            between: Some([2.32, 0.88]),
+            ..array
+        };
+        assert!(
+            describe(&lights, "LampZone", Some(&fitted), &[0.72; 6], &[])
+                .contains("2.40 m × 2.40 m apart (2.32 m × 0.88 m between fittings)")
+        );
+        let one_row = ArrayLayout { rows: 1, ..fitted };
+        assert!(
+            describe(&lights[..3], "LampZone", Some(&one_row), &[1.0; 3], &[])
+                .contains("(2.32 m × — between fittings)")
         );
         assert_eq!(
             describe(&lights[..2], "LampZone", None, &[0.5, 1.0], &[]),

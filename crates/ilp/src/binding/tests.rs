@@ -1024,6 +1024,16 @@ fn an_array_whose_fittings_overlap_is_refused() {
         "{why}"
     );
     assert_eq!(along_y.refusal(&shape(&along_y, 2, 1)), None);
+    // Side by side 1 m apart, 0.08 m wide: 0.92 m between the fittings.
+    let layout = &along_y.layouts(&shape(&along_y, 2, 1))[0];
+    let array = layout.array.as_ref().unwrap();
+    let gap = array.between.expect("fittings with an outline")[0];
+    assert!((gap - 0.92).abs() < 1e-6, "{gap}");
+    assert!(
+        layout.description.contains("(0.92 m × — between fittings)"),
+        "{}",
+        layout.description
+    );
     let along_x = binding(90.0);
     let why = along_x
         .refusal(&shape(&along_x, 2, 1))
