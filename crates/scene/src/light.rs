@@ -23,8 +23,8 @@ pub struct Light {
     pub kind: LightKind,
     /// The world direction a photometric file's C0 plane takes when one is given to
     /// this point or spot light (`<luminaire>`, [`crate::Scene::set_photometry`]): the
-    /// node's local +X, so that a luminaire turned with its node in the modeller is
-    /// turned in the scene; +X where the file gives no frame.
+    /// node's local +X (glTF, COLLADA), so that a luminaire turned with its node in the
+    /// modeller is turned in the scene; +X where the file gives no frame.
     pub c0: Vec3,
 }
 

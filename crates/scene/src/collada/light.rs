@@ -91,8 +91,10 @@ pub(super) fn light(
             return Ok(None);
         }
     };
+    // A photometric file given to this light later takes its C0 from the node's +X.
+    let c0 = world.transform_vector3(Vec3::X).normalize_or(Vec3::X);
     Ok(Some(Light {
-        c0: glam::Vec3::X,
+        c0,
         name: name.to_string(),
         kind,
     }))
