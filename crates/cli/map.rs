@@ -83,22 +83,9 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     scene.require_light(path)?;
     let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
     let requirement = args.require.requirement(mf)?;
-    // A problem's <task> on this surface built its areas with the scene: judge those.
-    let built = problem.as_ref().and_then(|p| {
-        p.tasks
-            .iter()
-            .find(|t| t.surface.name == args.surface && !t.built.is_empty())
-            .map(|t| t.built.clone())
-    });
-    let areas = match (requirement.as_ref().filter(|_| !args.no_areas), built) {
-        (Some(_), Some(built)) => built,
-        (Some(_), None) => scene
-            .add_task_areas(path, surface, &AreaKind::ALL)
-            .unwrap_or_else(|e| {
-                crate::warn(Some(format!("{e}; the areas around it are not judged")));
-                Vec::new()
-            }),
-        (None, _) => Vec::new(),
+    let areas = match requirement {
+        Some(_) if !args.no_areas => areas_to_judge(&args, problem.as_ref(), &mut scene, surface),
+        _ => Vec::new(),
     };
     let pool = args.trace.pool()?;
     let start = Instant::now();
@@ -114,22 +101,14 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         estimator: Estimator::arrivals_only(args.arrivals_only),
         values,
     };
-    let mut targets = vec![MapTarget {
+    let task = MapTarget {
         surface,
         spacing,
         side,
-    }];
-    // A band's grid has at least two cells across it; the others follow the rule.
-    targets.extend(areas.iter().map(|a| {
-        MapTarget {
-            surface: a.surface,
-            spacing: a
-                .kind
-                .spacing()
-                .map_or(GridSpacing::Auto, |m| GridSpacing::Metres(m as f32)),
-            side: Side::Front,
-        }
-    }));
+    };
+    let targets: Vec<MapTarget> = std::iter::once(task)
+        .chain(areas.iter().map(area_target))
+        .collect();
     let bar = Progress::photons(trace.photons, "this map");
     let report = |done: u64| bar.set(done);
     let mut maps = pool
@@ -206,6 +185,44 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         crate::print(&(report.summary() + &verdict + &written))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The map of an EN 12464-1 area: its front, on its grid. A band's grid has at least
+/// two cells across it; the others follow the rule.
+fn area_target(a: &invlight_scene::TaskArea) -> MapTarget {
+    MapTarget {
+        surface: a.surface,
+        spacing: a
+            .kind
+            .spacing()
+            .map_or(GridSpacing::Auto, |m| GridSpacing::Metres(m as f32)),
+        side: Side::Front,
+    }
+}
+
+/// EN 12464-1's areas around the task area `surface`: those a problem's `<task>` on
+/// it built with the scene, else built now; none, with a warning, where the surface
+/// has no room around it to build them in.
+fn areas_to_judge(
+    args: &MapArgs,
+    problem: Option<&invlight_ilp::Problem>,
+    scene: &mut invlight_scene::Scene,
+    surface: invlight_scene::SurfaceId,
+) -> Vec<invlight_scene::TaskArea> {
+    let built = problem.and_then(|p| {
+        p.tasks
+            .iter()
+            .find(|t| t.surface.name == args.surface && !t.built.is_empty())
+    });
+    match built {
+        Some(t) => t.built.clone(),
+        None => scene
+            .add_task_areas(&args.scene.scene, surface, &AreaKind::ALL)
+            .unwrap_or_else(|e| {
+                crate::warn(Some(format!("{e}; the areas around it are not judged")));
+                Vec::new()
+            }),
+    }
 }
 
 /// The grid and side to map: those given, else those of the first constraint on the

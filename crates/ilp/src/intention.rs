@@ -338,11 +338,8 @@ impl Constraint {
     /// mean − z·σ against a lower limit, mean + z·σ against an upper one
     /// ([`Feasibility::of`]).
     pub fn one_sided_bound(&self, e: &invlight_stats::Estimate, z: f64) -> f64 {
-        if self.bound.is_lower() {
-            e.mean - z * e.std_error
-        } else {
-            e.mean + z * e.std_error
-        }
+        let i = e.interval(z);
+        if self.bound.is_lower() { i.low } else { i.high }
     }
 
     /// Its verdict for an estimate of its quantity, at the one-sided `z`.

@@ -463,6 +463,52 @@ pub fn measure_more(
     }
 }
 
+impl Measurement {
+    /// A measurement of no photons yet of `request` on `scene`: its targets' areas,
+    /// zero sums, and each grid with `direct`'s computed direct light (empty for a grid
+    /// of cell means).
+    fn empty(
+        scene: &Scene,
+        request: &Request,
+        emitters: &Emitters,
+        direct: impl Fn(&GridRequest) -> Vec<f64>,
+    ) -> Measurement {
+        let targets = request.surfaces;
+        let k = request.components.count();
+        let flux = emitters.total_flux();
+        Measurement {
+            photons: 0,
+            rays: 0,
+            connection_rays: 0,
+            areas: targets
+                .iter()
+                .map(|&s| scene.surface_area(s) as f64)
+                .collect(),
+            hits: vec![0; targets.len()],
+            channels: vec![ChannelSums::new(2 * k); targets.len()],
+            groups: Vec::new(),
+            grids: request
+                .grids
+                .iter()
+                .map(|g| {
+                    let mut m = GridMeasurement::new(
+                        g.grid.clone(),
+                        g.side,
+                        CellTallies::new(g.grid.cells(), k).sums,
+                    );
+                    m.flux = flux;
+                    m.direct = direct(g);
+                    m
+                })
+                .collect(),
+            component_flux: request.components.flux(emitters),
+            escaped: 0.0,
+            flux,
+            boundary: None,
+        }
+    }
+}
+
 /// Traces the photons of `settings` after those `from` holds (all of them when `None`)
 /// and adds them to it.
 fn trace_into(
@@ -494,42 +540,13 @@ fn trace_into(
     };
     let shapes = Targets::new(scene, targets);
     let connect = request.estimator == Estimator::Connected;
-    let flux = emitters.total_flux();
-    let direct = |g: &GridRequest| match g.values {
-        GridValues::Points => {
-            direct_on_grid(&emitters, accel, &g.grid, g.side, &plan.component_of, k)
-        }
-        GridValues::CellMeans => Vec::new(),
-    };
-    let mut result = from.unwrap_or_else(|| Measurement {
-        photons: 0,
-        rays: 0,
-        connection_rays: 0,
-        areas: targets
-            .iter()
-            .map(|&s| scene.surface_area(s) as f64)
-            .collect(),
-        hits: vec![0; targets.len()],
-        channels: vec![ChannelSums::new(2 * k); targets.len()],
-        groups: Vec::new(),
-        grids: request
-            .grids
-            .iter()
-            .map(|g| {
-                let mut m = GridMeasurement::new(
-                    g.grid.clone(),
-                    g.side,
-                    CellTallies::new(g.grid.cells(), k).sums,
-                );
-                m.flux = flux;
-                m.direct = direct(g);
-                m
-            })
-            .collect(),
-        component_flux: request.components.flux(&emitters),
-        escaped: 0.0,
-        flux,
-        boundary: None,
+    let mut result = from.unwrap_or_else(|| {
+        Measurement::empty(scene, request, &emitters, |g| match g.values {
+            GridValues::Points => {
+                direct_on_grid(&emitters, accel, &g.grid, g.side, &plan.component_of, k)
+            }
+            GridValues::CellMeans => Vec::new(),
+        })
     });
     debug_assert!(result.photons.is_multiple_of(CHUNK));
     let first_chunk = result.photons / CHUNK;

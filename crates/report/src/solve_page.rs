@@ -311,31 +311,15 @@ impl<'a> SolveReport<'a> {
             Some(best) => {
                 let e = &best.evaluation.goal;
                 let i = e.interval(f.isoc.z());
-                let opening = if b.specs.is_empty() {
-                    format!(
-                        "The design as authored (the problem has no variables) <b>{}</b> every constraint at {level} % confidence. {} is <b>{}{unit}</b> [{}, {}]:",
-                        if feasible { "meets" } else { "does not meet" },
-                        escape(&capitalised(&goal.words())),
-                        significant(e.mean),
-                        significant(i.low),
-                        significant(i.high)
-                    )
-                } else if feasible {
-                    format!(
-                        "{} is <b>{}{unit}</b> [{}, {}] ({level} % confidence) when:",
-                        escape(&capitalised(&goal.words())),
-                        significant(e.mean),
-                        significant(i.low),
-                        significant(i.high)
-                    )
-                } else {
-                    format!(
-                        "No configuration tried meets every constraint at {level} % confidence. The closest gives {}{unit} [{}, {}] when:",
-                        significant(e.mean),
-                        significant(i.low),
-                        significant(i.high)
-                    )
-                };
+                let words = capitalised(&goal.words());
+                let opening = answer_opening(
+                    &words,
+                    (e.mean, i),
+                    &unit,
+                    &level,
+                    b.specs.is_empty(),
+                    feasible,
+                );
                 let mut s = format!("<div class=\"answer\"><p>{opening}</p><ul>");
                 for ((spec, v), from) in b.specs.iter().zip(b.values(&best.config)).zip(&start) {
                     s += &format!(
@@ -620,6 +604,36 @@ impl<'a> SolveReport<'a> {
             ),
         );
         Ok((page.finish(), no_plan))
+    }
+}
+
+/// The sentence that opens the answer: the goal's value `(mean, interval)` in `unit`
+/// at `level` %, said of a design checked as authored (`fixed`: no variables), of the
+/// best configuration when `feasible`, else of the closest one.
+fn answer_opening(
+    goal: &str,
+    (mean, i): (f64, invlight_stats::Interval),
+    unit: &str,
+    level: &str,
+    fixed: bool,
+    feasible: bool,
+) -> String {
+    let (m, low, high) = (significant(mean), significant(i.low), significant(i.high));
+    if fixed {
+        format!(
+            "The design as authored (the problem has no variables) <b>{}</b> every constraint at {level} % confidence. {} is <b>{m}{unit}</b> [{low}, {high}]:",
+            if feasible { "meets" } else { "does not meet" },
+            escape(goal),
+        )
+    } else if feasible {
+        format!(
+            "{} is <b>{m}{unit}</b> [{low}, {high}] ({level} % confidence) when:",
+            escape(goal)
+        )
+    } else {
+        format!(
+            "No configuration tried meets every constraint at {level} % confidence. The closest gives {m}{unit} [{low}, {high}] when:"
+        )
     }
 }
 

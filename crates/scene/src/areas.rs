@@ -258,9 +258,23 @@ impl Scene {
 
         let (floor, e) = (floor_level.height, ROOM_SURFACE_OFFSET);
         let inside = room_span.grown(-e);
-        let (x, y) = (inside.x, inside.y);
-        let (f, c) = (floor + e, ceiling - e);
         let at = |x: f64, y: f64, h: f64| plan_point(up, outline.a, x, y, h);
+        areas.extend(self.room_areas(inside, (floor + e, ceiling - e), at, kinds));
+        Ok(areas)
+    }
+
+    /// The four walls and the ceiling of the room `inside` (in plan) from height `f` to
+    /// `c`, those of `kinds`, as calculation rectangles facing into it; `at` puts a plan
+    /// point at a height in the world.
+    fn room_areas(
+        &mut self,
+        inside: Span,
+        (f, c): (f64, f64),
+        at: impl Fn(f64, f64, f64) -> Vec3,
+        kinds: &[AreaKind],
+    ) -> Vec<TaskArea> {
+        let (x, y) = (inside.x, inside.y);
+        let mut areas = Vec::new();
         // Each wall as (its two ends in plan), then the room's centre to face.
         let walls = [
             ((x.0, y.0), (x.1, y.0)),
@@ -268,15 +282,13 @@ impl Scene {
             ((x.1, y.1), (x.0, y.1)),
             ((x.0, y.1), (x.0, y.0)),
         ];
-        let centre = at(
-            0.5 * (x.0 + x.1),
-            0.5 * (y.0 + y.1),
-            0.5 * (floor + ceiling),
-        );
-        for (n, (p, q)) in walls.into_iter().enumerate() {
-            if !kinds.contains(&AreaKind::Wall) {
-                break;
-            }
+        let centre = at(0.5 * (x.0 + x.1), 0.5 * (y.0 + y.1), 0.5 * (f + c));
+        let walls = if kinds.contains(&AreaKind::Wall) {
+            &walls[..]
+        } else {
+            &[]
+        };
+        for (n, &(p, q)) in walls.iter().enumerate() {
             let quad = [
                 at(p.0, p.1, f),
                 at(q.0, q.1, f),
@@ -292,7 +304,7 @@ impl Scene {
             let surface = self.add_area("ceiling", vec![facing(quad, centre)]);
             areas.push(self.area(AreaKind::Ceiling, surface, (x.1 - x.0, y.1 - y.0)));
         }
-        Ok(areas)
+        areas
     }
 
     /// Adds a calculation surface of `quads` named `name`, or `name (EN 12464-1)` when

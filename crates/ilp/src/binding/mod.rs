@@ -17,6 +17,7 @@ mod hole;
 mod layout;
 mod placement;
 mod power;
+mod refusal;
 mod rotation;
 mod solved;
 mod sun;
@@ -483,76 +484,6 @@ impl Binding {
             }
         }
         out
-    }
-
-    /// Why `config` is not worth tracing, if it is not: it puts an object or light
-    /// outside the scene ([`Binding::leaves_scene`]), two luminaires' outlines over
-    /// each other (`fittings.rs`), or two interchangeable lamps in
-    /// one cell of their rectangle, which no design means (two fixtures in one spot)
-    /// and which would make every split of their levels look like another answer.
-    pub fn refusal(&self, config: &Configuration) -> Option<String> {
-        if let Some(id) = self.leaves_scene(config) {
-            return Some(format!("it puts '{id}' outside the scene"));
-        }
-        for (i, v) in self.space.variables().iter().enumerate() {
-            if let Domain::Array(a) = &v.domain {
-                let shape = a.shape(self.space.slice(config, i));
-                if shape.lamps() > a.lamps {
-                    return Some(format!(
-                        "it sets out {} × {} = {} lamps and '{}' has {}",
-                        shape.columns,
-                        shape.rows,
-                        shape.lamps(),
-                        v.id,
-                        a.lamps
-                    ));
-                }
-            }
-        }
-        if let Some(why) = self.overlapping_fittings(config) {
-            return Some(why);
-        }
-        let cell = self.space.cell(config);
-        let place = |v: usize| {
-            let o: usize = self.space.variables()[..v]
-                .iter()
-                .map(|x| x.domain.dimensions())
-                .sum();
-            &cell.0[o..o + 2]
-        };
-        for group in self.space.exchangeable() {
-            for (k, a) in group.iter().enumerate() {
-                for b in &group[k + 1..] {
-                    if place(a[0]) == place(b[0]) {
-                        let ids = |m: &[usize]| &self.space.variables()[m[0]].id;
-                        return Some(format!("it puts '{}' and '{}' in one cell", ids(a), ids(b)));
-                    }
-                }
-            }
-        }
-        None
-    }
-
-    /// The id of the first variable that would put its object (or light) outside the
-    /// scene at `config`: beyond the bounds of everything no variable moves and of every
-    /// moved thing as authored. Such a candidate is not traced: a lamp outside the room
-    /// lights nothing a user means to light, and a cone through a wall is no answer.
-    pub fn leaves_scene(&self, config: &Configuration) -> Option<&str> {
-        let bounds = self.bounds?;
-        let slack = 1e-4 * (bounds.hi - bounds.lo).length();
-        for ((value, target), var) in self
-            .values(config)
-            .iter()
-            .zip(&self.targets)
-            .zip(self.space.variables())
-        {
-            if let (VariableValue::Position { point, .. }, Target::Move(m)) = (value, target)
-                && !bounds.holds(&m.bounds.shifted(*point - m.reference), slack)
-            {
-                return Some(&var.id);
-            }
-        }
-        None
     }
 
     /// Applies a configuration, dimming levels included (what `render`, `measure` and
