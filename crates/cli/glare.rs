@@ -1,10 +1,10 @@
 //! `invlight glare`: the Unified Glare Rating at observers
-//! ([`invlight_render::unified_glare_rating`]).
+//! ([`invlight_photon::glare::unified_glare_rating`]).
 
 use crate::InputError;
 use crate::args::{SceneArgs, TraceArgs};
 use clap::Args;
-use invlight_render::{GlareSource, Observer, Ugr, unified_glare_rating};
+use invlight_photon::glare::{GlareSource, Observer, Ugr, rating, unified_glare_rating};
 use invlight_scene::Vec3;
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -218,19 +218,6 @@ fn table(r: &Rated, confidence: Confidence, worst: bool) -> String {
     s + "\n"
 }
 
-/// A UGR as tables print it: to a tenth, "< 10" below CIE 117's scale (10, the
-/// threshold of discomfort, to 30; the formula's lower values mean nothing more than
-/// "no discomfort"), an infinite upper bound as ∞.
-fn rating(x: f64) -> String {
-    if x < 10.0 {
-        "< 10".into()
-    } else if x.is_finite() {
-        format!("{x:.1}")
-    } else {
-        "∞".into()
-    }
-}
-
 fn sources(sources: &[GlareSource]) -> String {
     let total: f64 = sources.iter().map(|s| s.contribution).sum();
     let width = sources
@@ -256,18 +243,4 @@ fn sources(sources: &[GlareSource]) -> String {
         );
     }
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::rating;
-
-    #[test]
-    fn a_rating_below_cie_117s_scale_reads_below_10() {
-        assert_eq!(rating(-6.1), "< 10");
-        assert_eq!(rating(f64::NEG_INFINITY), "< 10");
-        assert_eq!(rating(9.96), "< 10");
-        assert_eq!(rating(19.04), "19.0");
-        assert_eq!(rating(f64::INFINITY), "∞");
-    }
 }

@@ -74,6 +74,7 @@ fn a_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
         components: &components,
         estimator: Estimator::Connected,
         keep_groups: true,
+        observers: Vec::new(),
     };
     // Seven whole chunks and a part of one: the ranks' shares are uneven, and with eight
     // ranks some trace nothing.
@@ -113,6 +114,7 @@ fn a_continued_measurement_shared_by_k_ranks_has_the_bits_of_one_process() {
         components: &components,
         estimator: Estimator::Connected,
         keep_groups: true,
+        observers: Vec::new(),
     };
     let settings = |photons| TraceSettings {
         photons,
@@ -178,6 +180,7 @@ fn a_packed_measurement_reads_back_the_same() {
             components: &components,
             estimator: Estimator::Connected,
             keep_groups,
+            observers: Vec::new(),
         };
         for photons in [2 * CHUNK, 2 * CHUNK + 640] {
             let settings = TraceSettings {

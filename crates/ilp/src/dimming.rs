@@ -387,14 +387,22 @@ impl Rows {
     }
 }
 
-/// Whether every constraint of a problem is one the program can hold: the lamps'
-/// light is linear in their levels for these, and not for a daylight factor (lamps are
-/// off under its sky).
+/// Whether every constraint of a problem is one the program can hold or one it may
+/// leave to the evaluation: the lamps' light is linear in their levels for the
+/// illuminances and U0, and not for a daylight factor (lamps are off under its sky). A
+/// UGR limit is not linear (L² over Lb), and is judged at the levels found: the least
+/// power dims the lamps as far as the illuminances allow, and dimming lowers UGR
+/// (every lamp by k: by 8·log10(1/k)), so an arrangement is rejected when its
+/// least-power levels glare, though some other dimming of it might not.
 pub fn solvable(bounds: &[Bound]) -> bool {
     bounds.iter().all(|b| {
         matches!(
             b,
-            Bound::MinLux(_) | Bound::MaxLux(_) | Bound::MinPointLux(..) | Bound::MinUniformity(..)
+            Bound::MinLux(_)
+                | Bound::MaxLux(_)
+                | Bound::MinPointLux(..)
+                | Bound::MinUniformity(..)
+                | Bound::MaxUgr(_)
         )
     })
 }

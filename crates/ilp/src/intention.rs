@@ -107,6 +107,13 @@ pub enum Goal {
         /// The surface.
         surface: SurfaceRef,
     },
+    /// `<minimizeGlare observer view name?>`: the least Unified Glare Rating at one
+    /// observer (CIE 117; [`invlight_photon::glare`]).
+    MinimizeGlare {
+        /// The observer's eye square, the calculation surface named after it that the
+        /// problem adds to the scene (its front faces the view).
+        observer: SurfaceRef,
+    },
 }
 
 impl Goal {
@@ -119,6 +126,7 @@ impl Goal {
             Goal::MaximizeUniformity { .. } => "maximizeUniformity",
             Goal::MinimizePower => "minimizePower",
             Goal::MaximizeDaylightFactor { .. } => "maximizeDaylightFactor",
+            Goal::MinimizeGlare { .. } => "minimizeGlare",
         }
     }
 
@@ -132,6 +140,7 @@ impl Goal {
             Goal::MaximizeUniformity { .. } => "uniformity U0",
             Goal::MaximizeDaylightFactor { .. } => "daylight factor",
             Goal::MinimizePower => "lamp power",
+            Goal::MinimizeGlare { .. } => "UGR",
         }
     }
 
@@ -143,16 +152,16 @@ impl Goal {
             | Goal::Target { surface, .. }
             | Goal::MaximizeUniformity { surface, .. }
             | Goal::MaximizeDaylightFactor { surface } => Some(surface),
-            Goal::MinimizePower => None,
+            Goal::MinimizePower | Goal::MinimizeGlare { .. } => None,
         }
     }
 
-    /// The unit of its value: `lx`, `` (a ratio), `lm` (a bound problem's
-    /// `minimizePower` may count watts instead: [`crate::Binding::goal_unit`]) or
-    /// `DF %`.
+    /// The unit of its value: `lx`, `` (a ratio, or UGR's index), `lm` (a bound
+    /// problem's `minimizePower` may count watts instead: [`crate::Binding::goal_unit`])
+    /// or `DF %`.
     pub fn unit(&self) -> &'static str {
         match self {
-            Goal::MaximizeUniformity { .. } => "",
+            Goal::MaximizeUniformity { .. } | Goal::MinimizeGlare { .. } => "",
             Goal::MinimizePower => "lm",
             Goal::MaximizeDaylightFactor { .. } => DF_UNIT,
             _ => "lx",
@@ -168,6 +177,7 @@ impl Goal {
             Goal::MaximizeUniformity { .. } => "maximizeUniformity",
             Goal::MinimizePower => "minimizePower",
             Goal::MaximizeDaylightFactor { .. } => "maximize",
+            Goal::MinimizeGlare { .. } => "minimize",
         }
     }
 }
@@ -190,6 +200,9 @@ pub enum Bound {
     /// `minDaylightFactor`: the daylight factor of the mean illuminance at least this, %
     /// ([`Goal::MaximizeDaylightFactor`]).
     MinDaylightFactor(f64),
+    /// `maxUGR`: the Unified Glare Rating at an observer at most this (CIE 117;
+    /// EN 12464-1's UGR_L), on the observer's eye square.
+    MaxUgr(f64),
 }
 
 impl Bound {
@@ -201,6 +214,7 @@ impl Bound {
             Bound::MinUniformity(..) => "minUniformity",
             Bound::MinPointLux(..) => "minPointLux",
             Bound::MinDaylightFactor(_) => "minDaylightFactor",
+            Bound::MaxUgr(_) => "maxUGR",
         }
     }
 
@@ -208,13 +222,15 @@ impl Bound {
     pub fn limit(&self) -> f64 {
         match *self {
             Bound::MinLux(x) | Bound::MaxLux(x) | Bound::MinUniformity(x, _) => x,
-            Bound::MinPointLux(x, _) | Bound::MinDaylightFactor(x) => x,
+            Bound::MinPointLux(x, _) | Bound::MinDaylightFactor(x) | Bound::MaxUgr(x) => x,
         }
     }
 
-    /// The bound with an illuminance limit divided by `factor` (a uniformity or a
-    /// daylight factor, ratios, unchanged): a maintained requirement E·MF ≥ L read as
-    /// the new installation's E ≥ L/MF.
+    /// The bound with an illuminance limit divided by `factor` (a uniformity, a
+    /// daylight factor or a UGR unchanged): a maintained requirement E·MF ≥ L read as
+    /// the new installation's E ≥ L/MF. A UGR is rated for the new installation, as
+    /// CIE 117's tables are: a maintenance factor scales the luminances by MF and the
+    /// background by MF, which only lowers it by 8·log10(1/MF).
     pub fn for_new(&self, factor: f64) -> Bound {
         match *self {
             Bound::MinLux(x) => Bound::MinLux(x / factor),
@@ -226,7 +242,7 @@ impl Bound {
 
     /// Whether it bounds from below.
     pub fn is_lower(&self) -> bool {
-        !matches!(self, Bound::MaxLux(_))
+        !matches!(self, Bound::MaxLux(_) | Bound::MaxUgr(_))
     }
 
     /// How far `value` lies inside the bound, in its unit: value − limit for a lower
@@ -249,7 +265,8 @@ impl Bound {
 }
 
 /// `<constraint surface side? minLux|maxLux|minUniformity|minPointLux|minDaylightFactor
-/// grid?>`.
+/// grid?>`, or `<constraint maxUGR observer view name?>` (its surface the observer's eye
+/// square).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Constraint {
     /// The surface.
@@ -297,6 +314,10 @@ impl Constraint {
     /// side is named (a problem holds at most one constraint per label).
     pub fn label(&self) -> String {
         match self.surface.side {
+            // An observer's eye square is read on its front alone, which goes unsaid.
+            _ if matches!(self.bound, Bound::MaxUgr(_)) => {
+                format!("{}.{}", self.surface.name, self.bound.attribute())
+            }
             Side::Both => format!("{}.{}", self.surface.name, self.bound.attribute()),
             side => format!(
                 "{}.{}.{}",
@@ -313,6 +334,7 @@ impl Constraint {
         let task = self.from_task.as_ref()?;
         let quantity = match self.bound {
             Bound::MinUniformity(..) => "U0",
+            Bound::MaxUgr(_) => return Some(format!("EN 12464-1 {}: UGR_L", task.task)),
             _ => "Ēm",
         };
         Some(format!("{} {quantity}", task.words()))
@@ -325,10 +347,10 @@ impl Constraint {
         self.bound.limit() * self.maintenance_factor
     }
 
-    /// The unit of the bounded quantity: `lx`, `` for a uniformity, `DF %`.
+    /// The unit of the bounded quantity: `lx`, `` for a uniformity or a UGR, `DF %`.
     pub fn unit(&self) -> &'static str {
         match self.bound {
-            Bound::MinUniformity(..) => "",
+            Bound::MinUniformity(..) | Bound::MaxUgr(_) => "",
             Bound::MinDaylightFactor(_) => DF_UNIT,
             _ => "lx",
         }

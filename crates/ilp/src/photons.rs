@@ -426,6 +426,13 @@ impl Job<'_> {
             estimator: Estimator::Connected,
             // The paired search compares configurations by their groups.
             keep_groups: true,
+            observers: self
+                .binding
+                .reading
+                .observers
+                .iter()
+                .map(|(_, o)| *o)
+                .collect(),
         }
     }
 

@@ -4,9 +4,10 @@
 //! point values need, and for each intention the quantity it reads (a side's mean, a
 //! grid's U0 or Emin, the lamps' power).
 
-use crate::intention::{Bound, Goal, Grid, Side, Spacing, SurfaceRef};
+use crate::intention::{Bound, Goal, Grid, GridValues, Side, Spacing, SurfaceRef};
 use crate::problem::Problem;
 use crate::vns::Evaluation;
+use invlight_photon::glare::{GlareError, Observer, light_without_luminous_area, ugr_estimate};
 use invlight_photon::{GridError, GridRequest, Measurement, SurfaceGrid};
 use invlight_scene::daylight::SkyKind;
 use invlight_scene::{Diagnostic, Scene, SurfaceId, known_names};
@@ -51,6 +52,15 @@ pub enum Quantity {
     },
     /// The electric lights' luminous flux as dimmed, lm (exact).
     Power,
+    /// The Unified Glare Rating at an observer: its luminaires' glare sum (exact, per
+    /// component) over the indirect illuminance its eye square's grid reads
+    /// ([`ugr_estimate`]).
+    Ugr {
+        /// Index in [`Reading::observers`].
+        observer: usize,
+        /// Index in [`Reading::grids`] of its eye square's indirect grid.
+        grid: usize,
+    },
     /// The daylight factor of a surface side's mean illuminance, %: the mean times
     /// `per_lux` = 100 / E_h, E_h the overcast sky's unobstructed horizontal
     /// illuminance, which is exact, so the standard error scales the same way.
@@ -80,6 +90,8 @@ pub struct Reading {
     pub goal: Quantity,
     /// Each constraint's quantity, in the problem's order.
     pub constraints: Vec<Quantity>,
+    /// The observers whose glare is rated, with their eye squares' names.
+    pub observers: Vec<(String, Observer)>,
 }
 
 impl Reading {
@@ -93,6 +105,7 @@ impl Reading {
             grids: Vec::new(),
             goal: Quantity::Power,
             constraints: Vec::new(),
+            observers: Vec::new(),
         };
         let line = problem.goal_line;
         reading.goal = match &problem.goal {
@@ -107,6 +120,7 @@ impl Reading {
             Goal::MaximizeDaylightFactor { surface } => {
                 reading.daylight_factor(problem, scene, surface, line)?
             }
+            Goal::MinimizeGlare { observer } => reading.ugr(problem, scene, observer, line)?,
         };
         for c in &problem.constraints {
             let q = match c.bound {
@@ -125,8 +139,23 @@ impl Reading {
                 Bound::MinDaylightFactor(_) => {
                     reading.daylight_factor(problem, scene, &c.surface, c.line)?
                 }
+                Bound::MaxUgr(_) => reading.ugr(problem, scene, &c.surface, c.line)?,
             };
             reading.constraints.push(q);
+        }
+        if let Some(first) = problem
+            .observers
+            .first()
+            .filter(|_| !reading.observers.is_empty())
+            && let Some(GlareError::NoLuminousArea { light, kind }) =
+                light_without_luminous_area(scene)
+        {
+            return Err(Diagnostic::at_line(
+                &problem.path,
+                first.line,
+                format!("glare is rated at '{}', and the light '{light}' is {kind} without a luminous area: UGR needs each luminaire's luminance, its intensity over its luminous area", first.name),
+            )
+            .with_hint("give it a photometric file with luminous dimensions (IES width and length, EULUMDAT luminous area): any light may come into view as the search moves them"));
         }
         Ok(reading)
     }
@@ -210,6 +239,34 @@ impl Reading {
         })
     }
 
+    /// The UGR at the observer whose eye square is `eye` ([`Problem::observers`]).
+    fn ugr(
+        &mut self,
+        problem: &Problem,
+        scene: &Scene,
+        eye: &SurfaceRef,
+        line: u32,
+    ) -> Result<Quantity, Diagnostic> {
+        let spec = problem
+            .observers
+            .iter()
+            .find(|o| o.name == eye.name)
+            .expect("every glare intention names an observer of the problem");
+        let observer = match self.observers.iter().position(|(n, _)| *n == spec.name) {
+            Some(o) => o,
+            None => {
+                self.observers.push((spec.name.clone(), spec.observer));
+                self.observers.len() - 1
+            }
+        };
+        let background = Grid {
+            spacing: Spacing::Metres(EYE_CELL),
+            values: GridValues::Indirect,
+        };
+        let grid = self.grid(problem, scene, eye, background, line)?;
+        Ok(Quantity::Ugr { observer, grid })
+    }
+
     /// The index of the grid of `r` spaced by `grid`, added (and checked on `scene`)
     /// when new.
     fn grid(
@@ -263,7 +320,7 @@ impl Reading {
                 let g = &self.grids[grid];
                 Some((self.surfaces[g.target], g.side))
             }
-            Quantity::Power => None,
+            Quantity::Power | Quantity::Ugr { .. } => None,
         }
     }
 
@@ -316,6 +373,9 @@ impl Reading {
                     samples: e.samples,
                 }
             }
+            Quantity::Ugr { observer, grid } => {
+                ugr_estimate(m.glare_sum(observer, w), &m.grids[grid].average(w))
+            }
         };
         let groups = match self.goal {
             Quantity::Mean { target, side } => m.group_means(target, side, w),
@@ -338,6 +398,9 @@ impl Reading {
         }
     }
 }
+
+/// The spacing of an eye square's grid, m: wider than the square, so one cell.
+const EYE_CELL: f64 = 1.0;
 
 /// The grid `grid` on `surface`.
 fn lay(scene: &Scene, surface: SurfaceId, grid: Grid) -> Result<SurfaceGrid, GridError> {

@@ -75,6 +75,7 @@ fn a_layout_uniform_by_cell_means_but_not_at_the_points_is_infeasible() {
             components: &components,
             estimator: Estimator::Connected,
             keep_groups: false,
+            observers: Vec::new(),
         };
         let settings = TraceSettings {
             photons: 200_000,

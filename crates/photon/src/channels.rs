@@ -116,6 +116,18 @@ impl Components {
         self.of_instance[instance.index()] = k as u32;
     }
 
+    /// The component of light `light`.
+    pub fn of_light(&self, light: LightId) -> usize {
+        self.of_light.get(light.index()).map_or(0, |&k| k as usize)
+    }
+
+    /// The component of instance `instance`'s emissive triangles.
+    pub fn of_instance(&self, instance: InstanceId) -> usize {
+        self.of_instance
+            .get(instance.index())
+            .map_or(0, |&k| k as usize)
+    }
+
     /// The component of every source of `emitters`, by source index.
     pub fn of_sources(&self, emitters: &Emitters) -> Vec<u32> {
         (0..emitters.len() as u32)

@@ -185,6 +185,9 @@ pub struct Departure<'a> {
     /// The source the photon left ([`crate::EmitSample::source`]): its light reaches
     /// every surface it arrives on or connects to as that source's light.
     pub source: u32,
+    /// Whether it leaves the light itself: what arrives from it is the source's direct
+    /// light, what arrives from any later departure has been reflected or transmitted.
+    pub emitted: bool,
 }
 
 impl Departure<'_> {

@@ -67,6 +67,7 @@ mod connect;
 mod direct;
 mod emit;
 mod estimator;
+pub mod glare;
 mod grid;
 mod measure;
 mod measure_report;

@@ -15,6 +15,7 @@ use crate::connect::Targets;
 use crate::direct::direct_on_grid;
 use crate::emit::Emitters;
 use crate::estimator::{GROUP, photons_traced};
+use crate::glare::{Observer, glare_sums};
 use crate::grid::SurfaceGrid;
 use crate::tally::{ChunkTally, Plan, TargetMap};
 use glam::Vec3;
@@ -73,6 +74,10 @@ pub struct Request<'a> {
     /// that grows with the photons (a 10⁹-photon measurement would hold 15.6 M groups per
     /// target), so only a search that pairs configurations asks for it.
     pub keep_groups: bool,
+    /// Eyes whose luminaires' glare sums are computed, per component
+    /// ([`Measurement::glare_sum`]; their backgrounds are grids of
+    /// [`GridValues::Indirect`] on eye squares, [`crate::glare::eye_grid`]).
+    pub observers: Vec<Observer>,
 }
 
 impl<'a> Request<'a> {
@@ -89,6 +94,7 @@ impl<'a> Request<'a> {
             components,
             estimator,
             keep_groups: false,
+            observers: Vec::new(),
         }
     }
 }
@@ -116,6 +122,10 @@ pub enum GridValues {
     Points,
     /// The photons' mean over the cell, all light together.
     CellMeans,
+    /// The photons' mean over the cell of the light that has been reflected or
+    /// transmitted at least once: every light's direct light left out, as CIE 117's
+    /// background luminance takes the illuminance at an eye ([`crate::glare`]).
+    Indirect,
 }
 
 impl GridValues {
@@ -124,10 +134,12 @@ impl GridValues {
         match self {
             GridValues::Points => "points",
             GridValues::CellMeans => "cell-means",
+            GridValues::Indirect => "indirect",
         }
     }
 
-    /// The values named `name` ([`GridValues::name`]).
+    /// The values a file or flag may name, `points` or `cell-means` (an indirect grid is
+    /// a glare rating's own).
     pub fn parse(name: &str) -> Option<GridValues> {
         [GridValues::Points, GridValues::CellMeans]
             .into_iter()
@@ -162,6 +174,9 @@ pub struct Measurement {
     pub escaped: f64,
     /// The scene's total luminous flux Φ, lm: what each photon carries.
     pub flux: f64,
+    /// Each observer's glare sum Σ L²ω/p² per component at level 1, cd²/m⁴·sr, in the
+    /// request's order ([`crate::glare::glare_sums`]): exact, computed once per trace.
+    pub glare: Vec<Vec<f64>>,
     /// The sums at the start of the last chunk when it is partial and the groups are
     /// kept, without the groups ([`measure_more`] continues from there).
     boundary: Option<Box<Measurement>>,
@@ -226,6 +241,7 @@ impl Measurement {
         }
         reals(out, &self.component_flux);
         out.extend([self.escaped.to_bits(), self.flux.to_bits()]);
+        self.glare.iter().for_each(|g| reals(out, g));
         match &self.boundary {
             Some(b) => {
                 out.push(1);
@@ -278,6 +294,7 @@ impl Measurement {
             .collect();
         let component_flux = reals(words);
         let (escaped, flux) = (f64::from_bits(word(words)), f64::from_bits(word(words)));
+        let glare = request.observers.iter().map(|_| reals(words)).collect();
         let boundary = (word(words) == 1).then(|| Box::new(Measurement::unpack(request, words)));
         Measurement {
             photons,
@@ -291,6 +308,7 @@ impl Measurement {
             component_flux,
             escaped,
             flux,
+            glare,
             boundary,
         }
     }
@@ -309,6 +327,13 @@ impl Measurement {
     /// in lux, with its standard error.
     pub fn estimate(&self, i: usize) -> Estimate {
         self.estimate_of(i, Side::Both, &vec![1.0; self.components()])
+    }
+
+    /// Observer `o`'s glare sum Σ L²ω/p² at component weights `w` (the dimming levels):
+    /// each component's sum times its level squared, since a luminaire's luminance
+    /// scales with its level.
+    pub fn glare_sum(&self, o: usize, w: &[f64]) -> f64 {
+        self.glare[o].iter().zip(w).map(|(s, w)| s * w * w).sum()
     }
 
     /// Mean illuminance of target `i` on `side`, each component `k` at `w[k]` times its
@@ -504,6 +529,7 @@ impl Measurement {
             component_flux: request.components.flux(emitters),
             escaped: 0.0,
             flux,
+            glare: Vec::new(),
             boundary: None,
         }
     }
@@ -541,12 +567,18 @@ fn trace_into(
     let shapes = Targets::new(scene, targets);
     let connect = request.estimator == Estimator::Connected;
     let mut result = from.unwrap_or_else(|| {
-        Measurement::empty(scene, request, &emitters, |g| match g.values {
+        let mut m = Measurement::empty(scene, request, &emitters, |g| match g.values {
             GridValues::Points => {
                 direct_on_grid(&emitters, accel, &g.grid, g.side, &plan.component_of, k)
             }
-            GridValues::CellMeans => Vec::new(),
-        })
+            GridValues::CellMeans | GridValues::Indirect => Vec::new(),
+        });
+        m.glare = request
+            .observers
+            .iter()
+            .map(|o| glare_sums(scene, accel, o, request.components))
+            .collect();
+        m
     });
     debug_assert!(result.photons.is_multiple_of(CHUNK));
     let first_chunk = result.photons / CHUNK;

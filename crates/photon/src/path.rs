@@ -93,6 +93,7 @@ pub fn trace_photon(
         lumens,
         survival: 1.0,
         source,
+        emitted: true,
     };
     visitor.depart(&from, sampler);
     // A share that is not a positive number plays the classic roulette.
@@ -141,6 +142,7 @@ pub fn trace_photon(
             lumens: roulette.rho_d * luminance(power),
             survival: roulette.p_d,
             source,
+            emitted: false,
         };
         if roulette.p_d > 0.0 {
             visitor.depart(&diffuse, sampler);
@@ -266,6 +268,7 @@ fn specular(point: Vec3, power: Rgb, source: u32) -> Departure<'static> {
         lumens: luminance(power),
         survival: 1.0,
         source,
+        emitted: false,
     }
 }
 

@@ -76,11 +76,35 @@ pub(crate) struct ChunkTally<'a> {
 }
 
 /// How light reached a target: by the photon's own ray (an arrival) or a connection,
-/// and whether straight from a point, spot or photometric light.
+/// whether straight from a point, spot or photometric light, and whether straight from
+/// any light.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Arrival {
     arrived: bool,
     direct: bool,
+    emitted: bool,
+}
+
+impl Arrival {
+    fn new(arrived: bool, from: &Departure) -> Arrival {
+        Arrival {
+            arrived,
+            direct: from.lobe.leaves_point_source(),
+            emitted: from.emitted,
+        }
+    }
+
+    /// Whether a grid reading `values` leaves this light out of its cells: a grid read
+    /// at points computes its point lights' direct light instead, an indirect one counts
+    /// no light's direct light.
+    #[inline]
+    fn left_out_of(self, values: GridValues) -> bool {
+        match values {
+            GridValues::Points => self.direct,
+            GridValues::CellMeans => false,
+            GridValues::Indirect => self.emitted,
+        }
+    }
 }
 
 impl ChunkTally<'_> {
@@ -93,9 +117,7 @@ impl ChunkTally<'_> {
             .add(t, channel(front, k, plan.components), lumens);
         for &g in &plan.grids_of[t as usize] {
             let request = &plan.grids[g];
-            // A grid read at points has its point lights' direct light computed there.
-            let computed = from.direct && request.values == GridValues::Points;
-            if request.side.counts(front) && !computed {
+            if request.side.counts(front) && !from.left_out_of(request.values) {
                 self.cells[g].add(request.grid.cell_of(point), k, lumens, from.arrived);
             }
         }
@@ -113,11 +135,14 @@ impl PathVisitor for ChunkTally<'_> {
                 self.solid[t] = solid.map(|s| s.total);
                 if let Some(c) = targets.connect(t, from, solid.as_ref(), accel, sampler) {
                     self.connection_rays += 1;
-                    let from = Arrival {
-                        arrived: false,
-                        direct: from.lobe.leaves_point_source(),
-                    };
-                    self.add(t as u32, k, c.front, c.point, c.lumens, from);
+                    self.add(
+                        t as u32,
+                        k,
+                        c.front,
+                        c.point,
+                        c.lumens,
+                        Arrival::new(false, from),
+                    );
                 }
             }
         }
@@ -150,11 +175,14 @@ impl PathVisitor for ChunkTally<'_> {
                 None => 1.0,
             };
             self.surfaces.hit(t);
-            let from = Arrival {
-                arrived: true,
-                direct: from.lobe.leaves_point_source(),
-            };
-            self.add(t, k, front, at.point, (lumens * w) as f64, from);
+            self.add(
+                t,
+                k,
+                front,
+                at.point,
+                (lumens * w) as f64,
+                Arrival::new(true, from),
+            );
         }
     }
 

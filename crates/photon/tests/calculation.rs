@@ -106,6 +106,7 @@ fn a_workplane_reads_the_lamp_and_nothing_from_behind() {
             components: &components,
             estimator,
             keep_groups: false,
+            observers: Vec::new(),
         };
         let m = measure_with(&scene, &accel, &request, &settings(1_000_000), None);
         let what = estimator.name();

@@ -78,6 +78,7 @@ fn uniformity_intervals_cover_the_truth() {
             components: &components,
             estimator: Estimator::Connected,
             keep_groups: false,
+            observers: Vec::new(),
         };
         let settings = TraceSettings {
             photons: 16_384,
@@ -154,6 +155,7 @@ fn components_give_every_dimming_from_one_trace() {
         components: &components,
         estimator: Estimator::Connected,
         keep_groups: false,
+        observers: Vec::new(),
     };
     let settings = TraceSettings {
         photons: 200_000,
@@ -195,6 +197,7 @@ fn sides_are_kept_apart() {
             components: &components,
             estimator,
             keep_groups: false,
+            observers: Vec::new(),
         };
         let settings = TraceSettings {
             photons: 400_000,
@@ -237,6 +240,7 @@ fn group_means_are_the_samples_of_the_estimate() {
         components: &components,
         estimator: Estimator::Connected,
         keep_groups: true,
+        observers: Vec::new(),
     };
     let trace = |photons| {
         let settings = TraceSettings {
@@ -263,6 +267,7 @@ fn group_means_are_the_samples_of_the_estimate() {
     // the same estimate.
     let request = Request {
         keep_groups: false,
+        observers: Vec::new(),
         ..request
     };
     let settings = TraceSettings {
@@ -305,6 +310,7 @@ fn a_continued_measurement_is_the_measurement_at_once() {
         components: &components,
         estimator: Estimator::Connected,
         keep_groups: true,
+        observers: Vec::new(),
     };
     let settings = |photons| TraceSettings {
         photons,

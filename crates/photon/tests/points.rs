@@ -48,6 +48,7 @@ fn request<'a>(
         components,
         estimator: Estimator::Connected,
         keep_groups: false,
+        observers: Vec::new(),
     }
 }
 

@@ -17,8 +17,6 @@
 //! - [`assess`], [`Compliance`]: whether a grid meets Em and U0 (EN 12464-1:2021 tasks in
 //!   [`TASKS`], its grid rule `invlight_photon::en12464_spacing`) with a stated confidence: meets,
 //!   fails, or cannot tell at this photon count.
-//! - [`unified_glare_rating`]: discomfort glare at an observer (CIE 117 UGR), its
-//!   luminaires' terms exact and its background luminance traced, with its interval.
 //! - [`SearchPlot`], [`ConvergencePlot`], [`MapPlan`]: what a search visited (a plan in
 //!   world metres, a sun chart, a value plot), how it converged, and an illuminance grid
 //!   as a plan with isolux lines — drawn with `plotters` as SVG or as pictures, in the
@@ -31,7 +29,6 @@ mod chart;
 mod colour_map;
 mod compliance;
 mod false_colour;
-mod glare;
 mod integrator;
 mod map;
 mod photon_map;
@@ -46,10 +43,6 @@ pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
 pub use compliance::{Compliance, Criterion, Requirement, Verdict, assess, plain};
 pub use false_colour::{auto_scale, false_colour, legend_width};
-pub use glare::{
-    GlareError, GlareSource, Observer, Ugr, eye_illuminance, glare_sources, position_index, ugr_of,
-    unified_glare_rating,
-};
 /// The `image` crate the pictures are made with, so callers can save them without
 /// depending on it themselves.
 pub use image;

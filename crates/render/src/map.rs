@@ -273,6 +273,7 @@ pub fn illuminance_maps_across(
         components: &components,
         estimator: settings.estimator,
         keep_groups: false,
+        observers: Vec::new(),
     };
     let measured = measure_across(scene, accel, &request, &settings.trace, progress, cluster);
     let w = [1.0];
@@ -552,8 +553,8 @@ impl IlluminanceMap {
         // means, their area-weighted mean.
         let eavg = match self.values {
             GridValues::Points => self.mean.mean,
-            GridValues::CellMeans if area > 0.0 => sum / area,
-            GridValues::CellMeans => 0.0,
+            GridValues::CellMeans | GridValues::Indirect if area > 0.0 => sum / area,
+            GridValues::CellMeans | GridValues::Indirect => 0.0,
         };
         if emin > emax {
             (emin, emax) = (eavg, eavg);

@@ -203,6 +203,7 @@ impl Binding {
                     .with_hint("a daylight factor is measured under the CIE overcast sky alone, every light off")
             })?;
         }
+        problem.build_eyes(scene)?;
         let mut variables = Vec::new();
         let mut targets = Vec::new();
         let mut initial = Vec::new();

@@ -9,6 +9,7 @@
 //! or to resume it. Whatever fails to write (a full disk) is cut back to what was
 //! complete: no half row, no temporary file, no truncated `result.json`.
 
+mod constraint_line;
 mod lock;
 mod recorder;
 mod result;

@@ -179,50 +179,6 @@ pub struct ResultConstraint {
     pub bound: Option<f64>,
 }
 
-impl ResultConstraint {
-    /// Its line in the table, for the constraint `info`, at the run's `level` %: the
-    /// estimate with the one-sided bound that decides it, the limit and the verdict.
-    fn line(&self, info: &ConstraintInfo, level: f64) -> String {
-        let cu = match info.unit.as_str() {
-            "" => String::new(),
-            u => format!(" {u}"),
-        };
-        let sign = match info.bound.as_str() {
-            "maxLux" => "≤",
-            _ => "≥",
-        };
-        let maintained = match (info.maintained_limit, info.maintenance_factor) {
-            (Some(m), Some(f)) => format!(" ({}{cu} maintained ÷ MF {f})", significant(m)),
-            _ => String::new(),
-        };
-        let named = info
-            .standard
-            .as_ref()
-            .map_or(String::new(), |s| format!(" ({s})"));
-        // The one-sided bound is what decides a one-sided constraint; a file
-        // written before it was recorded shows its two-sided interval.
-        let read = match self.bound {
-            Some(b) => format!(
-                "{}{cu} ({sign} {}{cu} at {level} %, one-sided)",
-                significant(self.estimate.mean),
-                invlight_stats::significant_beside(b, info.limit)
-            ),
-            None => format!(
-                "{}{cu} [{}, {}]",
-                significant(self.estimate.mean),
-                significant(self.estimate.low),
-                significant(self.estimate.high)
-            ),
-        };
-        format!(
-            "       {}{named}: {read}, {sign} {}{cu}{maintained}: {}\n",
-            self.label,
-            significant(info.limit),
-            self.verdict
-        )
-    }
-}
-
 /// A member's estimate.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ResultEstimate {

@@ -3,6 +3,7 @@
 //! `maximizeUniformity`, `minimizePower`, `maximizeDaylightFactor`) and any number of
 //! `<constraint>`s, each a surface and one bound.
 
+use super::glare::{ObserverSpec, Observers, task_glare_constraints};
 use super::task::TaskSpec;
 use super::{Node, Reader};
 use crate::intention::{Bound, Constraint, Goal, Grid, GridValues, Side, Spacing, SurfaceRef};
@@ -15,6 +16,7 @@ const GOALS: &[&str] = &[
     "maximizeUniformity",
     "minimizePower",
     "maximizeDaylightFactor",
+    "minimizeGlare",
 ];
 
 /// What `<objectives>` asks.
@@ -23,6 +25,7 @@ pub(super) struct Intentions {
     pub goal_line: u32,
     pub constraints: Vec<Constraint>,
     pub tasks: Vec<TaskSpec>,
+    pub observers: Vec<ObserverSpec>,
 }
 
 impl Reader<'_, '_> {
@@ -38,14 +41,23 @@ impl Reader<'_, '_> {
         let mut unknown: Option<Node> = None;
         let mut constraints = Vec::new();
         let mut tasks: Vec<TaskSpec> = Vec::new();
+        let mut observers = Observers::default();
         for o in self.elements(objectives) {
             let name = o.tag_name().name();
             if name == "task" {
                 tasks.push(self.task(o, workplanes)?);
                 continue;
             }
+            if name == "observer" {
+                self.declared_observer(o, &mut observers)?;
+                continue;
+            }
             if name == "constraint" {
-                let c = self.constraint(o)?;
+                let c = if o.attribute("maxUGR").is_some() {
+                    self.ugr_constraint(o, &mut observers)?
+                } else {
+                    self.constraint(o)?
+                };
                 if let Some(first) = constraints
                     .iter()
                     .find(|d: &&Constraint| d.label() == c.label())
@@ -65,12 +77,12 @@ impl Reader<'_, '_> {
                 constraints.push(c);
                 continue;
             }
-            let Some(parsed) = self.goal(o)? else {
+            let Some(parsed) = self.goal(o, &mut observers)? else {
                 self.push_warning(self.unknown_element(
                     o,
                     "objective",
                     GOALS,
-                    ", <constraint> or <task>",
+                    ", <constraint>, <task> or <observer>",
                 ));
                 unknown.get_or_insert(o);
                 continue;
@@ -127,11 +139,15 @@ impl Reader<'_, '_> {
                 constraints.push(c);
             }
         }
+        let glare = task_glare_constraints(&tasks, &observers, &constraints);
+        constraints.extend(glare);
+        self.warn_unrated(&observers, &goal, &constraints);
         Ok(Intentions {
             goal,
             goal_line,
             constraints,
             tasks,
+            observers: observers.specs,
         })
     }
 
@@ -204,7 +220,7 @@ impl Reader<'_, '_> {
     }
 
     /// One of the goal elements, or `None` for another element.
-    fn goal(&self, o: Node) -> Result<Option<Goal>, Diagnostic> {
+    fn goal(&self, o: Node, observers: &mut Observers) -> Result<Option<Goal>, Diagnostic> {
         let name = o.tag_name().name();
         let goal = match name {
             "maximizeRadiance" => {
@@ -248,6 +264,12 @@ impl Reader<'_, '_> {
                 self.check_attributes(o, &["surface", "side"]);
                 Goal::MaximizeDaylightFactor {
                     surface: self.surface_ref(o)?,
+                }
+            }
+            "minimizeGlare" => {
+                self.check_attributes(o, &["observer", "view", "name"]);
+                Goal::MinimizeGlare {
+                    observer: self.observer_of(o, "observer", observers)?.surface(),
                 }
             }
             _ => return Ok(None),

@@ -17,6 +17,7 @@
 mod bare_attributes;
 mod calculation;
 mod daylight;
+mod glare;
 mod groups;
 mod intentions;
 mod scene;
@@ -30,6 +31,7 @@ pub(crate) use sun_time::SunClock;
 use crate::intention::{Bound, Constraint, Goal};
 use crate::vns::{Sense, Settings, Strategy};
 use bare_attributes::quote_bare_attributes;
+pub use glare::ObserverSpec;
 pub use groups::LightGroup;
 use intentions::Intentions;
 use invlight_scene::daylight::{Date, Daylight, DaylightError, DaylightFlags, SunSchedule};
@@ -269,6 +271,10 @@ pub struct Problem {
     pub constraints: Vec<Constraint>,
     /// `<task>`s: EN 12464-1 tasks whose requirements are among the constraints.
     pub tasks: Vec<TaskSpec>,
+    /// The observers whose glare a constraint or the goal rates, each an eye square
+    /// [`crate::Binding::new`] adds to the scene under its name
+    /// ([`Problem::build_eyes`]).
+    pub observers: Vec<ObserverSpec>,
     /// `maxIterations` (default 1000).
     pub max_iterations: u64,
     /// `fastEvaluationQuality`, q of §4.7 (default 0.25, the thesis' value).
@@ -451,7 +457,9 @@ impl Problem {
                 Goal::Maximize { .. }
                 | Goal::MaximizeUniformity { .. }
                 | Goal::MaximizeDaylightFactor { .. } => Sense::Maximize,
-                Goal::Minimize { .. } | Goal::MinimizePower => Sense::Minimize,
+                Goal::Minimize { .. } | Goal::MinimizePower | Goal::MinimizeGlare { .. } => {
+                    Sense::Minimize
+                }
                 Goal::Target { lux, .. } => Sense::Target(lux),
             },
             constraints: self.constraints.iter().map(|c| c.bound).collect(),
@@ -669,6 +677,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             goal_line,
             mut constraints,
             tasks,
+            observers,
         } = self.intentions(objectives, &workplanes)?;
         for c in &mut constraints {
             let new = c.bound.for_new(search.maintenance_factor);
@@ -701,6 +710,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             goal_line,
             constraints,
             tasks,
+            observers,
             max_iterations: search.max_iterations,
             fast_quality: search.fast_quality,
             strategy: search.strategy,

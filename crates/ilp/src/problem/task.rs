@@ -26,6 +26,9 @@ pub struct TaskSpec {
     pub em: Option<f64>,
     /// Required U0: `u0`, else the task's.
     pub u0: Option<f64>,
+    /// The UGR limit every observer of the problem is held to: `ugrL`, else the
+    /// task's UGR_L (none where the table's source gives none).
+    pub ugr_l: Option<f64>,
     /// The task area's grid for U0.
     pub grid: Grid,
     /// The areas built around it (`areas`, default all).
@@ -39,7 +42,7 @@ pub struct TaskSpec {
 
 impl TaskSpec {
     /// The name its constraints are credited to: the table's, or `task`.
-    fn name(&self) -> String {
+    pub(super) fn name(&self) -> String {
         self.task.map_or("task".into(), |t| t.name.into())
     }
 
@@ -85,7 +88,12 @@ impl Reader<'_, '_> {
     /// A `<task>`; `workplanes` are the ids of the scene's `<workplane>`s, the only one
     /// of which is the task area when `surface` is left out.
     pub(super) fn task(&self, t: Node, workplanes: &[String]) -> Result<TaskSpec, Diagnostic> {
-        self.check_attributes(t, &["name", "surface", "side", "em", "u0", "grid", "areas"]);
+        self.check_attributes(
+            t,
+            &[
+                "name", "surface", "side", "em", "u0", "ugrL", "grid", "areas",
+            ],
+        );
         const EXAMPLE: &str = "<task name=\"office\" surface=\"Task\"/>";
         let names = || TASKS.iter().map(|t| t.name).collect::<Vec<_>>().join(", ");
         let named = match t.attribute("name").map(str::trim) {
@@ -103,6 +111,9 @@ impl Reader<'_, '_> {
         };
         let em = self.lux(t, "em")?.or(named.map(|n| n.em));
         let u0 = self.unit(t, "u0", 0.0, 1.0)?.or(named.map(|n| n.u0));
+        let ugr_l = self
+            .real(t, "ugrL", "a UGR limit (CIE 117's scale: 10 to 30)")?
+            .or(named.and_then(|n| n.ugr_l));
         if named.is_none() && em.is_none() && u0.is_none() {
             return Err(self
                 .error(t, format!("<task> needs 'name', a task of EN 12464-1's table ({}), or its figures 'em' and 'u0'", names()))
@@ -155,6 +166,7 @@ impl Reader<'_, '_> {
             surface: SurfaceRef { name, side },
             em,
             u0,
+            ugr_l,
             grid: self.grid(t)?,
             areas,
             built: Vec::new(),

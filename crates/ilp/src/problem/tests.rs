@@ -279,7 +279,7 @@ fn thesis_form_with_bare_attribute() {
 #[test]
 fn unknown_things_are_warnings() {
     let p = parse(
-        "<input><scene path=\"s.obj\" units=\"mm\"/><camera/>\n<conditions meshSize=\"4\"><color id=\"W\" hue=\"0\" saturation=\"0\"/><spin id=\"x\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><minimizeGlare/></objectives></input>",
+        "<input><scene path=\"s.obj\" units=\"mm\"/><camera/>\n<conditions meshSize=\"4\"><color id=\"W\" hue=\"0\" saturation=\"0\"/><spin id=\"x\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><spectralMatch/></objectives></input>",
     )
     .unwrap();
     let msgs: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
@@ -295,7 +295,7 @@ fn unknown_things_are_warnings() {
     );
     assert!(
         msgs.iter()
-            .any(|m| m.contains("<minimizeGlare>") && m.contains(":3:"))
+            .any(|m| m.contains("<spectralMatch>") && m.contains(":3:"))
     );
 }
 
@@ -317,7 +317,7 @@ fn a_misspelt_name_is_named_with_its_line_and_the_nearest_known_one() {
     // Misspelt variables, attributes and top-level elements are warnings with the
     // same hint; a name near nothing known gets none.
     let p = parse(
-        "<input><scene path=\"s.obj\" scael=\"2\"/><conditons/>\n<conditions><directionalLigth id=\"S\"/><directionalLight id=\"T\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><minimizeGlare/></objectives></input>",
+        "<input><scene path=\"s.obj\" scael=\"2\"/><conditons/>\n<conditions><directionalLigth id=\"S\"/><directionalLight id=\"T\"/></conditions>\n<objectives><maximizeRadiance surface=\"F\"/><spectralMatch/></objectives></input>",
     )
     .unwrap();
     let hints: Vec<(Option<u32>, Option<&str>)> = p

@@ -10,7 +10,9 @@
 
 use glam::{Mat3, Mat4, Vec3};
 use invlight_photon::TraceSettings;
-use invlight_render::{GlareError, Observer, glare_sources, position_index, unified_glare_rating};
+use invlight_photon::glare::{
+    GlareError, Observer, glare_sources, position_index, unified_glare_rating,
+};
 use invlight_scene::{Light, LightKind, Material, Mesh, Scene, read_photometry};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;

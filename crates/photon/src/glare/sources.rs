@@ -1,86 +1,22 @@
-//! Discomfort glare at an observer by CIE 117:1995's Unified Glare Rating,
-//!
-//! UGR = 8·log10( 0.25/Lb · Σ L²·ω/p² ),
-//!
-//! over every luminaire the eye sees in front of it: L its luminance toward the eye (its
-//! intensity toward the eye over its luminous area projected on the line of sight), ω
-//! the solid angle of that projected area, p Guth's position index, and Lb the background
-//! luminance, the *indirect* illuminance at the eye on the plane facing the view over π
-//! (CIE 117 §3; evalglare's "CIE method" background, (Ev − Edir)/π).
-//!
-//! Everything but Lb is exact, from the luminaires' candela tables and luminous
-//! openings. Lb is traced: the illuminance at the eye is measured twice with the same
-//! photons, once with every bounce and once with the first hit only (the direct light);
-//! photon group g of both follows the same path up to its first hit, so the groups'
-//! differences are independent samples of the indirect light alone, and its standard
-//! error comes from their spread. UGR falls as Lb rises, so its interval is the UGR at
-//! Lb's upper and lower bounds.
+//! The luminaires an eye sees, each with its share of CIE 117's glare sum L²·ω/p²:
+//! L its luminance toward the eye (its intensity toward the eye over its luminous area
+//! projected on the line of sight), ω the solid angle of that projected area, p Guth's
+//! position index. All exact, from the luminaires' candela tables and luminous openings.
 //!
 //! A luminaire counts when its photometric centre is in front of the eye (less than 90°
 //! from the line of sight) and nothing opaque lies between (calculation surfaces do not
 //! shade). An emissive surface (a glTF emissive material, a COLLADA or OBJ light panel)
-//! is a luminaire of known luminance, summed triangle by triangle. A light without a luminous area — a point or spot light, or a photometric
-//! file that gives no luminous dimensions — has no luminance, and UGR is refused rather
-//! than guessed. Directional light (the sun) and the sky are not luminaires: their
-//! reflected light is in the background, their glare is daylight glare's (DGP).
+//! is a luminaire of known luminance, summed triangle by triangle. A light without a
+//! luminous area — a point or spot light, or a photometric file that gives no luminous
+//! dimensions — has no luminance, and UGR is refused rather than guessed. Directional
+//! light (the sun) and the sky are not luminaires: their reflected light is in the
+//! background, their glare is daylight glare's (DGP).
 
-use glam::{Mat4, Vec3};
-use invlight_photon::{Components, Estimator, Measurement, Request, Side, TraceSettings};
-use invlight_scene::{LightKind, Material, Mesh, Opening, Scene, SurfaceId, luminance};
-use invlight_stats::{Confidence, Estimate, Interval};
+use super::{GlareError, Observer};
+use glam::Vec3;
+use invlight_scene::{InstanceId, Light, LightId, LightKind, Opening, Scene, luminance};
 use invlight_trace::{Accel, Ray};
 use serde::Serialize;
-use std::fmt;
-
-/// Where the eye is and where it looks.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Observer {
-    /// The eye, world metres.
-    pub eye: Vec3,
-    /// The line of sight (any length but zero).
-    pub view: Vec3,
-}
-
-/// Why no UGR can be given.
-#[derive(Debug, Clone, PartialEq)]
-pub enum GlareError {
-    /// The line of sight has no length or is not finite.
-    NoView,
-    /// The line of sight is along the scene's up axis: no vertical plane, no position
-    /// index.
-    ViewAlongUp,
-    /// The eye is not a finite point.
-    NoEye,
-    /// A luminaire in view has no luminous area to have a luminance.
-    NoLuminousArea {
-        /// The light's name.
-        light: String,
-        /// What it is.
-        kind: &'static str,
-    },
-}
-
-impl fmt::Display for GlareError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            GlareError::NoView => write!(
-                f,
-                "the view direction has no length, expected DX,DY,DZ along the line of sight"
-            ),
-            GlareError::ViewAlongUp => write!(
-                f,
-                "the view looks straight up or down, expected a line of sight with a horizontal part (UGR's position index needs the vertical plane through it)"
-            ),
-            GlareError::NoEye => write!(f, "the observer is not a finite point"),
-            GlareError::NoLuminousArea { light, kind } => write!(
-                f,
-                "the light '{light}' is in view but is {kind} without a luminous area: UGR needs each luminaire's luminance, its intensity over its luminous area; give it a photometric file with luminous dimensions (IES width and length, EULUMDAT luminous area)"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for GlareError {}
 
 /// One luminaire's share of the glare.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -101,30 +37,18 @@ pub struct GlareSource {
     pub distance: f64,
     /// The angle between the line of sight and the direction to it, degrees.
     pub off_axis: f64,
+    /// The light or emissive instance it is, for the component its level dims.
+    #[serde(skip)]
+    pub origin: GlareOrigin,
 }
 
-/// The Unified Glare Rating at one observer.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Ugr {
-    /// UGR, when some luminaire is in view (none: no discomfort glare to rate).
-    pub ugr: Option<f64>,
-    /// Its interval at the run's confidence, from Lb's; the upper end is infinite when
-    /// Lb's lower bound is not above 0.
-    pub ugr_interval: Option<[f64; 2]>,
-    /// The background luminance Lb = E_indirect/π, cd/m².
-    pub background_luminance: f64,
-    /// Lb's interval, cd/m².
-    pub background_interval: [f64; 2],
-    /// The illuminance at the eye on the plane facing the view, every bounce, lx.
-    pub eye_illuminance: f64,
-    /// Its direct part (first hits), lx.
-    pub direct_illuminance: f64,
-    /// Its indirect part, lx.
-    pub indirect_illuminance: f64,
-    /// The indirect part's standard error, lx.
-    pub indirect_std_error: f64,
-    /// The luminaires in view, in the scene's order.
-    pub sources: Vec<GlareSource>,
+/// What a glare source is in the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GlareOrigin {
+    /// `scene.lights[i]`.
+    Light(LightId),
+    /// The emissive triangles of an instance.
+    Instance(InstanceId),
 }
 
 /// Guth's position index of a source seen along the unit direction `to_source` by an
@@ -164,20 +88,8 @@ pub fn position_index(view: Vec3, up: Vec3, to_source: Vec3) -> f64 {
     p.min(16.0)
 }
 
-/// The UGR of the sum Σ L²ω/p² over a background luminance `lb`, cd/m²: +∞ over a
-/// black background, none without sources.
-pub fn ugr_of(sum: f64, lb: f64) -> Option<f64> {
-    (sum > 0.0).then(|| {
-        if lb > 0.0 {
-            8.0 * (0.25 * sum / lb).log10()
-        } else {
-            f64::INFINITY
-        }
-    })
-}
-
 /// The line of sight and its vertical, unit vectors, for a scene whose zenith is `up`.
-fn sight(observer: &Observer, up: Vec3) -> Result<(Vec3, Vec3), GlareError> {
+pub(super) fn sight(observer: &Observer, up: Vec3) -> Result<(Vec3, Vec3), GlareError> {
     if !observer.eye.is_finite() {
         return Err(GlareError::NoEye);
     }
@@ -241,9 +153,26 @@ pub fn glare_sources(
     accel: &Accel,
     observer: &Observer,
 ) -> Result<Vec<GlareSource>, GlareError> {
+    sources_at(scene, accel, observer, true)
+}
+
+/// [`glare_sources`] with the lights in view that have no luminous area left out, for a
+/// search that refused them before it started; none when the line of sight is refused.
+pub(super) fn seen(scene: &Scene, accel: &Accel, observer: &Observer) -> Vec<GlareSource> {
+    sources_at(scene, accel, observer, false).unwrap_or_default()
+}
+
+/// The luminaires in view; one without a luminous area is refused when `strict`, else
+/// left out.
+fn sources_at(
+    scene: &Scene,
+    accel: &Accel,
+    observer: &Observer,
+    strict: bool,
+) -> Result<Vec<GlareSource>, GlareError> {
     let (view, vertical) = sight(observer, scene.up)?;
     let mut sources = Vec::new();
-    for light in &scene.lights {
+    for (l, light) in scene.lights.iter().enumerate() {
         let Some(position) = light.kind.position() else {
             continue;
         };
@@ -260,16 +189,16 @@ pub fn glare_sources(
         let area = match &light.kind {
             LightKind::Goniometric {
                 frame, photometry, ..
-            } => {
-                if photometry.opening == Opening::Point {
-                    return Err(no_area(&light.name, "a photometric file"));
-                }
+            } if photometry.opening != Opening::Point => {
                 let local = frame.transpose() * -to_source;
                 projected_area(&photometry.opening, photometry.opening_height, local)
             }
-            LightKind::Point { .. } => return Err(no_area(&light.name, "a point light")),
-            LightKind::Spot { .. } => return Err(no_area(&light.name, "a spot light")),
             LightKind::Directional { .. } => continue,
+            _ if !strict => continue,
+            _ => {
+                return Err(light_without_luminous_area_of(light)
+                    .expect("a light in view without a luminous area"));
+            }
         };
         if area <= 0.0 {
             continue;
@@ -286,6 +215,7 @@ pub fn glare_sources(
             intensity,
             distance,
             off_axis: f64::from(to_source.dot(view).clamp(-1.0, 1.0).acos().to_degrees()),
+            origin: GlareOrigin::Light(LightId::from_index(l)),
         });
     }
     sources.extend(emissive_sources(scene, accel, observer.eye, view, vertical));
@@ -350,6 +280,7 @@ fn emissive_sources(
                 intensity: l * t.omega * (t.d_omega / t.omega).powi(2),
                 distance: t.d_omega / t.omega,
                 off_axis: t.off_omega / t.omega,
+                origin: GlareOrigin::Instance(InstanceId::from_index(i)),
             }
         })
         .collect()
@@ -375,119 +306,32 @@ impl Term {
     }
 }
 
+/// The first light of `scene` that could be in an eye's view and has no luminous area
+/// (a point or spot light, a photometric file without luminous dimensions), as the
+/// error [`glare_sources`] gives when it is seen: a search that rates glare while it
+/// moves lights refuses such a scene before it starts rather than when a light comes
+/// into view.
+pub fn light_without_luminous_area(scene: &Scene) -> Option<GlareError> {
+    scene.lights.iter().find_map(light_without_luminous_area_of)
+}
+
+/// The refusal `light` earns in view when it has no luminous area.
+fn light_without_luminous_area_of(light: &Light) -> Option<GlareError> {
+    match &light.kind {
+        LightKind::Goniometric { photometry, .. } if photometry.opening == Opening::Point => {
+            Some(no_area(&light.name, "a photometric file"))
+        }
+        LightKind::Point { .. } => Some(no_area(&light.name, "a point light")),
+        LightKind::Spot { .. } => Some(no_area(&light.name, "a spot light")),
+        _ => None,
+    }
+}
+
 fn no_area(light: &str, kind: &'static str) -> GlareError {
     GlareError::NoLuminousArea {
         light: light.to_string(),
         kind,
     }
-}
-
-/// Half the side of the square that receives the light at the eye, m: small beside a
-/// room, large enough for the connected estimator to find it.
-const EYE_HALF_SIDE: f32 = 0.1;
-
-/// The scene with a calculation square at the eye facing the view (its front, the
-/// counter-clockwise side, toward what the eye sees), and that square's surface.
-fn with_eye(scene: &Scene, observer: &Observer) -> Result<(Scene, SurfaceId), GlareError> {
-    let (view, vertical) = sight(observer, scene.up)?;
-    let right = view.cross(vertical);
-    let (c, a) = (observer.eye, EYE_HALF_SIDE);
-    let mut scene = scene.clone();
-    let material = scene.add_material(Material::diffuse("eye (glare)", Vec3::ZERO));
-    let corners = [
-        c - a * right - a * vertical,
-        c - a * right + a * vertical,
-        c + a * right + a * vertical,
-        c + a * right - a * vertical,
-    ];
-    let mesh = scene.add_mesh(Mesh::quad(corners, material));
-    let name = "invlight eye";
-    scene.add_instance(name, mesh, Mat4::IDENTITY);
-    let s = scene.surface(name).expect("the surface just added");
-    scene.make_calculation_surface(s);
-    Ok((scene, s))
-}
-
-/// The illuminance at the eye on the plane facing the view, all of it and its
-/// indirect part, from `settings.photons` photons traced twice (every bounce, then the
-/// first hits only) with the same seed.
-pub fn eye_illuminance(
-    scene: &Scene,
-    observer: &Observer,
-    settings: &TraceSettings,
-) -> Result<(Estimate, Estimate), GlareError> {
-    let (scene, eye) = with_eye(scene, observer)?;
-    let accel = Accel::with_movable(&scene, &[]);
-    let components = Components::one(&scene);
-    let targets = [eye];
-    let mut request = Request::means(&targets, &components, Estimator::Connected);
-    request.keep_groups = true;
-    let all = invlight_photon::measure_with(&scene, &accel, &request, settings, None);
-    let first = TraceSettings {
-        max_bounces: 0,
-        ..*settings
-    };
-    let direct = invlight_photon::measure_with(&scene, &accel, &request, &first, None);
-    Ok((front(&all), indirect(&all, &direct)))
-}
-
-fn front(m: &Measurement) -> Estimate {
-    m.estimate_of(0, Side::Front, &[1.0])
-}
-
-/// The indirect illuminance from the groups' differences of two traces with the same
-/// photons.
-fn indirect(all: &Measurement, direct: &Measurement) -> Estimate {
-    let (a, d) = (
-        all.group_means(0, Side::Front, &[1.0]),
-        direct.group_means(0, Side::Front, &[1.0]),
-    );
-    let (sum, sum_sq) = a
-        .iter()
-        .zip(&d)
-        .map(|(a, d)| a - d)
-        .fold((0.0, 0.0), |(s, q), x| (s + x, q + x * x));
-    let groups = a.len() as u64;
-    Estimate {
-        samples: all.photons,
-        ..Estimate::from_groups(sum, sum_sq, groups, groups)
-    }
-}
-
-/// The UGR at `observer`: its sources exact, its background traced with `settings`, its
-/// interval at `confidence`.
-pub fn unified_glare_rating(
-    scene: &Scene,
-    accel: &Accel,
-    observer: &Observer,
-    settings: &TraceSettings,
-    confidence: Confidence,
-) -> Result<Ugr, GlareError> {
-    let sources = glare_sources(scene, accel, observer)?;
-    let (all, indirect) = eye_illuminance(scene, observer, settings)?;
-    let sum: f64 = sources.iter().map(|s| s.contribution).sum();
-    let pi = std::f64::consts::PI;
-    let lb = indirect.mean.max(0.0) / pi;
-    let Interval { low, high } = indirect.interval(confidence.z());
-    let (lb_low, lb_high) = (low.max(0.0) / pi, high.max(0.0) / pi);
-    let ugr = ugr_of(sum, lb);
-    let ugr_interval = ugr.map(|_| {
-        [
-            ugr_of(sum, lb_high).unwrap_or(f64::NEG_INFINITY),
-            ugr_of(sum, lb_low).unwrap_or(f64::INFINITY),
-        ]
-    });
-    Ok(Ugr {
-        ugr,
-        ugr_interval,
-        background_luminance: lb,
-        background_interval: [lb_low, lb_high],
-        eye_illuminance: all.mean,
-        direct_illuminance: all.mean - indirect.mean,
-        indirect_illuminance: indirect.mean,
-        indirect_std_error: indirect.std_error,
-        sources,
-    })
 }
 
 #[cfg(test)]
@@ -538,18 +382,6 @@ mod tests {
         let got = position_index(VIEW, UP, toward(-20.0, 0.0));
         let want = 1.0 + 0.8 * 20f64.to_radians().tan();
         assert!((got - want).abs() < 1e-5, "{got} vs {want}");
-    }
-
-    #[test]
-    fn ugr_of_scales_by_eight_log_k_when_everything_is_dimmed_by_k() {
-        let (sum, lb) = (3.0e5, 40.0);
-        for k in [0.5, 2.0, 10.0] {
-            // L scales by k, so L²ω/p² by k²; Lb by k.
-            let shift = ugr_of(sum * k * k, lb * k).unwrap() - ugr_of(sum, lb).unwrap();
-            assert!((shift - 8.0 * f64::log10(k)).abs() < 1e-12);
-        }
-        assert_eq!(ugr_of(0.0, 10.0), None);
-        assert_eq!(ugr_of(1.0, 0.0), Some(f64::INFINITY));
     }
 
     #[test]
