@@ -56,13 +56,35 @@ impl Confidence {
     }
 }
 
+/// A `--confidence` value that is not a level: not a number, or one outside (0, 1).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConfidenceParseError {
+    /// The text, which does not read as a number.
+    NotANumber(String),
+    /// A number, but not a level.
+    OutOfRange(ConfidenceError),
+}
+
+impl fmt::Display for ConfidenceParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ConfidenceParseError::NotANumber(text) => write!(f, "'{text}' is not a number"),
+            ConfidenceParseError::OutOfRange(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for ConfidenceParseError {}
+
 /// A level as a flag gives it, `0.95`: the value of `--confidence`.
 impl std::str::FromStr for Confidence {
-    type Err = String;
+    type Err = ConfidenceParseError;
 
-    fn from_str(s: &str) -> Result<Confidence, String> {
-        let c: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-        Confidence::new(c).map_err(|e| e.to_string())
+    fn from_str(s: &str) -> Result<Confidence, ConfidenceParseError> {
+        let c: f64 = s
+            .parse()
+            .map_err(|_| ConfidenceParseError::NotANumber(s.to_string()))?;
+        Confidence::new(c).map_err(ConfidenceParseError::OutOfRange)
     }
 }
 
@@ -203,5 +225,21 @@ mod tests {
         assert!((c.z() - 1.959_963_984_540_053_6).abs() < 1e-8);
         assert!((c.z_one_sided() - 1.644_853_626_951_471_5).abs() < 1e-8);
         assert_eq!(Confidence::default(), c);
+    }
+
+    #[test]
+    fn confidence_flags_are_read_with_their_messages() {
+        assert_eq!(
+            "0.9".parse::<Confidence>().unwrap(),
+            Confidence::new(0.9).unwrap()
+        );
+        assert_eq!(
+            "high".parse::<Confidence>().unwrap_err().to_string(),
+            "'high' is not a number"
+        );
+        assert_eq!(
+            "1.5".parse::<Confidence>().unwrap_err().to_string(),
+            "the confidence 1.5 must lie strictly between 0 and 1 (e.g. 0.95)"
+        );
     }
 }

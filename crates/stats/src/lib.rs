@@ -44,7 +44,9 @@ pub use distribution::Distribution1D;
 pub use distribution2d::{Distribution2DError, PiecewiseConstant2D, Sample2D};
 pub use estimate::{Estimate, normal_quantile};
 pub use format::{hours_or_days, significant, significant_beside};
-pub use interval::{Comparison, Confidence, ConfidenceError, Interval, compare};
+pub use interval::{
+    Comparison, Confidence, ConfidenceError, ConfidenceParseError, Interval, compare,
+};
 pub use pace::{LONG_WORK, LongWork, PACE_SAMPLE, Pace};
 pub use paired::{compare_paired, paired_difference, student_quantile, variance_ratio};
 pub use rng::{Pcg32, SplitMix64, mix};
