@@ -21,6 +21,7 @@
 use crate::error::LoadError;
 use crate::load::LoadOptions;
 use std::cell::Cell;
+use std::fmt;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
@@ -404,10 +405,37 @@ Max address space         unlimited            unlimited            bytes
     }
 }
 
+/// A `--max-memory` value that is not a byte count; each variant holds the text given.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum MemorySizeError {
+    /// A unit other than K, M, G or T.
+    UnknownUnit(String),
+    /// No number before the unit.
+    NotASize(String),
+    /// Less than a byte, or more than a `u64` counts.
+    OutOfRange(String),
+}
+
+impl fmt::Display for MemorySizeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MemorySizeError::UnknownUnit(s) => write!(f, "'{s}': the unit must be K, M, G or T"),
+            MemorySizeError::NotASize(s) => {
+                write!(f, "'{s}' is not a size such as 8G, 512M or 1000000")
+            }
+            MemorySizeError::OutOfRange(s) => {
+                write!(f, "'{s}' is not a size between 1 byte and 16 EiB")
+            }
+        }
+    }
+}
+
+impl std::error::Error for MemorySizeError {}
+
 /// A byte count as people write one: digits with an optional K, M, G or T (×1024ⁿ,
 /// with or without `iB`/`B`), e.g. `8G`, `1.5G`, `512M`, `1000000` — the value of
 /// `--max-memory`.
-pub fn parse_memory_size(s: &str) -> Result<u64, String> {
+pub fn parse_memory_size(s: &str) -> Result<u64, MemorySizeError> {
     let t = s.trim();
     let (number, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
         Some((i, _)) => (
@@ -422,15 +450,15 @@ pub fn parse_memory_size(s: &str) -> Result<u64, String> {
         "M" => 20,
         "G" => 30,
         "T" => 40,
-        _ => return Err(format!("'{s}': the unit must be K, M, G or T")),
+        _ => return Err(MemorySizeError::UnknownUnit(s.to_string())),
     };
     let value: f64 = number
         .trim()
         .parse()
-        .map_err(|_| format!("'{s}' is not a size such as 8G, 512M or 1000000"))?;
+        .map_err(|_| MemorySizeError::NotASize(s.to_string()))?;
     let bytes = value * (1u64 << shift) as f64;
     if !(bytes.is_finite() && bytes >= 1.0 && bytes < u64::MAX as f64) {
-        return Err(format!("'{s}' is not a size between 1 byte and 16 EiB"));
+        return Err(MemorySizeError::OutOfRange(s.to_string()));
     }
     Ok(bytes as u64)
 }
@@ -449,5 +477,17 @@ mod size_tests {
         for bad in ["", "G", "8X", "-1G", "0", "1e30T", "nan"] {
             assert!(parse_memory_size(bad).is_err(), "{bad}");
         }
+        assert_eq!(
+            parse_memory_size("8X").unwrap_err().to_string(),
+            "'8X': the unit must be K, M, G or T"
+        );
+        assert_eq!(
+            parse_memory_size("G").unwrap_err().to_string(),
+            "'G' is not a size such as 8G, 512M or 1000000"
+        );
+        assert_eq!(
+            parse_memory_size("0").unwrap_err().to_string(),
+            "'0' is not a size between 1 byte and 16 EiB"
+        );
     }
 }

@@ -69,12 +69,12 @@ pub use areas::{AreaKind, BACKGROUND_BAND, ROOM_SURFACE_OFFSET, SURROUNDING_BAND
 pub use atomic::write_atomically;
 pub use calculation::{Calculation, CalculationSurface, Workplane};
 pub use error::{Diagnostic, LoadError, PhotometryError};
-pub use files::parse_memory_size;
+pub use files::{MemorySizeError, parse_memory_size};
 pub use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 pub use light::{Camera, Light, LightKind, aimed_frame, luminance, tilt_factor};
-pub use load::{LoadOptions, UpAxis, load, load_with};
+pub use load::{LoadOptions, UnknownUpAxis, UpAxis, load, load_with};
 pub use lookup::{known_names, nearest};
-pub use luminaire::Luminaire;
+pub use luminaire::{Luminaire, LuminaireArgError};
 pub use material::{Material, Rgb, Texture};
 pub use mesh::Mesh;
 pub use model::{
@@ -87,5 +87,5 @@ pub use photometry::{
 };
 pub use summary::{CameraSummary, LightSummary, LuminaireSummary, SceneSummary, SurfaceSummary};
 pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};
-pub use values::{finite, positive};
+pub use values::{NumberError, finite, positive};
 pub use world::WorldTriangle;

@@ -25,15 +25,27 @@ impl UpAxis {
     }
 }
 
+/// An `--up` value other than `y` or `z`: the text given.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnknownUpAxis(pub String);
+
+impl std::fmt::Display for UnknownUpAxis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "'{}': expected y or z", self.0)
+    }
+}
+
+impl std::error::Error for UnknownUpAxis {}
+
 impl std::str::FromStr for UpAxis {
-    type Err = String;
+    type Err = UnknownUpAxis;
 
     /// `y` or `z`, as `--up` gives it.
-    fn from_str(s: &str) -> Result<UpAxis, String> {
+    fn from_str(s: &str) -> Result<UpAxis, UnknownUpAxis> {
         match s {
             "y" | "Y" => Ok(UpAxis::Y),
             "z" | "Z" => Ok(UpAxis::Z),
-            _ => Err(format!("'{s}': expected y or z")),
+            _ => Err(UnknownUpAxis(s.to_string())),
         }
     }
 }
@@ -142,5 +154,19 @@ pub(crate) fn scale_scene(scene: &mut Scene, s: f32) {
         for v in &mut p.vertices {
             *v *= s;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::UpAxis;
+
+    #[test]
+    fn up_axes_are_y_or_z() {
+        assert_eq!("Z".parse::<UpAxis>(), Ok(UpAxis::Z));
+        assert_eq!(
+            "x".parse::<UpAxis>().unwrap_err().to_string(),
+            "'x': expected y or z"
+        );
     }
 }

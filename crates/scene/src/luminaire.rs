@@ -18,6 +18,7 @@ use crate::light::LightKind;
 use crate::load::LoadOptions;
 use crate::model::Scene;
 use crate::photometry::read_photometry_in;
+use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::Arc;
@@ -38,23 +39,55 @@ pub struct Luminaire {
     pub origin: Option<(PathBuf, u32)>,
 }
 
+/// A `--luminaire` value that cannot be read; each variant holds the text given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LuminaireArgError {
+    /// Not a light's name, `=` and a file.
+    NotNameEqualsFile(String),
+    /// A multiplier after `*` that is not a number > 0.
+    BadMultiplier {
+        /// The value as given.
+        text: String,
+        /// The multiplier read.
+        multiplier: f32,
+    },
+}
+
+impl fmt::Display for LuminaireArgError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LuminaireArgError::NotNameEqualsFile(s) => write!(
+                f,
+                "'{s}' is not NAME=FILE: the light's name (`invlight scene` lists them), '=', and its IES or EULUMDAT file, optionally '*' and a multiplier (NAME=FILE*2)"
+            ),
+            LuminaireArgError::BadMultiplier { text, multiplier } => write!(
+                f,
+                "'{text}': the multiplier after '*' is {multiplier}, expected a number > 0 (NAME=FILE*2 doubles the file's candela)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LuminaireArgError {}
+
 /// `NAME=FILE` or `NAME=FILE*M`, the value of `--luminaire`: the multiplier M (> 0,
 /// default 1) as a problem file's `<luminaire multiplier>`, so that a lamp of two
 /// tubes, or a file in klm, is given on the command line as in a problem. A `*` not
 /// followed by a number is part of the file's name.
 impl FromStr for Luminaire {
-    type Err = String;
+    type Err = LuminaireArgError;
 
-    fn from_str(s: &str) -> Result<Luminaire, String> {
+    fn from_str(s: &str) -> Result<Luminaire, LuminaireArgError> {
         match s.split_once('=') {
             Some((light, file)) if !light.trim().is_empty() && !file.trim().is_empty() => {
                 let (file, multiplier) = match file.rsplit_once('*') {
                     Some((f, m)) if m.trim().parse::<f32>().is_ok() => {
                         let m: f32 = m.trim().parse().unwrap_or(f32::NAN);
                         if !(m.is_finite() && m > 0.0) {
-                            return Err(format!(
-                                "'{s}': the multiplier after '*' is {m}, expected a number > 0 (NAME=FILE*2 doubles the file's candela)"
-                            ));
+                            return Err(LuminaireArgError::BadMultiplier {
+                                text: s.to_string(),
+                                multiplier: m,
+                            });
                         }
                         (f, m)
                     }
@@ -68,9 +101,7 @@ impl FromStr for Luminaire {
                     origin: None,
                 })
             }
-            _ => Err(format!(
-                "'{s}' is not NAME=FILE: the light's name (`invlight scene` lists them), '=', and its IES or EULUMDAT file, optionally '*' and a multiplier (NAME=FILE*2)"
-            )),
+            _ => Err(LuminaireArgError::NotNameEqualsFile(s.to_string())),
         }
     }
 }
@@ -204,7 +235,7 @@ mod tests {
         assert_eq!(l.file, PathBuf::from("lamps/down light.ies"));
         assert_eq!((l.multiplier, l.origin), (1.0, None));
         for bad in ["Lamp", "=x.ies", "Lamp=", ""] {
-            let e = bad.parse::<Luminaire>().unwrap_err();
+            let e = bad.parse::<Luminaire>().unwrap_err().to_string();
             assert!(e.contains("NAME=FILE"), "{e}");
         }
     }
@@ -227,7 +258,7 @@ mod tests {
             (PathBuf::from("odd*name.ies"), 1.0)
         );
         for bad in ["L=a.ies*0", "L=a.ies*-2", "L=a.ies*inf", "L=a.ies*NaN"] {
-            let e = bad.parse::<Luminaire>().unwrap_err();
+            let e = bad.parse::<Luminaire>().unwrap_err().to_string();
             assert!(e.contains("a number > 0"), "{bad}: {e}");
         }
     }
