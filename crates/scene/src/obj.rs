@@ -18,8 +18,10 @@
 //! ignored, as the format allows (`vn s l p` and vendor extensions). Free-form curves
 //! and surfaces and `\` line continuations are not supported.
 
+mod error;
 mod mtl;
 
+use error::StatementError;
 pub(crate) use mtl::energy_conserving;
 
 use crate::error::LoadError;
@@ -50,7 +52,7 @@ fn parse(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
     for (number, line) in lines(bytes) {
         parser.line = number;
         parser.statement(line).map_err(|fault| match fault {
-            Fault::Here(message) => LoadError::at(path, format!("line {number}"), message),
+            Fault::Here(e) => LoadError::at(path, format!("line {number}"), e.to_string()),
             Fault::Library(e) => e,
         })?;
     }
@@ -59,19 +61,13 @@ fn parse(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
 
 /// What went wrong on a line: a fault of the line itself, or of the MTL file it names.
 enum Fault {
-    Here(String),
+    Here(StatementError),
     Library(LoadError),
 }
 
-impl From<String> for Fault {
-    fn from(message: String) -> Self {
-        Fault::Here(message)
-    }
-}
-
-impl From<&str> for Fault {
-    fn from(message: &str) -> Self {
-        Fault::Here(message.to_string())
+impl From<StatementError> for Fault {
+    fn from(e: StatementError) -> Self {
+        Fault::Here(e)
     }
 }
 
@@ -97,24 +93,26 @@ pub(crate) fn show(token: &[u8]) -> String {
 }
 
 /// Parses a decimal number token.
-pub(crate) fn parse_f32(token: &[u8]) -> Result<f32, String> {
+pub(crate) fn parse_f32(token: &[u8]) -> Result<f32, StatementError> {
     std::str::from_utf8(token)
         .ok()
         .and_then(|s| s.parse::<f32>().ok())
         .filter(|v| v.is_finite())
-        .ok_or_else(|| format!("expected a number, found '{}'", show(token)))
+        .ok_or_else(|| StatementError::NotANumber { token: show(token) })
 }
 
-/// Reads `n` numbers from `it`; `what` names the statement in messages.
+/// Reads `n` numbers from `it`; `statement` names the statement in messages.
 pub(crate) fn parse_floats<'a, const N: usize>(
     it: &mut impl Iterator<Item = &'a [u8]>,
-    what: &str,
-) -> Result<[f32; N], String> {
+    statement: &'static str,
+) -> Result<[f32; N], StatementError> {
     let mut out = [0.0; N];
     for (i, slot) in out.iter_mut().enumerate() {
-        let token = it
-            .next()
-            .ok_or_else(|| format!("'{what}' needs {N} numbers, found {i}"))?;
+        let token = it.next().ok_or(StatementError::TooFewNumbers {
+            statement,
+            needed: N,
+            found: i,
+        })?;
         *slot = parse_f32(token)?;
     }
     Ok(out)
@@ -207,7 +205,7 @@ impl<'p> Parser<'p> {
                 self.positions.push(Vec3::new(x, y, z));
             }
             b"vt" => {
-                let u = parse_f32(it.next().ok_or("'vt' needs at least 1 number")?)?;
+                let u = parse_f32(it.next().ok_or(StatementError::NoTextureCoordinate)?)?;
                 let v = it.next().map(parse_f32).transpose()?.unwrap_or(0.0);
                 self.uvs.push(Vec2::new(u, 1.0 - v));
             }
@@ -237,7 +235,10 @@ impl<'p> Parser<'p> {
 
     /// `f v1 v2 v3 …` with `v`, `v/vt`, `v//vn` or `v/vt/vn` corners, triangulated as a
     /// fan (exact for the convex polygons modelling tools write).
-    fn face_statement<'a>(&mut self, it: impl Iterator<Item = &'a [u8]>) -> Result<(), String> {
+    fn face_statement<'a>(
+        &mut self,
+        it: impl Iterator<Item = &'a [u8]>,
+    ) -> Result<(), StatementError> {
         self.face.clear();
         for token in it {
             let mut parts = token.split(|&b| b == b'/');
@@ -251,10 +252,9 @@ impl<'p> Parser<'p> {
             self.face.push((p, t));
         }
         if self.face.len() < 3 {
-            return Err(format!(
-                "a face needs at least 3 vertices, found {}",
-                self.face.len()
-            ));
+            return Err(StatementError::TooFewCorners {
+                found: self.face.len(),
+            });
         }
         let material = match self.material {
             Some(m) => m,
@@ -410,13 +410,16 @@ fn rest_of_line(line: &[u8], keyword: &[u8]) -> Option<String> {
 }
 
 /// An OBJ index: 1-based, or negative counting back from the last element read.
-fn resolve_index(token: &[u8], len: usize, what: &str) -> Result<u32, String> {
+fn resolve_index(token: &[u8], len: usize, what: &'static str) -> Result<u32, StatementError> {
     let (negative, digits) = match token.split_first() {
         Some((b'-', rest)) => (true, rest),
         _ => (false, token),
     };
     if digits.is_empty() || digits.len() > 10 || !digits.iter().all(u8::is_ascii_digit) {
-        return Err(format!("expected a {what} index, found '{}'", show(token)));
+        return Err(StatementError::NotAnIndex {
+            what,
+            token: show(token),
+        });
     }
     let n = digits.iter().fold(0u64, |n, &d| n * 10 + (d - b'0') as u64);
     let index = if negative {
@@ -426,10 +429,11 @@ fn resolve_index(token: &[u8], len: usize, what: &str) -> Result<u32, String> {
     };
     match index {
         Some(i) if i < len as u64 => Ok(i as u32),
-        _ => Err(format!(
-            "{what} index {} is out of range: {len} defined so far",
-            show(token)
-        )),
+        _ => Err(StatementError::IndexOutOfRange {
+            what,
+            token: show(token),
+            defined: len,
+        }),
     }
 }
 

@@ -16,7 +16,7 @@
 //! Reflectances are then scaled so that K_d + K_s + transmission ≤ 1 per channel, which
 //! Russian roulette needs to be a probability split ([`energy_conserving`]).
 
-use super::{lines, parse_f32, parse_floats, show, tokens};
+use super::{StatementError, lines, parse_f32, parse_floats, show, tokens};
 use crate::error::LoadError;
 use crate::files::Files;
 use crate::image_file::{TextureError, read_texture};
@@ -71,7 +71,7 @@ pub(super) fn parse(
 ) -> Result<Vec<Material>, LoadError> {
     let mut records: Vec<Record> = Vec::new();
     for (number, line) in lines(bytes) {
-        let at = |e: String| LoadError::at(path, format!("line {number}"), e);
+        let at = |e: StatementError| LoadError::at(path, format!("line {number}"), e.to_string());
         let mut it = tokens(line);
         let Some(keyword) = it.next() else { continue };
         if keyword == b"newmtl" {
@@ -225,28 +225,31 @@ fn texture_file(line: &[u8]) -> Option<String> {
     (!name.is_empty()).then_some(name)
 }
 
-fn rgb<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<Rgb, String> {
+fn rgb<'a>(
+    it: &mut impl Iterator<Item = &'a [u8]>,
+    statement: &'static str,
+) -> Result<Rgb, StatementError> {
     let mut it = it.peekable();
     if it.peek() == Some(&&b"spectral"[..]) || it.peek() == Some(&&b"xyz"[..]) {
-        return Err(format!(
-            "'{what} {}' colours are not supported; give r g b",
-            show(it.next().unwrap_or_default())
-        ));
+        return Err(StatementError::UnsupportedColour {
+            statement,
+            space: show(it.next().unwrap_or_default()),
+        });
     }
-    let first = parse_f32(
-        it.next()
-            .ok_or_else(|| format!("'{what}' needs a colour"))?,
-    )?;
+    let first = parse_f32(it.next().ok_or(StatementError::NoColour { statement })?)?;
     // A single value is a grey, as the MTL specification allows.
-    let rest: Result<Vec<f32>, String> = it.take(2).map(parse_f32).collect();
+    let rest: Result<Vec<f32>, StatementError> = it.take(2).map(parse_f32).collect();
     match rest?.as_slice() {
         [] => Ok(Vec3::splat(first)),
         [g, b] => Ok(Vec3::new(first, *g, *b)),
-        _ => Err(format!("'{what}' needs 1 or 3 numbers")),
+        _ => Err(StatementError::ColourCount { statement }),
     }
 }
 
-fn scalar<'a>(it: &mut impl Iterator<Item = &'a [u8]>, what: &str) -> Result<f32, String> {
+fn scalar<'a>(
+    it: &mut impl Iterator<Item = &'a [u8]>,
+    what: &'static str,
+) -> Result<f32, StatementError> {
     let [v] = parse_floats(it, what)?;
     Ok(v)
 }
