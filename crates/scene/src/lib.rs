@@ -83,7 +83,7 @@ pub use model::{
 };
 pub use photometry::{
     DirectionSample, LuminaireFacts, Opening, PhotometricSystem, Photometry, PhotometryFormat,
-    PhotometrySource, Tilt, parse_ies, parse_ldt, read_photometry,
+    PhotometrySource, TableError, Tilt, parse_ies, parse_ldt, read_photometry,
 };
 pub use summary::{CameraSummary, LightSummary, LuminaireSummary, SceneSummary, SurfaceSummary};
 pub use validate::{MAX_COORDINATE, MAX_FLUX, SceneError};

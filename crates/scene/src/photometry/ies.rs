@@ -194,7 +194,7 @@ pub(crate) fn parse_ies_in(
     let (h_full, v_full) = match system {
         PhotometricSystem::C => {
             let symmetry = Symmetry::of_ies(horizontal[0], horizontal[nh - 1], nh)
-                .map_err(|m| at(h_line, m).with_hint(FORMAT_HINT))?;
+                .map_err(|m| at(h_line, m.to_string()).with_hint(FORMAT_HINT))?;
             if vertical[0] < 0.0 || vertical[nv - 1] > 180.0 {
                 return Err(at(
                     v_line,
@@ -205,12 +205,12 @@ pub(crate) fn parse_ies_in(
                     ),
                 ));
             }
-            let h = expand_c(&horizontal, symmetry).map_err(|m| at(h_line, m))?;
+            let h = expand_c(&horizontal, symmetry).map_err(|m| at(h_line, m.to_string()))?;
             (h, (0..nv).map(|k| (vertical[k], k)).collect::<Vec<_>>())
         }
         PhotometricSystem::B => (
-            expand_b(&horizontal).map_err(|m| at(h_line, m))?,
-            expand_b(&vertical).map_err(|m| at(v_line, m))?,
+            expand_b(&horizontal).map_err(|m| at(h_line, m.to_string()))?,
+            expand_b(&vertical).map_err(|m| at(v_line, m.to_string()))?,
         ),
     };
     let pre_2002 = matches!(
@@ -229,7 +229,7 @@ pub(crate) fn parse_ies_in(
         v_full.iter().map(|p| p.0).collect(),
         candela,
     )
-    .map_err(|m| LoadError::at(path, format!("lines {c_line}–"), m))?;
+    .map_err(|m| LoadError::at(path, format!("lines {c_line}–"), m.to_string()))?;
 
     let (opening, opening_height, shape_warning) =
         opening(width as f32, length as f32, height as f32);

@@ -180,8 +180,8 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
             raw.len()
         ));
     }
-    let h_full =
-        expand_c(planes, symmetry).map_err(|m| r.err_at(c_line, m).with_hint(FORMAT_HINT))?;
+    let h_full = expand_c(planes, symmetry)
+        .map_err(|m| r.err_at(c_line, m.to_string()).with_hint(FORMAT_HINT))?;
     let scale = conversion * lamp_flux / 1000.0;
     let raw = &raw;
     let candela: Vec<f64> = h_full
@@ -195,7 +195,7 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         candela,
     )
     .map_err(|m| {
-        r.err_at(i_line, m)
+        r.err_at(i_line, m.to_string())
             .with_hint(format!("checked against Isym on line {isym_line}"))
     })?;
     let (opening, shape) = luminous_area(length as f32, width as f32);

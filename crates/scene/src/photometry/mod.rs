@@ -32,6 +32,7 @@ mod facts;
 mod ies;
 mod ldt;
 mod symmetry;
+mod table_error;
 mod text;
 
 use crate::error::LoadError;
@@ -45,6 +46,7 @@ pub use facts::LuminaireFacts;
 pub use ies::parse_ies;
 pub(crate) use ies::parse_ies_in;
 pub use ldt::parse_ldt;
+pub use table_error::TableError;
 
 /// Which file format, and which version of it, a photometry was read from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -347,7 +349,7 @@ impl Photometry {
         horizontal: Vec<f64>,
         vertical: Vec<f64>,
         candela: Vec<f64>,
-    ) -> Result<Photometry, String> {
+    ) -> Result<Photometry, TableError> {
         Ok(Photometry {
             file: String::new(),
             source: None,
@@ -531,7 +533,7 @@ impl Table {
         horizontal: Vec<f64>,
         vertical: Vec<f64>,
         candela: Vec<f64>,
-    ) -> Result<Table, String> {
+    ) -> Result<Table, TableError> {
         let (lo_h, hi_h, lo_v, hi_v) = match system {
             PhotometricSystem::C => (0.0, 360.0, 0.0, 180.0),
             PhotometricSystem::B => (-90.0, 90.0, -90.0, 90.0),
@@ -541,34 +543,28 @@ impl Table {
             || horizontal[0] < lo_h
             || horizontal[horizontal.len() - 1] > hi_h
         {
-            return Err(format!(
-                "the horizontal angles must be at least two, increasing, within {lo_h}..{hi_h}°"
-            ));
+            return Err(TableError::Horizontal { lo: lo_h, hi: hi_h });
         }
         if !increasing(&vertical) || vertical[0] < lo_v || vertical[vertical.len() - 1] > hi_v {
-            return Err(format!(
-                "the vertical angles must be at least two, increasing, within {lo_v}..{hi_v}°"
-            ));
+            return Err(TableError::Vertical { lo: lo_v, hi: hi_v });
         }
         if system == PhotometricSystem::C
             && (horizontal[0] != 0.0 || horizontal[horizontal.len() - 1] != 360.0)
         {
-            return Err("a type C table must cover the horizontal angles 0..360°".into());
+            return Err(TableError::NotFullCircle);
         }
         if candela.len() != horizontal.len() * vertical.len() {
-            return Err(format!(
-                "{} candela values for {} × {} angles",
-                candela.len(),
-                horizontal.len(),
-                vertical.len()
-            ));
+            return Err(TableError::Count {
+                values: candela.len(),
+                horizontal: horizontal.len(),
+                vertical: vertical.len(),
+            });
         }
         if let Some(k) = candela.iter().position(|c| !(c.is_finite() && *c >= 0.0)) {
-            return Err(format!(
-                "candela value {} is {}: intensities are finite and ≥ 0",
-                k + 1,
-                candela[k]
-            ));
+            return Err(TableError::Intensity {
+                index: k + 1,
+                value: candela[k],
+            });
         }
         let nv = vertical.len();
         let h_rad: Vec<f64> = horizontal.iter().map(|h| h.to_radians()).collect();
@@ -604,10 +600,8 @@ impl Table {
             }
         }
         t.dist = PiecewiseConstant2D::new(xs, ys, &masses).map_err(|e| match e {
-            invlight_stats::Distribution2DError::Empty => {
-                "every intensity is zero: the luminaire sends no light".to_string()
-            }
-            e => e.to_string(),
+            invlight_stats::Distribution2DError::Empty => TableError::Dark,
+            e => TableError::Distribution(e),
         })?;
         t.inv_flux = 1.0 / t.dist.total();
         Ok(t)
@@ -953,7 +947,9 @@ mod tests {
     #[test]
     fn bad_tables_are_refused() {
         let e = |h: Vec<f64>, v: Vec<f64>, c: Vec<f64>| {
-            Photometry::from_table(PhotometricSystem::C, h, v, c).unwrap_err()
+            Photometry::from_table(PhotometricSystem::C, h, v, c)
+                .unwrap_err()
+                .to_string()
         };
         assert!(e(vec![0.0, 180.0], vec![0.0, 90.0], vec![1.0; 4]).contains("0..360"));
         assert!(e(vec![0.0, 360.0], vec![0.0, 90.0], vec![1.0; 3]).contains("3 candela"));

@@ -2,6 +2,8 @@
 //! symmetry indicator (EULUMDAT) declare, so that the rest of the code sees one kind of
 //! table. Each mirrored plane is a copy of the measured plane it mirrors.
 
+use std::fmt;
+
 /// The symmetries of a type C table's horizontal angles (LM-63-2002 §5.13; EULUMDAT
 /// Isym).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,9 +22,42 @@ pub(crate) enum Symmetry {
     None,
 }
 
+/// Horizontal angles that no symmetry expands to the whole sphere; the readers put the
+/// file and line in front.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum SymmetryError {
+    /// An IES type C range other than the ones LM-63 defines.
+    TypeCRange { first: f64, last: f64 },
+    /// Type B angles beyond ±90°.
+    TypeBRange { first: f64, last: f64 },
+    /// The mirrored planes stop short of the range they must cover (`range` says which;
+    /// empty for type B).
+    Unreached { range: &'static str },
+}
+
+impl fmt::Display for SymmetryError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SymmetryError::TypeCRange { first, last } => write!(
+                f,
+                "horizontal angles from {first}° to {last}°: type C files run 0 to 0, 90, 180 or 360°, or 90 to 270°"
+            ),
+            SymmetryError::TypeBRange { first, last } => write!(
+                f,
+                "type B angles from {first}° to {last}°: they lie within −90° and 90°"
+            ),
+            SymmetryError::Unreached { range } => {
+                write!(f, "the expanded planes do not reach {range}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SymmetryError {}
+
 impl Symmetry {
     /// The symmetry an IES file's horizontal angles declare, or what was expected.
-    pub(crate) fn of_ies(first: f64, last: f64, count: usize) -> Result<Symmetry, String> {
+    pub(crate) fn of_ies(first: f64, last: f64, count: usize) -> Result<Symmetry, SymmetryError> {
         let is = |a: f64, b: f64| (a - b).abs() < 1e-6;
         Ok(if count == 1 {
             Symmetry::Rotational
@@ -35,9 +70,7 @@ impl Symmetry {
         } else if is(first, 0.0) && is(last, 360.0) {
             Symmetry::None
         } else {
-            return Err(format!(
-                "horizontal angles from {first}° to {last}°: type C files run 0 to 0, 90, 180 or 360°, or 90 to 270°"
-            ));
+            return Err(SymmetryError::TypeCRange { first, last });
         })
     }
 
@@ -56,7 +89,10 @@ impl Symmetry {
 /// The type C planes at `angles` (degrees, increasing; `rows[k]` the intensities of
 /// plane k) expanded over 0..=360° by `symmetry`: the angles and, for each, the measured
 /// plane it copies. The plane at 0° is repeated at 360° (and back), so the table wraps.
-pub(crate) fn expand_c(angles: &[f64], symmetry: Symmetry) -> Result<Vec<(f64, usize)>, String> {
+pub(crate) fn expand_c(
+    angles: &[f64],
+    symmetry: Symmetry,
+) -> Result<Vec<(f64, usize)>, SymmetryError> {
     let mut out: Vec<(f64, usize)> = Vec::new();
     for (k, &a) in angles.iter().enumerate() {
         for image in symmetry.images(a) {
@@ -81,7 +117,7 @@ pub(crate) fn expand_c(angles: &[f64], symmetry: Symmetry) -> Result<Vec<(f64, u
 
 /// Type B horizontal angles expanded over −90..=90°: a file whose angles start at 0 is
 /// laterally symmetric (LM-63-2002 §5.13), one angle is the same everywhere.
-pub(crate) fn expand_b(angles: &[f64]) -> Result<Vec<(f64, usize)>, String> {
+pub(crate) fn expand_b(angles: &[f64]) -> Result<Vec<(f64, usize)>, SymmetryError> {
     let mut out: Vec<(f64, usize)> = Vec::new();
     if angles.len() == 1 {
         return Ok(vec![(-90.0, 0), (90.0, 0)]);
@@ -98,11 +134,10 @@ pub(crate) fn expand_b(angles: &[f64]) -> Result<Vec<(f64, usize)>, String> {
         out.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
     );
     if lo < -90.0 - 1e-6 || hi > 90.0 + 1e-6 {
-        return Err(format!(
-            "type B angles from {}° to {}°: they lie within −90° and 90°",
-            angles[0],
-            angles[angles.len() - 1]
-        ));
+        return Err(SymmetryError::TypeBRange {
+            first: angles[0],
+            last: angles[angles.len() - 1],
+        });
     }
     finish(out, lo, hi, "")
 }
@@ -112,13 +147,13 @@ fn finish(
     mut out: Vec<(f64, usize)>,
     lo: f64,
     hi: f64,
-    range: &str,
-) -> Result<Vec<(f64, usize)>, String> {
+    range: &'static str,
+) -> Result<Vec<(f64, usize)>, SymmetryError> {
     out.sort_by(|a, b| a.0.total_cmp(&b.0));
     out.dedup_by(|b, a| (b.0 - a.0).abs() < 1e-6);
     let (first, last) = (out[0].0, out[out.len() - 1].0);
     if (first - lo).abs() > 1e-6 || (last - hi).abs() > 1e-6 {
-        return Err(format!("the expanded planes do not reach {range}"));
+        return Err(SymmetryError::Unreached { range });
     }
     Ok(out)
 }
@@ -155,7 +190,12 @@ mod tests {
             expand_c(&[0.0], Symmetry::Rotational).unwrap(),
             [(0.0, 0), (360.0, 0)]
         );
-        assert!(expand_c(&[10.0, 90.0], Symmetry::None).is_err());
+        assert_eq!(
+            expand_c(&[10.0, 90.0], Symmetry::None)
+                .unwrap_err()
+                .to_string(),
+            "the expanded planes do not reach 0° and 360°"
+        );
     }
 
     #[test]
@@ -166,6 +206,7 @@ mod tests {
         assert!(
             Symmetry::of_ies(0.0, 200.0, 3)
                 .unwrap_err()
+                .to_string()
                 .contains("0 to 0, 90, 180 or 360")
         );
     }
@@ -175,6 +216,9 @@ mod tests {
         let b = expand_b(&[0.0, 30.0, 90.0]).unwrap();
         assert_eq!(angles(&b), [-90.0, -30.0, 0.0, 30.0, 90.0]);
         assert_eq!(b.iter().map(|p| p.1).collect::<Vec<_>>(), [2, 1, 0, 1, 2]);
-        assert!(expand_b(&[-100.0, 90.0]).is_err());
+        assert_eq!(
+            expand_b(&[-100.0, 90.0]).unwrap_err().to_string(),
+            "type B angles from -100° to 90°: they lie within −90° and 90°"
+        );
     }
 }
