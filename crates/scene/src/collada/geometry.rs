@@ -7,8 +7,10 @@ use crate::error::LoadError;
 use glam::{Vec2, Vec3};
 use roxmltree::Node;
 use std::collections::HashMap;
+use std::fmt;
 
 /// A geometry in its own space, before materials are bound.
+#[derive(Default)]
 pub(super) struct Geometry {
     pub positions: Vec<Vec3>,
     /// Parallel to `positions`, or empty when no primitive has texture coordinates.
@@ -54,41 +56,87 @@ struct Input<'a> {
 /// Reads a `<geometry>`; geometry kinds other than `<mesh>` (splines, B-reps) give an
 /// empty geometry and a warning.
 pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
-    let mut out = Geometry {
-        positions: Vec::new(),
-        uvs: Vec::new(),
-        triangles: Vec::new(),
-        symbols: Vec::new(),
-        triangle_symbols: Vec::new(),
-        outline: Vec::new(),
-    };
     let Some(mesh) = child(geometry, "mesh") else {
         ctx.warn(
             geometry,
             "only <mesh> geometries are read; this one is skipped",
         );
-        return Ok(out);
+        return Ok(Geometry::default());
     };
-    let mut sources: HashMap<&str, Source> = HashMap::new();
-    let vertices = child(mesh, "vertices")
-        .ok_or_else(|| ctx.error(mesh, "a <mesh> needs a <vertices> element"))?;
-    let vertex_inputs = inputs(ctx, vertices)?;
-    let position_source = vertex_inputs
-        .iter()
-        .find(|i| i.semantic == "POSITION")
-        .ok_or_else(|| ctx.error(vertices, "<vertices> has no POSITION input"))?
-        .source;
-    let vertex_uv_source = vertex_inputs
-        .iter()
-        .find(|i| i.semantic == "TEXCOORD")
-        .map(|i| i.source);
-    load_source(ctx, mesh, position_source, &mut sources)?;
-    let position_count = sources[position_source].count;
-    let mut first_seen = vec![false; position_count];
-    let mut outline_indices = Vec::new();
-    let mut remap: HashMap<(u32, u32), u32> = HashMap::new();
-
+    let mut reader = MeshReader::new(ctx, mesh)?;
     for prim in mesh.children().filter(|c| c.is_element()) {
+        reader.primitive(ctx, prim)?;
+    }
+    Ok(reader.finish())
+}
+
+/// Where a primitive's corners keep their indices in its interleaved `<p>`.
+struct Layout<'a> {
+    /// Indices per corner.
+    stride: usize,
+    /// Offset of the position index.
+    vertex: usize,
+    /// Offset of the texture coordinate index and the URL of its source, when the
+    /// primitive or its `<vertices>` has texture coordinates.
+    uv: Option<(usize, &'a str)>,
+}
+
+/// One `<mesh>` being read: its geometry so far, and what each primitive list's corners
+/// are checked against and merged into. The primitives share one vertex list, so a
+/// corner seen in an earlier list is not added again.
+struct MeshReader<'a, 'input> {
+    mesh: Node<'a, 'input>,
+    vertices: Node<'a, 'input>,
+    /// URL of the `<source>` the positions come from.
+    position_source: &'a str,
+    /// URL of texture coordinates given in `<vertices>`, used by primitives that give
+    /// none of their own.
+    vertex_uv_source: Option<&'a str>,
+    /// The `<source>`s read so far, by URL.
+    sources: HashMap<&'a str, Source>,
+    /// Whether each position has been reached by an index yet, for the outline.
+    first_seen: Vec<bool>,
+    /// Positions in the order the index lists first reach them.
+    outline_indices: Vec<u32>,
+    /// (position index, texture coordinate index or `u32::MAX`) → mesh vertex.
+    remap: HashMap<(u32, u32), u32>,
+    out: Geometry,
+}
+
+impl<'a, 'input> MeshReader<'a, 'input> {
+    /// Reads the mesh's `<vertices>` and its positions: every primitive indexes them.
+    fn new(ctx: &Ctx, mesh: Node<'a, 'input>) -> Result<Self, LoadError> {
+        let vertices = child(mesh, "vertices")
+            .ok_or_else(|| ctx.error(mesh, "a <mesh> needs a <vertices> element"))?;
+        let vertex_inputs = inputs(ctx, vertices)?;
+        let position_source = vertex_inputs
+            .iter()
+            .find(|i| i.semantic == "POSITION")
+            .ok_or_else(|| ctx.error(vertices, "<vertices> has no POSITION input"))?
+            .source;
+        let vertex_uv_source = vertex_inputs
+            .iter()
+            .find(|i| i.semantic == "TEXCOORD")
+            .map(|i| i.source);
+        let mut sources = HashMap::new();
+        load_source(ctx, mesh, position_source, &mut sources)?;
+        let position_count = sources[position_source].count;
+        Ok(MeshReader {
+            mesh,
+            vertices,
+            position_source,
+            vertex_uv_source,
+            sources,
+            first_seen: vec![false; position_count],
+            outline_indices: Vec::new(),
+            remap: HashMap::new(),
+            out: Geometry::default(),
+        })
+    }
+
+    /// Adds the triangles of one child of the `<mesh>`; children that are not polygon
+    /// lists are skipped, lines with a warning since they have no area to light.
+    fn primitive(&mut self, ctx: &Ctx, prim: Node<'a, 'input>) -> Result<(), LoadError> {
         let kind = prim.tag_name().name();
         if !matches!(
             kind,
@@ -97,15 +145,38 @@ pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
             if matches!(kind, "lines" | "linestrips") {
                 ctx.warn(prim, "lines have no area; skipped");
             }
-            continue;
+            return Ok(());
         }
+        let layout = self.layout(ctx, prim)?;
+        let symbol_index = self.symbol(ctx, prim)?;
+        for IndexList {
+            indices,
+            sizes,
+            shape,
+        } in index_lists(ctx, prim, kind)?
+        {
+            let local = self.corners(ctx, prim, &layout, &indices)?;
+            let before = self.out.triangles.len();
+            triangulate(&local, &sizes, shape, &mut self.out.triangles)
+                .map_err(|e| ctx.error(prim, e.to_string()))?;
+            let added = self.out.triangles.len() - before;
+            self.out
+                .triangle_symbols
+                .extend(std::iter::repeat_n(symbol_index, added));
+        }
+        Ok(())
+    }
+
+    /// The primitive's index layout, its texture coordinate source read: its own
+    /// lowest `TEXCOORD` set, else the one of `<vertices>` at the position's offset.
+    fn layout(&mut self, ctx: &Ctx, prim: Node<'a, 'input>) -> Result<Layout<'a>, LoadError> {
         let prim_inputs = inputs(ctx, prim)?;
         let stride = prim_inputs.iter().map(|i| i.offset + 1).max().unwrap_or(0);
         let vertex = prim_inputs
             .iter()
             .find(|i| i.semantic == "VERTEX")
             .ok_or_else(|| ctx.error(prim, "no VERTEX input"))?;
-        if vertex.source.strip_prefix('#') != vertices.attribute("id") {
+        if vertex.source.strip_prefix('#') != self.vertices.attribute("id") {
             return Err(ctx.error(
                 prim,
                 format!(
@@ -118,113 +189,126 @@ pub(super) fn read(ctx: &Ctx, geometry: Node) -> Result<Geometry, LoadError> {
             .iter()
             .filter(|i| i.semantic == "TEXCOORD")
             .min_by_key(|i| i.set);
-        let (uv_offset, uv_source) = match (uv_input, vertex_uv_source) {
-            (Some(i), _) => (Some(i.offset), Some(i.source)),
-            (None, Some(s)) => (Some(vertex.offset), Some(s)),
-            (None, None) => (None, None),
+        let uv = match (uv_input, self.vertex_uv_source) {
+            (Some(i), _) => Some((i.offset, i.source)),
+            (None, Some(s)) => Some((vertex.offset, s)),
+            (None, None) => None,
         };
-        if let Some(s) = uv_source {
-            load_source(ctx, mesh, s, &mut sources)?;
+        if let Some((_, s)) = uv {
+            load_source(ctx, self.mesh, s, &mut self.sources)?;
         }
-        // Looked up once per primitive, not per corner.
-        let positions = &sources[position_source];
-        let uvs = match (uv_offset, uv_source) {
-            (Some(o), Some(s)) => Some((o, &sources[s])),
-            _ => None,
-        };
+        Ok(Layout {
+            stride,
+            vertex: vertex.offset,
+            uv,
+        })
+    }
+
+    /// The index into `symbols` of the primitive's material symbol, added on first use.
+    fn symbol(&mut self, ctx: &Ctx, prim: Node) -> Result<u16, LoadError> {
         let symbol = prim.attribute("material").unwrap_or("").to_string();
-        let symbol_index = match out.symbols.iter().position(|s| *s == symbol) {
+        let symbols = &mut self.out.symbols;
+        let symbol_index = match symbols.iter().position(|s| *s == symbol) {
             Some(i) => i,
             None => {
-                out.symbols.push(symbol);
-                out.symbols.len() - 1
+                symbols.push(symbol);
+                symbols.len() - 1
             }
         };
-        let symbol_index = u16::try_from(symbol_index)
-            .map_err(|_| ctx.error(prim, "more than 65535 material symbols in one mesh"))?;
+        u16::try_from(symbol_index)
+            .map_err(|_| ctx.error(prim, "more than 65535 material symbols in one mesh"))
+    }
 
-        for IndexList {
-            indices,
-            sizes,
-            shape,
-        } in index_lists(ctx, prim, kind)?
-        {
-            if !indices.len().is_multiple_of(stride) {
+    /// The mesh vertex of each corner of one `<p>`, adding the vertices not met
+    /// before; indices are checked against their sources here, so that a bad file
+    /// is refused rather than read out of bounds.
+    fn corners(
+        &mut self,
+        ctx: &Ctx,
+        prim: Node,
+        layout: &Layout,
+        indices: &[u32],
+    ) -> Result<Vec<u32>, LoadError> {
+        let stride = layout.stride;
+        if !indices.len().is_multiple_of(stride) {
+            return Err(ctx.error(
+                prim,
+                format!(
+                    "<p> has {} indices, not a multiple of the {stride} inputs",
+                    indices.len()
+                ),
+            ));
+        }
+        // Looked up once per list, not per corner.
+        let positions = &self.sources[self.position_source];
+        let position_count = positions.count;
+        let uvs = layout.uv.map(|(o, s)| (o, &self.sources[s]));
+        let corners = indices.len() / stride;
+        let mut local = Vec::with_capacity(corners);
+        for c in 0..corners {
+            let p = indices[c * stride + layout.vertex];
+            if p as usize >= position_count {
                 return Err(ctx.error(
                     prim,
                     format!(
-                        "<p> has {} indices, not a multiple of the {stride} inputs",
-                        indices.len()
+                        "vertex index {p} is out of range: the positions have {position_count}"
                     ),
                 ));
             }
-            let corners = indices.len() / stride;
-            let mut local = Vec::with_capacity(corners);
-            for c in 0..corners {
-                let p = indices[c * stride + vertex.offset];
-                if p as usize >= position_count {
-                    return Err(ctx.error(
-                        prim,
-                        format!(
-                            "vertex index {p} is out of range: the positions have {position_count}"
-                        ),
-                    ));
-                }
-                let t = match uvs {
-                    Some((o, source)) => {
-                        let t = indices[c * stride + o];
-                        if t as usize >= source.count {
-                            return Err(ctx.error(
-                                prim,
-                                format!(
-                                    "texture coordinate index {t} is out of range: the source has {}",
-                                    source.count
-                                ),
-                            ));
-                        }
-                        t
+            let t = match uvs {
+                Some((o, source)) => {
+                    let t = indices[c * stride + o];
+                    if t as usize >= source.count {
+                        return Err(ctx.error(
+                            prim,
+                            format!(
+                                "texture coordinate index {t} is out of range: the source has {}",
+                                source.count
+                            ),
+                        ));
                     }
-                    None => u32::MAX,
-                };
-                if !first_seen[p as usize] {
-                    first_seen[p as usize] = true;
-                    outline_indices.push(p);
+                    t
                 }
-                let next = out.positions.len() as u32;
-                let v = *remap.entry((p, t)).or_insert(next);
-                if v == next {
-                    let [x, y, z] = positions.get::<3>(p as usize);
-                    out.positions.push(Vec3::new(x, y, z));
-                    let uv = match uvs {
-                        Some((_, source)) => {
-                            let [u, v] = source.get::<2>(t as usize);
-                            Vec2::new(u, 1.0 - v)
-                        }
-                        None => Vec2::ZERO,
-                    };
-                    out.uvs.push(uv);
-                }
-                local.push(v);
+                None => u32::MAX,
+            };
+            if !self.first_seen[p as usize] {
+                self.first_seen[p as usize] = true;
+                self.outline_indices.push(p);
             }
-            let before = out.triangles.len();
-            triangulate(&local, &sizes, shape, &mut out.triangles)
-                .map_err(|m| ctx.error(prim, m))?;
-            let added = out.triangles.len() - before;
-            out.triangle_symbols
-                .extend(std::iter::repeat_n(symbol_index, added));
+            let next = self.out.positions.len() as u32;
+            let v = *self.remap.entry((p, t)).or_insert(next);
+            if v == next {
+                let [x, y, z] = positions.get::<3>(p as usize);
+                self.out.positions.push(Vec3::new(x, y, z));
+                let uv = match uvs {
+                    Some((_, source)) => {
+                        let [u, v] = source.get::<2>(t as usize);
+                        Vec2::new(u, 1.0 - v)
+                    }
+                    None => Vec2::ZERO,
+                };
+                self.out.uvs.push(uv);
+            }
+            local.push(v);
         }
+        Ok(local)
     }
-    if out.uvs.iter().all(|&uv| uv == Vec2::ZERO) {
-        out.uvs.clear();
-    }
-    for p in outline_indices {
-        let [x, y, z] = sources[position_source].get::<3>(p as usize);
-        let v = Vec3::new(x, y, z);
-        if !out.outline.contains(&v) {
-            out.outline.push(v);
+
+    /// The geometry, without texture coordinates when none was given, and with its
+    /// outline of distinct positions.
+    fn finish(mut self) -> Geometry {
+        if self.out.uvs.iter().all(|&uv| uv == Vec2::ZERO) {
+            self.out.uvs.clear();
         }
+        for p in self.outline_indices {
+            let [x, y, z] = self.sources[self.position_source].get::<3>(p as usize);
+            let v = Vec3::new(x, y, z);
+            if !self.out.outline.contains(&v) {
+                self.out.outline.push(v);
+            }
+        }
+        self.out
     }
-    Ok(out)
 }
 
 /// How the corners of an index list form triangles.
@@ -309,21 +393,47 @@ fn index_lists(ctx: &Ctx, prim: Node, kind: &str) -> Result<Vec<IndexList>, Load
     Ok(out)
 }
 
+/// A `<p>` whose corners do not make the triangles its primitive declares.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum CornerCountError {
+    /// A `<polylist>`'s `<vcount>` sizes do not add up to the corners of its `<p>`.
+    Sizes { total: u64, corners: usize },
+    /// A `<triangles>` list whose corners are not a multiple of 3.
+    NotTriangles { corners: usize },
+}
+
+impl fmt::Display for CornerCountError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CornerCountError::Sizes { total, corners } => write!(
+                f,
+                "the polygon sizes add up to {total} corners but <p> has {corners}"
+            ),
+            CornerCountError::NotTriangles { corners } => write!(
+                f,
+                "<p> has {corners} corners, not a whole number of triangles"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for CornerCountError {}
+
 /// Appends the triangles of `corners` (mesh vertex per corner).
 fn triangulate(
     corners: &[u32],
     sizes: &[u32],
     shape: Shape,
     out: &mut Vec<[u32; 3]>,
-) -> Result<(), String> {
+) -> Result<(), CornerCountError> {
     match shape {
         Shape::Polygons => {
             let total: u64 = sizes.iter().map(|&s| s as u64).sum();
             if total != corners.len() as u64 {
-                return Err(format!(
-                    "the polygon sizes add up to {total} corners but <p> has {}",
-                    corners.len()
-                ));
+                return Err(CornerCountError::Sizes {
+                    total,
+                    corners: corners.len(),
+                });
             }
             let mut start = 0;
             for &n in sizes {
@@ -334,10 +444,9 @@ fn triangulate(
         }
         Shape::Triangles => {
             if !corners.len().is_multiple_of(3) {
-                return Err(format!(
-                    "<p> has {} corners, not a whole number of triangles",
-                    corners.len()
-                ));
+                return Err(CornerCountError::NotTriangles {
+                    corners: corners.len(),
+                });
             }
             out.extend(corners.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
         }
@@ -424,4 +533,26 @@ fn load_source<'a>(
         },
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corner_counts_that_make_no_triangles_are_refused() {
+        let mut out = Vec::new();
+        let sizes = triangulate(&[0, 1, 2, 3], &[3, 3], Shape::Polygons, &mut out);
+        assert_eq!(
+            sizes.unwrap_err().to_string(),
+            "the polygon sizes add up to 6 corners but <p> has 4"
+        );
+        let triangles = triangulate(&[0, 1, 2, 3], &[], Shape::Triangles, &mut out);
+        assert_eq!(
+            triangles.unwrap_err().to_string(),
+            "<p> has 4 corners, not a whole number of triangles"
+        );
+        triangulate(&[0, 1, 2, 3], &[4], Shape::Polygons, &mut out).unwrap();
+        assert_eq!(out, [[0, 1, 2], [0, 2, 3]]);
+    }
 }
