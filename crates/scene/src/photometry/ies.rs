@@ -41,33 +41,98 @@ pub(crate) fn parse_ies_in(
 ) -> Result<Photometry, LoadError> {
     let text = latin1(bytes).replace("\r\n", "\n").replace('\r', "\n");
     let lines: Vec<&str> = text.lines().collect();
-    let at = |line: usize, message: String| LoadError::at(path, format!("line {line}"), message);
+    let (format, start) = version(path, &lines)?;
+    let tilt_line = tilt_line(path, &lines)?;
+    let keywords = keywords(path, &lines[start..tilt_line], start + 1, format)?;
+    let mut numbers = Numbers::new(path, &lines[tilt_line + 1..], tilt_line + 2);
+    let tilt = tilt(path, files, lines[tilt_line], tilt_line + 1, &mut numbers)?;
+    let fields = Fields::read(path, &mut numbers)?;
+    let measured = Measured::read(path, &mut numbers, fields.nv, fields.nh)?;
+    let mut warnings = Vec::new();
+    if numbers.rest() > 0 {
+        warnings.push(format!(
+            "{} numbers follow the {} candela values and were ignored: check the counts of angles",
+            numbers.rest(),
+            measured.candela.len()
+        ));
+    }
+    let table = table(path, format, &fields, &measured)?;
+    let (opening, opening_height, shape_warning) = opening(
+        fields.width as f32,
+        fields.length as f32,
+        fields.height as f32,
+    );
+    warnings.extend(shape_warning);
+    let mut p = Photometry {
+        file: file_name(path),
+        source: None,
+        format,
+        keywords,
+        lamps: fields.lamps as u32,
+        lumens_per_lamp: (fields.lumens > 0.0).then_some(fields.lumens),
+        stated_flux: None,
+        light_output_ratio: None,
+        watts: (fields.watts > 0.0).then_some(fields.watts),
+        ballast_factor: fields.ballast,
+        opening,
+        opening_height,
+        luminaire: None,
+        tilt,
+        warnings,
+        table,
+    };
+    p.check_flux();
+    Ok(p)
+}
 
-    // 1. The header line names the version; LM-63-1986 has none.
+/// An error about line `line` (1-based) of the file.
+fn at(path: &Path, line: usize, message: String) -> LoadError {
+    LoadError::at(path, format!("line {line}"), message)
+}
+
+/// The version the header line names, and the index of the first line after it;
+/// LM-63-1986 has no header. An unknown version is refused rather than guessed at,
+/// since the versions lay out their numbers differently.
+fn version(path: &Path, lines: &[&str]) -> Result<(PhotometryFormat, usize), LoadError> {
     let first = lines.first().map_or("", |l| l.trim());
-    let (format, start) = match first {
+    Ok(match first {
         "IESNA91" => (PhotometryFormat::Lm63_1991, 1),
         "IESNA:LM-63-1995" => (PhotometryFormat::Lm63_1995, 1),
         "IESNA:LM-63-2002" => (PhotometryFormat::Lm63_2002, 1),
         "IES:LM-63-2019" => (PhotometryFormat::Lm63_2019, 1),
         s if s.starts_with("IESNA:") || s.starts_with("IES:") => {
-            return Err(at(1, format!("unknown IES version '{s}'")).with_hint(
+            return Err(at(path, 1, format!("unknown IES version '{s}'")).with_hint(
                 "invlight reads IESNA91, IESNA:LM-63-1995, IESNA:LM-63-2002 and IES:LM-63-2019 files and headerless LM-63-1986 ones",
             ));
         }
         _ => (PhotometryFormat::Lm63_1986, 0),
-    };
+    })
+}
 
-    // 2. Keywords up to the TILT line.
-    let Some(tilt_line) = lines
+/// The index of the `TILT` line, which ends the keywords and starts the numbers; a file
+/// without one is not an IES file at all.
+fn tilt_line(path: &Path, lines: &[&str]) -> Result<usize, LoadError> {
+    lines
         .iter()
         .position(|l| l.trim_start().starts_with("TILT"))
-    else {
-        return Err(LoadError::new(path, "no TILT= line: this is not an IES LM-63 file")
-            .with_hint("every LM-63 file has a line TILT=NONE, TILT=INCLUDE or TILT=<file> before its numbers"));
-    };
+        .ok_or_else(|| {
+            LoadError::new(path, "no TILT= line: this is not an IES LM-63 file").with_hint(
+                "every LM-63 file has a line TILT=NONE, TILT=INCLUDE or TILT=<file> before its numbers",
+            )
+        })
+}
+
+/// The keyword lines `[KEY] text` between the header and the `TILT` line, `lines`
+/// starting on line `first`: a `[MORE]` continues the keyword before it, and a line
+/// that is not a keyword (all of them in LM-63-1986) is kept as `TEXT`.
+fn keywords(
+    path: &Path,
+    lines: &[&str],
+    first: usize,
+    format: PhotometryFormat,
+) -> Result<Vec<(String, String)>, LoadError> {
     let mut keywords: Vec<(String, String)> = Vec::new();
-    for (k, raw) in lines[start..tilt_line].iter().enumerate() {
+    for (k, raw) in lines.iter().enumerate() {
         let line = raw.trim();
         if line.is_empty() {
             continue;
@@ -81,7 +146,11 @@ pub(crate) fn parse_ies_in(
                         last.push_str(&value);
                     }
                     ("MORE", None) => {
-                        return Err(at(start + k + 1, "[MORE] with no keyword before it".into()));
+                        return Err(at(
+                            path,
+                            first + k,
+                            "[MORE] with no keyword before it".into(),
+                        ));
                     }
                     _ => keywords.push((key.to_string(), value)),
                 }
@@ -89,114 +158,210 @@ pub(crate) fn parse_ies_in(
             _ => keywords.push(("TEXT".into(), line.to_string())),
         }
     }
+    Ok(keywords)
+}
 
-    // 3. Tilt data, in this file or another.
-    let spec = lines[tilt_line].trim_start()["TILT".len()..].trim_start();
+/// The tilt data the `TILT` line (`line`, numbered `number`) asks for: none, the
+/// numbers that follow it, or those of another file.
+fn tilt(
+    path: &Path,
+    files: &Files,
+    line: &str,
+    number: usize,
+    numbers: &mut Numbers<'_>,
+) -> Result<Option<Tilt>, LoadError> {
+    let spec = line.trim_start()["TILT".len()..].trim_start();
     let Some(spec) = spec.strip_prefix('=').map(str::trim) else {
-        return Err(at(tilt_line + 1, "'TILT' without '='".into())
+        return Err(at(path, number, "'TILT' without '='".into())
             .with_hint("write TILT=NONE, TILT=INCLUDE or TILT=<file>"));
     };
-    let mut numbers = Numbers::new(path, &lines[tilt_line + 1..], tilt_line + 2);
-    let tilt = match spec {
-        "NONE" => None,
-        "INCLUDE" => Some(read_tilt(&mut numbers)?),
-        file => {
-            let loc = format!("line {}", tilt_line + 1);
-            let tilt_path = files.resolve(path, &loc, file, Path::new(file))?;
-            let cannot = |why: String| {
-                at(
-                    tilt_line + 1,
-                    format!(
-                        "cannot read the tilt file {file} ({}): {why}",
-                        tilt_path.display()
-                    ),
-                )
-                .with_hint("a TILT=<file> is looked up beside the IES file")
-            };
-            let bytes = files
-                .read(path, &loc, &tilt_path, None)
-                .map_err(|e| match e {
-                    ReadError::Missing => cannot("no such file".into()),
-                    ReadError::Io(m) => cannot(m),
-                    ReadError::Budget(e) => e,
-                })?;
-            let tilt_text = latin1(&bytes);
-            let tilt_lines: Vec<&str> = tilt_text.lines().collect();
-            Some(read_tilt(&mut Numbers::new(&tilt_path, &tilt_lines, 1))?)
-        }
-    };
-
-    // 4. The lamp and luminaire numbers.
-    let lamps = numbers.int("the number of lamps", 0, 1_000_000)?;
-    let lumens = numbers.f64("the lumens per lamp")?;
-    let multiplier_line = numbers.line();
-    let multiplier = numbers.f64("the candela multiplier")?;
-    if multiplier <= 0.0 {
-        return Err(at(
-            multiplier_line,
-            format!("the candela multiplier is {multiplier}; a positive number was expected"),
-        ));
+    match spec {
+        "NONE" => Ok(None),
+        "INCLUDE" => read_tilt(numbers).map(Some),
+        file => tilt_file(path, files, file, number).map(Some),
     }
-    let nv = numbers.int("the number of vertical angles", 2, 100_000)? as usize;
-    let nh = numbers.int("the number of horizontal angles", 1, 100_000)? as usize;
-    let type_line = numbers.line();
-    let system = match numbers.int("the photometric type", 1, 3)? {
-        1 => PhotometricSystem::C,
-        2 => PhotometricSystem::B,
-        _ => {
-            return Err(at(type_line, "type A photometry (photometric type 3) is not supported".into())
-                .with_hint("ask the manufacturer for the type C file (interior luminaires) or type B (floodlights); glTF EXT_lights_ies makes type A optional"));
-        }
-    };
-    let metres = match numbers.int("the units type (1 feet, 2 metres)", 1, 2)? {
-        1 => FOOT,
-        _ => 1.0,
-    };
-    let width = numbers.f64("the width of the luminous opening")? * metres;
-    let length = numbers.f64("the length of the luminous opening")? * metres;
-    let height = numbers.f64("the height of the luminous opening")? * metres;
-    let ballast_line = numbers.line();
-    let ballast = numbers.f64("the ballast factor")?;
-    let lamp_factor = numbers.f64("the ballast-lamp photometric factor (future use since 2002)")?;
-    let watts = numbers.f64("the input watts")?;
-    if ballast <= 0.0 {
-        return Err(at(
-            ballast_line,
-            format!("the ballast factor is {ballast}; a positive number was expected"),
-        ));
-    }
+}
 
-    // 5. Angles and candela values.
-    let v_line = numbers.line();
-    let vertical = numbers.list(nv, "a vertical angle")?;
-    increasing(path, v_line, &vertical, "vertical angle")?;
-    let h_line = numbers.line();
-    let horizontal = numbers.list(nh, "a horizontal angle")?;
-    increasing(path, h_line, &horizontal, "horizontal angle")?;
-    let c_line = numbers.line();
-    let raw = numbers.list(nh * nv, "a candela value")?;
-    if let Some(k) = raw.iter().position(|&c| c < 0.0) {
-        return Err(at(
+/// The tilt data of `TILT=<file>` on line `line`, looked up beside the IES file and
+/// read as its other references are; a missing or unreadable one is an error at the
+/// `TILT` line, since the table cannot be tilted without it.
+fn tilt_file(path: &Path, files: &Files, file: &str, line: usize) -> Result<Tilt, LoadError> {
+    let loc = format!("line {line}");
+    let tilt_path = files.resolve(path, &loc, file, Path::new(file))?;
+    let cannot = |why: String| {
+        at(
+            path,
+            line,
+            format!(
+                "cannot read the tilt file {file} ({}): {why}",
+                tilt_path.display()
+            ),
+        )
+        .with_hint("a TILT=<file> is looked up beside the IES file")
+    };
+    let bytes = files
+        .read(path, &loc, &tilt_path, None)
+        .map_err(|e| match e {
+            ReadError::Missing => cannot("no such file".into()),
+            ReadError::Io(m) => cannot(m),
+            ReadError::Budget(e) => e,
+        })?;
+    let tilt_text = latin1(&bytes);
+    let tilt_lines: Vec<&str> = tilt_text.lines().collect();
+    read_tilt(&mut Numbers::new(&tilt_path, &tilt_lines, 1))
+}
+
+/// The numbers between the tilt data and the angles (LM-63-2002 §5.8–5.10): the lamps,
+/// the table's layout and multipliers, and the luminous opening, in metres.
+struct Fields {
+    lamps: i64,
+    /// Lumens per lamp; −1 for absolute photometry.
+    lumens: f64,
+    multiplier: f64,
+    /// Counts of vertical and horizontal angles.
+    nv: usize,
+    nh: usize,
+    system: PhotometricSystem,
+    width: f64,
+    length: f64,
+    height: f64,
+    ballast: f64,
+    /// The ballast-lamp photometric factor, for files before LM-63-2002.
+    lamp_factor: f64,
+    watts: f64,
+}
+
+impl Fields {
+    /// Reads the fields in the file's order, refusing a multiplier or ballast factor
+    /// that is not positive and type A photometry.
+    fn read(path: &Path, numbers: &mut Numbers<'_>) -> Result<Fields, LoadError> {
+        let lamps = numbers.int("the number of lamps", 0, 1_000_000)?;
+        let lumens = numbers.f64("the lumens per lamp")?;
+        let multiplier_line = numbers.line();
+        let multiplier = numbers.f64("the candela multiplier")?;
+        if multiplier <= 0.0 {
+            return Err(at(
+                path,
+                multiplier_line,
+                format!("the candela multiplier is {multiplier}; a positive number was expected"),
+            ));
+        }
+        let nv = numbers.int("the number of vertical angles", 2, 100_000)? as usize;
+        let nh = numbers.int("the number of horizontal angles", 1, 100_000)? as usize;
+        let type_line = numbers.line();
+        let system = match numbers.int("the photometric type", 1, 3)? {
+            1 => PhotometricSystem::C,
+            2 => PhotometricSystem::B,
+            _ => {
+                return Err(at(path, type_line, "type A photometry (photometric type 3) is not supported".into())
+                    .with_hint("ask the manufacturer for the type C file (interior luminaires) or type B (floodlights); glTF EXT_lights_ies makes type A optional"));
+            }
+        };
+        let metres = match numbers.int("the units type (1 feet, 2 metres)", 1, 2)? {
+            1 => FOOT,
+            _ => 1.0,
+        };
+        let width = numbers.f64("the width of the luminous opening")? * metres;
+        let length = numbers.f64("the length of the luminous opening")? * metres;
+        let height = numbers.f64("the height of the luminous opening")? * metres;
+        let ballast_line = numbers.line();
+        let ballast = numbers.f64("the ballast factor")?;
+        let lamp_factor =
+            numbers.f64("the ballast-lamp photometric factor (future use since 2002)")?;
+        let watts = numbers.f64("the input watts")?;
+        if ballast <= 0.0 {
+            return Err(at(
+                path,
+                ballast_line,
+                format!("the ballast factor is {ballast}; a positive number was expected"),
+            ));
+        }
+        Ok(Fields {
+            lamps,
+            lumens,
+            multiplier,
+            nv,
+            nh,
+            system,
+            width,
+            length,
+            height,
+            ballast,
+            lamp_factor,
+            watts,
+        })
+    }
+}
+
+/// The angles and candela values as the file lists them, each with the line it starts
+/// on, for errors.
+struct Measured {
+    vertical: Vec<f64>,
+    v_line: usize,
+    horizontal: Vec<f64>,
+    h_line: usize,
+    /// Plane by plane: `candela[h·nv + v]`.
+    candela: Vec<f64>,
+    c_line: usize,
+}
+
+impl Measured {
+    /// Reads `nv` vertical and `nh` horizontal angles, each list increasing, and their
+    /// candela values, none negative.
+    fn read(
+        path: &Path,
+        numbers: &mut Numbers<'_>,
+        nv: usize,
+        nh: usize,
+    ) -> Result<Measured, LoadError> {
+        let v_line = numbers.line();
+        let vertical = numbers.list(nv, "a vertical angle")?;
+        increasing(path, v_line, &vertical, "vertical angle")?;
+        let h_line = numbers.line();
+        let horizontal = numbers.list(nh, "a horizontal angle")?;
+        increasing(path, h_line, &horizontal, "horizontal angle")?;
+        let c_line = numbers.line();
+        let candela = numbers.list(nh * nv, "a candela value")?;
+        if let Some(k) = candela.iter().position(|&c| c < 0.0) {
+            return Err(at(
+                path,
+                c_line,
+                format!(
+                    "candela value {} is {}; intensities are ≥ 0",
+                    k + 1,
+                    candela[k]
+                ),
+            ));
+        }
+        Ok(Measured {
+            vertical,
+            v_line,
+            horizontal,
+            h_line,
+            candela,
             c_line,
-            format!("candela value {} is {}; intensities are ≥ 0", k + 1, raw[k]),
-        ));
+        })
     }
-    let mut warnings = Vec::new();
-    if numbers.rest() > 0 {
-        warnings.push(format!(
-            "{} numbers follow the {} candela values and were ignored: check the counts of angles",
-            numbers.rest(),
-            nh * nv
-        ));
-    }
+}
 
-    // 6. Symmetry expanded, multipliers applied.
-    let (h_full, v_full) = match system {
+/// The horizontal and vertical angles over the whole sphere, each with the measured
+/// angle it copies: type C planes by the symmetry their range declares (the vertical
+/// angles as measured), type B by lateral symmetry in both.
+type Expanded = (Vec<(f64, usize)>, Vec<(f64, usize)>);
+
+/// The measured angles expanded to the whole sphere ([`Expanded`]); a range no symmetry
+/// explains is an error at the line of its angles.
+fn expand(path: &Path, system: PhotometricSystem, m: &Measured) -> Result<Expanded, LoadError> {
+    let (h_line, v_line) = (m.h_line, m.v_line);
+    let (horizontal, vertical) = (&m.horizontal, &m.vertical);
+    let (nh, nv) = (horizontal.len(), vertical.len());
+    Ok(match system {
         PhotometricSystem::C => {
             let symmetry = Symmetry::of_ies(horizontal[0], horizontal[nh - 1], nh)
-                .map_err(|m| at(h_line, m.to_string()).with_hint(FORMAT_HINT))?;
+                .map_err(|e| at(path, h_line, e.to_string()).with_hint(FORMAT_HINT))?;
             if vertical[0] < 0.0 || vertical[nv - 1] > 180.0 {
                 return Err(at(
+                    path,
                     v_line,
                     format!(
                         "vertical angles from {}° to {}°: type C angles lie within 0° and 180°",
@@ -205,55 +370,44 @@ pub(crate) fn parse_ies_in(
                     ),
                 ));
             }
-            let h = expand_c(&horizontal, symmetry).map_err(|m| at(h_line, m.to_string()))?;
+            let h = expand_c(horizontal, symmetry).map_err(|e| at(path, h_line, e.to_string()))?;
             (h, (0..nv).map(|k| (vertical[k], k)).collect::<Vec<_>>())
         }
         PhotometricSystem::B => (
-            expand_b(&horizontal).map_err(|m| at(h_line, m.to_string()))?,
-            expand_b(&vertical).map_err(|m| at(v_line, m.to_string()))?,
+            expand_b(horizontal).map_err(|e| at(path, h_line, e.to_string()))?,
+            expand_b(vertical).map_err(|e| at(path, v_line, e.to_string()))?,
         ),
-    };
+    })
+}
+
+/// The candela table over the sphere: the measured values copied to the angles the
+/// symmetry adds, times the candela multiplier and the ballast factor, and before
+/// LM-63-2002 the ballast-lamp factor, which later versions leave for future use.
+fn table(
+    path: &Path,
+    format: PhotometryFormat,
+    fields: &Fields,
+    m: &Measured,
+) -> Result<Table, LoadError> {
+    let (h_full, v_full) = expand(path, fields.system, m)?;
     let pre_2002 = matches!(
         format,
         PhotometryFormat::Lm63_1986 | PhotometryFormat::Lm63_1991 | PhotometryFormat::Lm63_1995
     );
-    let scale = multiplier * ballast * if pre_2002 { lamp_factor } else { 1.0 };
-    let raw = &raw;
+    let lamp_factor = if pre_2002 { fields.lamp_factor } else { 1.0 };
+    let scale = fields.multiplier * fields.ballast * lamp_factor;
+    let (raw, nv) = (&m.candela, m.vertical.len());
     let candela: Vec<f64> = h_full
         .iter()
         .flat_map(|&(_, i)| v_full.iter().map(move |&(_, j)| raw[i * nv + j] * scale))
         .collect();
-    let table = Table::new(
-        system,
+    Table::new(
+        fields.system,
         h_full.iter().map(|p| p.0).collect(),
         v_full.iter().map(|p| p.0).collect(),
         candela,
     )
-    .map_err(|m| LoadError::at(path, format!("lines {c_line}–"), m.to_string()))?;
-
-    let (opening, opening_height, shape_warning) =
-        opening(width as f32, length as f32, height as f32);
-    warnings.extend(shape_warning);
-    let mut p = Photometry {
-        file: file_name(path),
-        source: None,
-        format,
-        keywords,
-        lamps: lamps as u32,
-        lumens_per_lamp: (lumens > 0.0).then_some(lumens),
-        stated_flux: None,
-        light_output_ratio: None,
-        watts: (watts > 0.0).then_some(watts),
-        ballast_factor: ballast,
-        opening,
-        opening_height,
-        luminaire: None,
-        tilt,
-        warnings,
-        table,
-    };
-    p.check_flux();
-    Ok(p)
+    .map_err(|e| LoadError::at(path, format!("lines {}–", m.c_line), e.to_string()))
 }
 
 /// The tilt data: lamp-to-luminaire geometry, the number of pairs, the angles and the
