@@ -43,80 +43,8 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
         lines: &lines,
         next: 0,
     };
-    let mut keywords = Vec::new();
-    keywords.push(("Company".to_string(), r.text()?.to_string()));
-    let ityp = r.int("the type indicator Ityp", 0, 3)?;
-    keywords.push(("Ityp".into(), ityp.to_string()));
-    let isym_line = r.next + 1;
-    let isym = r.int("the symmetry indicator Isym", 0, 4)?;
-    let mc = r.int("the number of C-planes Mc", 1, 100_000)? as usize;
-    r.number("the distance between C-planes Dc")?;
-    let ng = r.int("the number of γ angles Ng", 2, 100_000)? as usize;
-    r.number("the distance between γ angles Dg")?;
-    for key in [
-        "ReportNumber",
-        "Luminaire",
-        "LuminaireNumber",
-        "FileName",
-        "DateUser",
-    ] {
-        keywords.push((key.to_string(), r.text()?.to_string()));
-    }
-    let [l, w, h] = [
-        r.number("the luminaire length or diameter (mm)")?,
-        r.number("the luminaire width (mm)")?,
-        r.number("the luminaire height (mm)")?,
-    ]
-    .map(|mm| (mm * 1e-3) as f32);
-    // The luminaire's outline lies as its luminous area does.
-    let luminaire = luminous_area(l, w).0;
-    let length = r.number("the luminous area length or diameter (mm)")? * 1e-3;
-    let width = r.number("the luminous area width (mm)")? * 1e-3;
-    let mut heights = [0.0f64; 4];
-    for (h, plane) in heights.iter_mut().zip(["C0", "C90", "C180", "C270"]) {
-        *h = r.number(&format!("the luminous area height at {plane} (mm)"))? * 1e-3;
-    }
-    r.number("the downward flux fraction (%)")?;
-    let lor_line = r.next + 1;
-    let lor = r.number("the light output ratio (%)")? / 100.0;
-    if !(0.0..=1.0).contains(&lor) {
-        return Err(r.err_at(
-            lor_line,
-            format!(
-                "the light output ratio is {}%; 0 to 100 % was expected",
-                lor * 100.0
-            ),
-        ));
-    }
-    let conversion = r.number("the conversion factor of the intensities")?;
-    r.number("the tilt during measurement")?;
-    let sets = r.int("the number of lamp sets", 1, 100)? as usize;
-    let mut lamps = 0u32;
-    let mut lamp_flux = 0.0;
-    let mut watts = 0.0;
-    for s in 0..sets {
-        let n = r.int("the number of lamps", -100_000, 100_000)?;
-        let kind = r.text()?.to_string();
-        let flux_line = r.next + 1;
-        let flux = r.number("the total luminous flux of the lamps (lm)")?;
-        let cct = r.text()?.to_string();
-        let cri = r.text()?.to_string();
-        let w = r.number("the wattage including ballast (W)")?;
-        if s == 0 {
-            if flux <= 0.0 {
-                return Err(r.err_at(
-                    flux_line,
-                    format!("the lamps' flux is {flux} lm; a positive flux was expected"),
-                ));
-            }
-            lamps = n.unsigned_abs() as u32;
-            lamp_flux = flux;
-            watts = w;
-            keywords.push(("LampType".into(), kind));
-            keywords.push(("ColourTemperature".into(), cct));
-            keywords.push(("ColourRendering".into(), cri));
-        }
-    }
+    let mut header = Header::read(&mut r)?;
+    let lamps = Lamps::read(&mut r, &mut header.keywords)?;
     for k in 0..10 {
         r.number(&format!("direct ratio {} of 10", k + 1))?;
     }
@@ -124,48 +52,10 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     // Angles and intensities, however the lines are broken.
     let first = r.next + 1;
     let mut numbers = Numbers::new(path, &lines[r.next..], first);
-    let c_line = numbers.line();
-    let c_angles = numbers.list(mc, "a C angle")?;
-    increasing(path, c_line, &c_angles, "C angle")?;
-    let g_line = numbers.line();
-    let gammas = numbers.list(ng, "a γ angle")?;
-    increasing(path, g_line, &gammas, "γ angle")?;
-    if gammas[0] < 0.0 || gammas[ng - 1] > 180.0 {
-        return Err(r.err_at(
-            g_line,
-            format!(
-                "γ angles from {}° to {}°; they lie within 0° and 180°",
-                gammas[0],
-                gammas[ng - 1]
-            ),
-        ));
-    }
-    let (symmetry, planes): (Symmetry, &[f64]) = match isym {
-        0 => (Symmetry::None, &c_angles),
-        1 => (Symmetry::Rotational, &c_angles[..1]),
-        2 => (Symmetry::AboutC0, &c_angles[..(mc / 2 + 1).min(mc)]),
-        3 => (
-            Symmetry::AboutC90,
-            &c_angles[(mc / 4).min(mc - 1)..(3 * mc / 4 + 1).min(mc)],
-        ),
-        _ => (Symmetry::Quadrant, &c_angles[..(mc / 4 + 1).min(mc)]),
-    };
-    let expected_range = match symmetry {
-        Symmetry::AboutC0 => Some((0.0, 180.0)),
-        Symmetry::AboutC90 => Some((90.0, 270.0)),
-        Symmetry::Quadrant => Some((0.0, 90.0)),
-        _ => None,
-    };
-    if let Some((lo, hi)) = expected_range {
-        let (a, b) = (planes[0], planes[planes.len() - 1]);
-        if (a - lo).abs() > 1e-6 || (b - hi).abs() > 1e-6 {
-            return Err(r
-                .err_at(c_line, format!("Isym {isym} needs the C-planes from {lo}° to {hi}° among the Mc = {mc} angles, which give {a}° to {b}°"))
-                .with_hint(FORMAT_HINT));
-        }
-    }
+    let angles = Angles::read(&r, &mut numbers, &header)?;
+    let (symmetry, planes) = angles.measured_planes(&r, &header)?;
     let i_line = numbers.line();
-    let raw = numbers.list(planes.len() * ng, "an intensity (cd/klm)")?;
+    let raw = numbers.list(planes.len() * header.ng, "an intensity (cd/klm)")?;
     if let Some(k) = raw.iter().position(|&c| c < 0.0) {
         return Err(r.err_at(
             i_line,
@@ -175,14 +65,19 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     let mut warnings = Vec::new();
     if numbers.rest() > 0 {
         warnings.push(format!(
-            "{} numbers follow the {} intensities that Isym {isym} and Mc = {mc} call for, and were ignored",
+            "{} numbers follow the {} intensities that Isym {} and Mc = {} call for, and were ignored",
             numbers.rest(),
-            raw.len()
+            raw.len(),
+            header.isym,
+            header.mc
         ));
     }
-    let h_full = expand_c(planes, symmetry)
-        .map_err(|m| r.err_at(c_line, m.to_string()).with_hint(FORMAT_HINT))?;
-    let scale = conversion * lamp_flux / 1000.0;
+    let h_full = expand_c(planes, symmetry).map_err(|e| {
+        r.err_at(angles.c_line, e.to_string())
+            .with_hint(FORMAT_HINT)
+    })?;
+    let scale = header.conversion * lamps.flux / 1000.0;
+    let ng = header.ng;
     let raw = &raw;
     let candela: Vec<f64> = h_full
         .iter()
@@ -191,35 +86,252 @@ pub fn parse_ldt(bytes: &[u8], path: &Path) -> Result<Photometry, LoadError> {
     let table = Table::new(
         PhotometricSystem::C,
         h_full.iter().map(|p| p.0).collect(),
-        gammas,
+        angles.gammas,
         candela,
     )
-    .map_err(|m| {
-        r.err_at(i_line, m.to_string())
-            .with_hint(format!("checked against Isym on line {isym_line}"))
+    .map_err(|e| {
+        r.err_at(i_line, e.to_string())
+            .with_hint(format!("checked against Isym on line {}", header.isym_line))
     })?;
-    let (opening, shape) = luminous_area(length as f32, width as f32);
+    let (opening, shape) = luminous_area(header.length as f32, header.width as f32);
     warnings.extend(shape);
     let mut p = Photometry {
         file: file_name(path),
         source: None,
         format: PhotometryFormat::Eulumdat,
-        keywords,
-        lamps,
-        lumens_per_lamp: (lamps > 0).then(|| lamp_flux / lamps as f64),
-        stated_flux: Some(lamp_flux * lor),
-        light_output_ratio: Some(lor),
-        watts: (watts > 0.0).then_some(watts),
+        keywords: header.keywords,
+        lamps: lamps.count,
+        lumens_per_lamp: (lamps.count > 0).then(|| lamps.flux / lamps.count as f64),
+        stated_flux: Some(lamps.flux * header.lor),
+        light_output_ratio: Some(header.lor),
+        watts: (lamps.watts > 0.0).then_some(lamps.watts),
         ballast_factor: 1.0,
         opening,
-        opening_height: heights.iter().copied().fold(0.0, f64::max) as f32,
-        luminaire: Some((luminaire, h)).filter(|(o, _)| *o != Opening::Point),
+        opening_height: header.heights.iter().copied().fold(0.0, f64::max) as f32,
+        luminaire: Some((header.luminaire, header.luminaire_height))
+            .filter(|(o, _)| *o != Opening::Point),
         tilt: None,
         warnings,
         table,
     };
     p.check_flux();
     Ok(p)
+}
+
+/// The header's fields before the lamp sets (lines 1–25): the text fields as keywords,
+/// the table's layout, the luminaire's and its luminous area's dimensions in metres,
+/// the light output ratio and the conversion factor.
+struct Header {
+    keywords: Vec<(String, String)>,
+    /// The symmetry indicator Isym and its line, which a table that does not add up
+    /// is checked against.
+    isym: i64,
+    isym_line: usize,
+    /// The number of C-planes Mc and of γ angles Ng.
+    mc: usize,
+    ng: usize,
+    /// The luminaire's outline and height.
+    luminaire: Opening,
+    luminaire_height: f32,
+    /// The luminous area's length (or diameter) and width.
+    length: f64,
+    width: f64,
+    /// The luminous area's heights at C0, C90, C180 and C270.
+    heights: [f64; 4],
+    /// The light output ratio, a fraction.
+    lor: f64,
+    conversion: f64,
+}
+
+impl Header {
+    /// Reads lines 1–25, refusing a light output ratio outside 0–100 %.
+    fn read(r: &mut Lines<'_>) -> Result<Header, LoadError> {
+        let mut keywords = Vec::new();
+        keywords.push(("Company".to_string(), r.text()?.to_string()));
+        let ityp = r.int("the type indicator Ityp", 0, 3)?;
+        keywords.push(("Ityp".into(), ityp.to_string()));
+        let isym_line = r.next + 1;
+        let isym = r.int("the symmetry indicator Isym", 0, 4)?;
+        let mc = r.int("the number of C-planes Mc", 1, 100_000)? as usize;
+        r.number("the distance between C-planes Dc")?;
+        let ng = r.int("the number of γ angles Ng", 2, 100_000)? as usize;
+        r.number("the distance between γ angles Dg")?;
+        for key in [
+            "ReportNumber",
+            "Luminaire",
+            "LuminaireNumber",
+            "FileName",
+            "DateUser",
+        ] {
+            keywords.push((key.to_string(), r.text()?.to_string()));
+        }
+        let [l, w, h] = [
+            r.number("the luminaire length or diameter (mm)")?,
+            r.number("the luminaire width (mm)")?,
+            r.number("the luminaire height (mm)")?,
+        ]
+        .map(|mm| (mm * 1e-3) as f32);
+        // The luminaire's outline lies as its luminous area does.
+        let luminaire = luminous_area(l, w).0;
+        let length = r.number("the luminous area length or diameter (mm)")? * 1e-3;
+        let width = r.number("the luminous area width (mm)")? * 1e-3;
+        let mut heights = [0.0f64; 4];
+        for (h, plane) in heights.iter_mut().zip(["C0", "C90", "C180", "C270"]) {
+            *h = r.number(&format!("the luminous area height at {plane} (mm)"))? * 1e-3;
+        }
+        r.number("the downward flux fraction (%)")?;
+        let lor_line = r.next + 1;
+        let lor = r.number("the light output ratio (%)")? / 100.0;
+        if !(0.0..=1.0).contains(&lor) {
+            return Err(r.err_at(
+                lor_line,
+                format!(
+                    "the light output ratio is {}%; 0 to 100 % was expected",
+                    lor * 100.0
+                ),
+            ));
+        }
+        let conversion = r.number("the conversion factor of the intensities")?;
+        r.number("the tilt during measurement")?;
+        Ok(Header {
+            keywords,
+            isym,
+            isym_line,
+            mc,
+            ng,
+            luminaire,
+            luminaire_height: h,
+            length,
+            width,
+            heights,
+            lor,
+            conversion,
+        })
+    }
+}
+
+/// The first lamp set, the one the intensities were measured with.
+struct Lamps {
+    count: u32,
+    /// The total luminous flux of its lamps, lm.
+    flux: f64,
+    watts: f64,
+}
+
+impl Lamps {
+    /// Reads the number of lamp sets (line 26) and every set, keeping the first; its
+    /// type, colour temperature and colour rendering go to `keywords`. Its flux must be
+    /// positive, since the intensities are per 1000 lm of it.
+    fn read(r: &mut Lines<'_>, keywords: &mut Vec<(String, String)>) -> Result<Lamps, LoadError> {
+        let sets = r.int("the number of lamp sets", 1, 100)? as usize;
+        let mut first = Lamps {
+            count: 0,
+            flux: 0.0,
+            watts: 0.0,
+        };
+        for s in 0..sets {
+            let n = r.int("the number of lamps", -100_000, 100_000)?;
+            let kind = r.text()?.to_string();
+            let flux_line = r.next + 1;
+            let flux = r.number("the total luminous flux of the lamps (lm)")?;
+            let cct = r.text()?.to_string();
+            let cri = r.text()?.to_string();
+            let w = r.number("the wattage including ballast (W)")?;
+            if s == 0 {
+                if flux <= 0.0 {
+                    return Err(r.err_at(
+                        flux_line,
+                        format!("the lamps' flux is {flux} lm; a positive flux was expected"),
+                    ));
+                }
+                first = Lamps {
+                    count: n.unsigned_abs() as u32,
+                    flux,
+                    watts: w,
+                };
+                keywords.push(("LampType".into(), kind));
+                keywords.push(("ColourTemperature".into(), cct));
+                keywords.push(("ColourRendering".into(), cri));
+            }
+        }
+        Ok(first)
+    }
+}
+
+/// The C angles and γ angles as listed, with the line the C angles start on.
+struct Angles {
+    c_angles: Vec<f64>,
+    c_line: usize,
+    gammas: Vec<f64>,
+}
+
+impl Angles {
+    /// Reads the Mc C angles and the Ng γ angles, each list increasing and the γ
+    /// angles within 0°–180°.
+    fn read(
+        r: &Lines<'_>,
+        numbers: &mut Numbers<'_>,
+        header: &Header,
+    ) -> Result<Angles, LoadError> {
+        let path = r.path;
+        let c_line = numbers.line();
+        let c_angles = numbers.list(header.mc, "a C angle")?;
+        increasing(path, c_line, &c_angles, "C angle")?;
+        let g_line = numbers.line();
+        let gammas = numbers.list(header.ng, "a γ angle")?;
+        increasing(path, g_line, &gammas, "γ angle")?;
+        let last = gammas[header.ng - 1];
+        if gammas[0] < 0.0 || last > 180.0 {
+            return Err(r.err_at(
+                g_line,
+                format!(
+                    "γ angles from {}° to {last}°; they lie within 0° and 180°",
+                    gammas[0]
+                ),
+            ));
+        }
+        Ok(Angles {
+            c_angles,
+            c_line,
+            gammas,
+        })
+    }
+
+    /// The symmetry Isym declares and the C-planes it leaves measured, which must run
+    /// over the range the symmetry mirrors (C0–C180, C90–C270 or C0–C90): a file whose
+    /// Mc angles do not is refused rather than mirrored wrongly.
+    fn measured_planes(
+        &self,
+        r: &Lines<'_>,
+        header: &Header,
+    ) -> Result<(Symmetry, &[f64]), LoadError> {
+        let (isym, mc, c_angles) = (header.isym, header.mc, &self.c_angles);
+        let (symmetry, planes): (Symmetry, &[f64]) = match isym {
+            0 => (Symmetry::None, c_angles),
+            1 => (Symmetry::Rotational, &c_angles[..1]),
+            2 => (Symmetry::AboutC0, &c_angles[..(mc / 2 + 1).min(mc)]),
+            3 => (
+                Symmetry::AboutC90,
+                &c_angles[(mc / 4).min(mc - 1)..(3 * mc / 4 + 1).min(mc)],
+            ),
+            _ => (Symmetry::Quadrant, &c_angles[..(mc / 4 + 1).min(mc)]),
+        };
+        let expected_range = match symmetry {
+            Symmetry::AboutC0 => Some((0.0, 180.0)),
+            Symmetry::AboutC90 => Some((90.0, 270.0)),
+            Symmetry::Quadrant => Some((0.0, 90.0)),
+            _ => None,
+        };
+        if let Some((lo, hi)) = expected_range {
+            let (a, b) = (planes[0], planes[planes.len() - 1]);
+            if (a - lo).abs() > 1e-6 || (b - hi).abs() > 1e-6 {
+                return Err(r
+                    .err_at(self.c_line, format!("Isym {isym} needs the C-planes from {lo}° to {hi}° among the Mc = {mc} angles, which give {a}° to {b}°"))
+                    .with_hint(FORMAT_HINT));
+            }
+        }
+        Ok((symmetry, planes))
+    }
 }
 
 /// The header's lines, one field each.
