@@ -406,7 +406,12 @@ impl Feasibility {
 
     /// The verdict of an estimate `mean ± z·σ` (z one-sided) against `bound`.
     pub fn of(mean: f64, std_error: f64, z: f64, bound: &Bound) -> Feasibility {
-        let (low, high) = (mean - z * std_error, mean + z * std_error);
+        let estimate = invlight_stats::Estimate {
+            mean,
+            std_error,
+            samples: 0,
+        };
+        let invlight_stats::Interval { low, high } = estimate.interval(z);
         let limit = bound.limit();
         let (holds, fails) = if bound.is_lower() {
             (low >= limit, high < limit)

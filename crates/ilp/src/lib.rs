@@ -106,5 +106,5 @@ pub use space::{
 };
 pub use vns::{
     Evaluate, Evaluation, Observer, Outcome, Record, Search, SearchError, Sense, Settings,
-    Standing, Strategy, Verdict, early_look_z, looks,
+    Standing, Strategy, UnknownStrategy, Verdict, early_look_z, looks,
 };
