@@ -77,14 +77,7 @@ pub struct SolveArgs {
 /// Runs `invlight solve`.
 pub fn run(args: SolveArgs) -> Result<ExitCode> {
     // 1. The problem, with command-line overrides, and its scene bound to it.
-    let mut problem = Problem::read(&args.problem)?;
-    crate::warn(&problem.warnings);
-    problem.photons = args.trace.photons(problem.photons)?;
-    problem.confidence = args.trace.confidence.unwrap_or(problem.confidence);
-    problem.max_iterations = args.iterations.unwrap_or(problem.max_iterations);
-    problem.strategy = args.strategy.unwrap_or(problem.strategy);
-    problem.seed = args.trace.seed.unwrap_or(problem.seed);
-    problem.max_bounces = args.trace.max_bounces.or(problem.max_bounces);
+    let mut problem = problem_of(&args)?;
     let max_bounces = problem.bounces();
     let mut scene = args.load.load_problem(&mut problem)?;
     scene.require_light(&problem.scene.path)?;
@@ -126,39 +119,7 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
     let pool = args.trace.pool()?;
     let mut eval =
         PhotonEvaluator::new(&binding, scene, problem.seed, max_bounces, problem.photons);
-    STOP.store(false, Ordering::Relaxed);
-    let mut report_flags = args.report.flags();
-    report_flags.extend(args.grid.flags());
-    *finishing::FINISHING
-        .lock()
-        .unwrap_or_else(|e| e.into_inner()) = Some(Finishing {
-        phase: Phase::Searching,
-        problem: args.problem.clone(),
-        dir: dir.clone(),
-        pictures: 0,
-        report: !args.no_report,
-        report_flags,
-        scene_flags: args.load.given(),
-    });
-    let _ = ctrlc::set_handler(|| {
-        let again = STOP.swap(true, Ordering::Relaxed);
-        let Some(state) = finishing::current() else {
-            if again {
-                std::process::exit(130);
-            }
-            return;
-        };
-        if again {
-            eprintln!(
-                "\n{}",
-                state.second_ctrl_c(&finishing::files_in(&state.dir))
-            );
-            std::process::exit(130);
-        }
-        if let Some(note) = state.first_ctrl_c() {
-            eprintln!("\n{note}");
-        }
-    });
+    watch_interrupts(&args, &dir);
     let bar = Progress::new(problem.max_iterations, "iterations", "this search");
     bar.set(search.iteration());
     let mut reporter = Recorder::new(output, records, &STOP, |p| bar.show(p));
@@ -226,6 +187,60 @@ pub fn run(args: SolveArgs) -> Result<ExitCode> {
         Outcome::Interrupted => ExitCode::from(130),
         _ => ExitCode::SUCCESS,
     })
+}
+
+/// The problem file read, its warnings printed, and the command line's overrides put on
+/// it (`--photons`, `--confidence`, `--iterations`, `--strategy`, `--seed`,
+/// `--max-bounces`).
+fn problem_of(args: &SolveArgs) -> Result<Problem> {
+    let mut problem = Problem::read(&args.problem)?;
+    crate::warn(&problem.warnings);
+    problem.photons = args.trace.photons(problem.photons)?;
+    problem.confidence = args.trace.confidence.unwrap_or(problem.confidence);
+    problem.max_iterations = args.iterations.unwrap_or(problem.max_iterations);
+    problem.strategy = args.strategy.unwrap_or(problem.strategy);
+    problem.seed = args.trace.seed.unwrap_or(problem.seed);
+    problem.max_bounces = args.trace.max_bounces.or(problem.max_bounces);
+    Ok(problem)
+}
+
+/// Clears the stop flag, records what a Ctrl-C would leave behind, and installs the
+/// handler: the first Ctrl-C stops before the next candidate, a second exits at once
+/// saying which files are whole and how to finish them.
+fn watch_interrupts(args: &SolveArgs, dir: &std::path::Path) {
+    STOP.store(false, Ordering::Relaxed);
+    let mut report_flags = args.report.flags();
+    report_flags.extend(args.grid.flags());
+    *finishing::FINISHING
+        .lock()
+        .unwrap_or_else(|e| e.into_inner()) = Some(Finishing {
+        phase: Phase::Searching,
+        problem: args.problem.clone(),
+        dir: dir.to_path_buf(),
+        pictures: 0,
+        report: !args.no_report,
+        report_flags,
+        scene_flags: args.load.given(),
+    });
+    let _ = ctrlc::set_handler(|| {
+        let again = STOP.swap(true, Ordering::Relaxed);
+        let Some(state) = finishing::current() else {
+            if again {
+                std::process::exit(130);
+            }
+            return;
+        };
+        if again {
+            eprintln!(
+                "\n{}",
+                state.second_ctrl_c(&finishing::files_in(&state.dir))
+            );
+            std::process::exit(130);
+        }
+        if let Some(note) = state.first_ctrl_c() {
+            eprintln!("\n{note}");
+        }
+    });
 }
 
 #[cfg(test)]

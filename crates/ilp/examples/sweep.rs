@@ -22,7 +22,9 @@
 //! standard error).
 
 use glam::{DVec2, DVec3};
-use invlight_ilp::{Binding, Domain, Evaluate, PhotonEvaluator, Problem, VariableKind};
+use invlight_ilp::{
+    Binding, Domain, Evaluate, Parallelogram, PhotonEvaluator, Problem, VariableKind,
+};
 use invlight_photon::TraceSettings;
 use invlight_scene::{LoadOptions, Scene, SurfaceId};
 use invlight_stats::SplitMix64;
@@ -127,6 +129,15 @@ fn bounds(points: &[DVec3]) -> (DVec3, DVec3) {
 }
 
 /// One traced cell.
+/// Where a cell of the sweep puts the light: its centre, its (s, t) on the placement
+/// rectangle, and whether part of it leaves the rectangle.
+struct Place {
+    centre: DVec2,
+    s: f64,
+    t: f64,
+    clipped: bool,
+}
+
 struct Cell {
     centre: DVec2,
     p: DVec3,
@@ -218,53 +229,20 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
     let offset = panel_centre - rect.a;
     let seed = args.seed.unwrap_or(problem.seed);
     if !args.json {
-        println!(
-            "{}: '{id}' ({:.2} m × {:.2} m, centre = P + ({:.3}, {:.3}, {:.3})) over '{}' \
-             (centre ({:.3}, {:.3}, {:.3}), half-extent ({:.3}, {:.3}, {:.3}))",
-            args.problem.display(),
-            2.0 * panel_half.x,
-            2.0 * panel_half.y,
-            offset.x,
-            offset.y,
-            offset.z,
-            goal.name,
-            target.x,
-            target.y,
-            target.z,
-            target_half.x,
-            target_half.y,
-            target_half.z,
-        );
-        println!(
-            "{} photons a cell, at most {} bounces, seeds {seed}…; `*`: the light pokes out of its rectangle",
-            args.photons, args.bounces
+        print_header(
+            args,
+            id,
+            (offset, panel_half),
+            (&goal.name, target, target_half),
+            seed,
         );
     }
 
     // The grid, checked whole before anything is traced.
     let n = 2 * args.half + 1;
-    let (gx, gy) = args.around.unwrap_or((target.x, target.y));
-    let mut grid = Vec::new();
-    for j in (-args.half..=args.half).rev() {
-        for i in -args.half..=args.half {
-            let centre = DVec2::new(gx + i as f64 * args.step, gy + j as f64 * args.step);
-            let p = DVec3::new(centre.x, centre.y, panel_centre.z) - offset;
-            let (s, t) = rect.coords(p);
-            if !(0.0..=1.0).contains(&s) || !(0.0..=1.0).contains(&t) {
-                return Err(format!(
-                    "cell ({:.2}, {:.2}) puts P outside the placement rectangle; use a smaller --half or --step",
-                    centre.x, centre.y
-                )
-                .into());
-            }
-            let delta = p - rect.a;
-            let clipped = panel.iter().any(|&v| {
-                let (s, t) = rect.coords(v + delta);
-                !(-1e-6..=1.0 + 1e-6).contains(&s) || !(-1e-6..=1.0 + 1e-6).contains(&t)
-            });
-            grid.push((centre, s, t, clipped));
-        }
-    }
+    let around = args.around.unwrap_or((target.x, target.y));
+    let lift = DVec3::new(0.0, 0.0, panel_centre.z) - offset;
+    let grid = lay_grid(args, &rect, &panel, lift, around)?;
 
     // Every other variable stays as authored; the light's (s, t) follow the coordinates
     // of the variables before it.
@@ -274,7 +252,16 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
         .sum();
     let start = Instant::now();
     let mut cells = Vec::new();
-    for (index, (centre, s, t, clipped)) in grid.into_iter().enumerate() {
+    for (
+        index,
+        Place {
+            centre,
+            s,
+            t,
+            clipped,
+        },
+    ) in grid.into_iter().enumerate()
+    {
         let mut config = binding.initial.clone();
         config.coords[first] = s;
         config.coords[first + 1] = t;
@@ -310,35 +297,102 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
             photons_per_cell: args.photons,
             max_bounces: args.bounces,
             seconds,
-            cells: cells
-                .iter()
-                .map(|c| SweepCell {
-                    centre: c.centre.to_array(),
-                    p: c.p.to_array(),
-                    mean: c.mean,
-                    std_error: c.std_error,
-                    clipped: c.clipped,
-                })
-                .collect(),
-            quadratic_maximum: fit.map(|f| SweepFit {
-                centre: f.at.to_array(),
-                std_error: f.spread.to_array(),
-                chi2_per_dof: f.chi2_per_dof,
-            }),
+            cells: cells.iter().map(Cell::swept).collect(),
+            quadratic_maximum: fit.map(|f| f.swept()),
         };
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
     }
 
-    // The table: rows from +y (top) to −y, columns from −x to +x, as seen from above;
-    // the light's centre, with its offset from the target's centre in brackets.
+    print_table(&cells, n as usize, target, fit, whole.len());
+    println!("{} cells in {seconds:.1} s", cells.len());
+    Ok(())
+}
+
+/// What the sweep moves over what, printed above the table: the light, its size and
+/// offset from P, the goal's surface and its extent, the photons and seeds.
+fn print_header(
+    args: &Args,
+    id: &str,
+    (offset, panel_half): (DVec3, DVec3),
+    (goal, target, target_half): (&str, DVec3, DVec3),
+    seed: u64,
+) {
+    println!(
+        "{}: '{id}' ({:.2} m × {:.2} m, centre = P + ({:.3}, {:.3}, {:.3})) over '{}' \
+         (centre ({:.3}, {:.3}, {:.3}), half-extent ({:.3}, {:.3}, {:.3}))",
+        args.problem.display(),
+        2.0 * panel_half.x,
+        2.0 * panel_half.y,
+        offset.x,
+        offset.y,
+        offset.z,
+        goal,
+        target.x,
+        target.y,
+        target.z,
+        target_half.x,
+        target_half.y,
+        target_half.z,
+    );
+    println!(
+        "{} photons a cell, at most {} bounces, seeds {seed}…; `*`: the light pokes out of its rectangle",
+        args.photons, args.bounces
+    );
+}
+
+/// The cells of the sweep, rows from +y to −y: each the light's centre around `(gx,
+/// gy)`, its (s, t) on the placement rectangle `rect`, and whether part of the light's
+/// `panel` leaves the rectangle there; `lift` takes a centre at height 0 to P (the
+/// panel's height less the light's offset from A). Refused whole when a cell puts P
+/// outside the rectangle.
+fn lay_grid(
+    args: &Args,
+    rect: &Parallelogram,
+    panel: &[DVec3],
+    lift: DVec3,
+    (gx, gy): (f64, f64),
+) -> Result<Vec<Place>, Box<dyn Error>> {
+    let mut grid = Vec::new();
+    for j in (-args.half..=args.half).rev() {
+        for i in -args.half..=args.half {
+            let centre = DVec2::new(gx + i as f64 * args.step, gy + j as f64 * args.step);
+            let p = DVec3::new(centre.x, centre.y, 0.0) + lift;
+            let (s, t) = rect.coords(p);
+            if !(0.0..=1.0).contains(&s) || !(0.0..=1.0).contains(&t) {
+                return Err(format!(
+                    "cell ({:.2}, {:.2}) puts P outside the placement rectangle; use a smaller --half or --step",
+                    centre.x, centre.y
+                )
+                .into());
+            }
+            let delta = p - rect.a;
+            let clipped = panel.iter().any(|&v| {
+                let (s, t) = rect.coords(v + delta);
+                !(-1e-6..=1.0 + 1e-6).contains(&s) || !(-1e-6..=1.0 + 1e-6).contains(&t)
+            });
+            grid.push(Place {
+                centre,
+                s,
+                t,
+                clipped,
+            });
+        }
+    }
+    Ok(grid)
+}
+
+/// The sweep as a table: rows from +y (top) to −y, columns from −x to +x, as seen from
+/// above; each cell the light's centre with its offset from the target's centre, then
+/// the best cell and the quadratic's maximum over the `whole` cells it was fitted to.
+fn print_table(cells: &[Cell], n: usize, target: DVec3, fit: Option<Fit>, whole: usize) {
     print!("{:>14} |", "y \\ x");
-    for c in &cells[..n as usize] {
+    for c in &cells[..n] {
         let x = format!("{:.2} ({:+.2})", c.centre.x, c.centre.x - target.x);
         print!(" {x:>16}");
     }
     println!();
-    for row in cells.chunks(n as usize) {
+    for row in cells.chunks(n) {
         let y = format!(
             "{:.2} ({:+.2})",
             row[0].centre.y,
@@ -369,7 +423,7 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
     match fit {
         Some(f) => println!(
             "quadratic fit to the {} unmarked cells: maximum at ({:.3} ± {:.3}, {:.3} ± {:.3}), offset ({:+.3}, {:+.3}) m from the target's centre; χ²/dof {:.2}",
-            whole.len(),
+            whole,
             f.at.x,
             f.spread.x,
             f.at.y,
@@ -380,8 +434,30 @@ fn run(args: &Args) -> Result<(), Box<dyn Error>> {
         ),
         None => println!("quadratic fit: no maximum (the surface is not concave over the grid)"),
     }
-    println!("{} cells in {seconds:.1} s", cells.len());
-    Ok(())
+}
+
+impl Cell {
+    /// The cell as `--json` writes it.
+    fn swept(&self) -> SweepCell {
+        SweepCell {
+            centre: self.centre.to_array(),
+            p: self.p.to_array(),
+            mean: self.mean,
+            std_error: self.std_error,
+            clipped: self.clipped,
+        }
+    }
+}
+
+impl Fit {
+    /// The fit as `--json` writes it.
+    fn swept(&self) -> SweepFit {
+        SweepFit {
+            centre: self.at.to_array(),
+            std_error: self.spread.to_array(),
+            chi2_per_dof: self.chi2_per_dof,
+        }
+    }
 }
 
 /// The maximum of a weighted least-squares quadratic through the cells.

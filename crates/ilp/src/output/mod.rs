@@ -15,6 +15,7 @@ mod recorder;
 mod result;
 mod run;
 mod solutions;
+mod table;
 
 pub use lock::FolderLock;
 pub use recorder::{Progress, Recorder};
