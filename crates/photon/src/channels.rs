@@ -29,12 +29,24 @@ pub enum Side {
     Both,
 }
 
+/// A `--side` that names no side: the text given.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SideParseError(pub String);
+
+impl std::fmt::Display for SideParseError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "'{}': expected front, back or both", self.0)
+    }
+}
+
+impl std::error::Error for SideParseError {}
+
 impl std::str::FromStr for Side {
-    type Err = String;
+    type Err = SideParseError;
 
     /// The spelling of `--side` and of a problem file's `side`: `front`, `back` or `both`.
-    fn from_str(s: &str) -> Result<Side, String> {
-        Side::parse(s).ok_or_else(|| format!("'{s}': expected front, back or both"))
+    fn from_str(s: &str) -> Result<Side, SideParseError> {
+        Side::parse(s).ok_or_else(|| SideParseError(s.to_string()))
     }
 }
 

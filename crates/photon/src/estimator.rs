@@ -32,14 +32,30 @@ pub fn photons_traced(photons: u64) -> Option<u64> {
         .map(|n| n.max(MIN_PHOTONS))
 }
 
-/// `photons` as a count to ask for: positive, and small enough to round up to whole
-/// groups ([`photons_traced`]); otherwise what is expected, after the count.
-pub fn photon_count(photons: u64) -> Result<u64, String> {
-    if photons == 0 || photons_traced(photons).is_none() {
-        return Err(format!(
-            "{photons}: expected a positive count below {}",
+/// A photon count no measurement can trace: 0, or too large to round up to whole
+/// groups.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PhotonCountError(pub u64);
+
+impl std::fmt::Display for PhotonCountError {
+    /// What is expected, after the count.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: expected a positive count below {}",
+            self.0,
             u64::MAX - 63
-        ));
+        )
+    }
+}
+
+impl std::error::Error for PhotonCountError {}
+
+/// `photons` as a count to ask for: positive, and small enough to round up to whole
+/// groups ([`photons_traced`]).
+pub fn photon_count(photons: u64) -> Result<u64, PhotonCountError> {
+    if photons == 0 || photons_traced(photons).is_none() {
+        return Err(PhotonCountError(photons));
     }
     Ok(photons)
 }
@@ -53,7 +69,12 @@ mod tests {
         assert_eq!(photons_traced(1), Some(MIN_PHOTONS));
         assert_eq!(photons_traced(100_001), Some(100_032));
         assert_eq!(photon_count(1), Ok(1));
-        assert!(photon_count(0).unwrap_err().contains("positive"));
+        assert!(
+            photon_count(0)
+                .unwrap_err()
+                .to_string()
+                .contains("positive")
+        );
         assert!(photon_count(u64::MAX - 62).is_err());
         assert_eq!(photon_count(u64::MAX - 63), Ok(u64::MAX - 63));
         assert_eq!(photons_traced(2_000_000), Some(2_000_000));

@@ -78,13 +78,15 @@ mod sampling;
 mod tally;
 
 pub use cells::{GridMeasurement, Uniformity};
-pub use channels::{Components, Side};
+pub use channels::{Components, Side, SideParseError};
 pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
 pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shared};
 pub use connect::{Connection, Departure, Lobe, SOLID_ANGLE_TRIANGLES, SolidAngles, Targets};
 pub use direct::OPENING_SAMPLES;
 pub use emit::{EmissiveTriangle, EmitSample, Emitters, SourceOrigin, emissive_triangles};
-pub use estimator::{GROUP, MIN_GROUPS, MIN_PHOTONS, photon_count, photons_traced};
+pub use estimator::{
+    GROUP, MIN_GROUPS, MIN_PHOTONS, PhotonCountError, photon_count, photons_traced,
+};
 pub use grid::{GridError, MAX_CELLS, SurfaceGrid, en12464_rule, en12464_spacing};
 pub use measure::{
     Estimator, GridRequest, GridValues, Measurement, Request, measure, measure_across,
