@@ -4,8 +4,8 @@
 use invlight_cluster::Local;
 use invlight_photon::{
     BLOCK_MEMORY, CHUNK, Cluster, Components, Departure, Emitters, Estimator, GridRequest,
-    GridValues, Measurement, Pack, PathVisitor, Request, Side, SurfaceGrid, TraceSettings,
-    measure_across, measure_more, measure_with, trace_chunks, trace_shared,
+    GridValues, Measurement, Pack, PathVisitor, PhotonTrace, Request, Side, SurfaceGrid,
+    TraceSettings, measure_across, measure_more, measure_with, trace_chunks, trace_shared,
 };
 use invlight_scene::{Light, LightKind, Mat4, Material, Mesh, Rgb, Scene, Vec3};
 use invlight_trace::{Accel, Interaction};
@@ -245,11 +245,14 @@ fn chunks_reach_the_fold_in_chunk_order_over_many_exchanges() {
         ..TraceSettings::default()
     };
     let mut alone = Vec::new();
+    let trace = PhotonTrace {
+        scene: &scene,
+        accel: &accel,
+        emitters: &emitters,
+        settings: &settings,
+    };
     let alone_rays = trace_chunks(
-        &scene,
-        &accel,
-        &emitters,
-        &settings,
+        trace,
         Large::default,
         |v| alone.push((v.arrivals, v.lumens.to_bits(), v.groups)),
         None,
@@ -266,10 +269,7 @@ fn chunks_reach_the_fold_in_chunk_order_over_many_exchanges() {
                 }
             };
             let rays = trace_shared(
-                &scene,
-                &accel,
-                &emitters,
-                &settings,
+                trace,
                 Large::default,
                 |v| seen.push((v.arrivals, v.lumens.to_bits(), v.groups)),
                 Some(&report),

@@ -66,51 +66,50 @@ pub const BLOCK: u64 = 256;
 /// (fine illuminance grids) has fewer chunks, though never fewer than the threads.
 pub const BLOCK_MEMORY: usize = 256 << 20;
 
-/// Traces `settings.photons` photons from `emitters`: each chunk gets a visitor from
-/// `new_visitor`, which sees its photons' arrivals and, after each stratified group of
-/// photons, [`PathVisitor::end_group`]; `fold` then receives the chunks' visitors in
-/// chunk order. `progress` is called from worker threads with the photons traced so far.
-/// Returns the rays cast (none when the scene has no light).
+/// What a trace traces: the photons `settings` asks for, leaving `emitters` into
+/// `scene`, whose rays `accel` casts. Every driver of a trace ([`trace_chunks`],
+/// [`crate::trace_shared`]) takes these together, as the photons of a chunk need them all.
+#[derive(Clone, Copy)]
+pub struct PhotonTrace<'a> {
+    /// The scene the photons fly through.
+    pub scene: &'a Scene,
+    /// Its ray accelerator.
+    pub accel: &'a Accel,
+    /// The lights the photons leave.
+    pub emitters: &'a Emitters,
+    /// How many photons, with which seed and bounce cap.
+    pub settings: &'a TraceSettings,
+}
+
+/// Traces `trace.settings.photons` photons from `trace.emitters`: each chunk gets a
+/// visitor from `new_visitor`, which sees its photons' arrivals and, after each
+/// stratified group of photons, [`PathVisitor::end_group`]; `fold` then receives the
+/// chunks' visitors in chunk order. `progress` is called from worker threads with the
+/// photons traced so far. Returns the rays cast (none when the scene has no light).
 pub fn trace_chunks<V: PathVisitor + Send>(
-    scene: &Scene,
-    accel: &Accel,
-    emitters: &Emitters,
-    settings: &TraceSettings,
+    trace: PhotonTrace<'_>,
     new_visitor: impl Fn() -> V + Sync,
     fold: impl FnMut(V),
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> u64 {
-    trace_chunks_from(
-        0,
-        scene,
-        accel,
-        emitters,
-        settings,
-        new_visitor,
-        fold,
-        progress,
-    )
+    trace_chunks_from(0, trace, new_visitor, fold, progress)
 }
 
 /// [`trace_chunks`] from chunk `first_chunk` on: the chunks before it are left out, the
 /// others traced and folded exactly as a whole trace would, so a trace continued from a
 /// chunk boundary adds the same terms in the same order (a candidate refined from n to
 /// N photons traces the N − n more).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
     first_chunk: u64,
-    scene: &Scene,
-    accel: &Accel,
-    emitters: &Emitters,
-    settings: &TraceSettings,
+    trace: PhotonTrace<'_>,
     new_visitor: impl Fn() -> V + Sync,
     mut fold: impl FnMut(V),
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> u64 {
-    if emitters.is_empty() {
+    if trace.emitters.is_empty() {
         return 0;
     }
-    let chunks = settings.photons.div_ceil(CHUNK);
+    let chunks = trace.settings.photons.div_ceil(CHUNK);
     let bytes = new_visitor().bytes().max(1);
     // At least a chunk per thread, at most BLOCK unless the threads outnumber it
     // (`clamp` would panic with more than BLOCK threads).
@@ -126,8 +125,7 @@ pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
             .into_par_iter()
             .map(|chunk| {
                 let mut visitor = new_visitor();
-                let (chunk_rays, photons) =
-                    trace_chunk(scene, accel, emitters, settings, chunk, &mut visitor);
+                let (chunk_rays, photons) = trace_chunk(trace, chunk, &mut visitor);
                 if let Some(report) = progress {
                     report(done.fetch_add(photons, Ordering::Relaxed) + photons);
                 }
@@ -143,17 +141,20 @@ pub(crate) fn trace_chunks_from<V: PathVisitor + Send>(
     rays
 }
 
-/// Traces chunk `chunk` of a trace with `settings` into `visitor`: its photons in index
-/// order, [`PathVisitor::end_group`] after each group. Returns the rays cast and the
-/// photons traced.
+/// Traces chunk `chunk` of `trace` into `visitor`: its photons in index order,
+/// [`PathVisitor::end_group`] after each group. Returns the rays cast and the photons
+/// traced.
 pub(crate) fn trace_chunk<V: PathVisitor>(
-    scene: &Scene,
-    accel: &Accel,
-    emitters: &Emitters,
-    settings: &TraceSettings,
+    trace: PhotonTrace<'_>,
     chunk: u64,
     visitor: &mut V,
 ) -> (u64, u64) {
+    let PhotonTrace {
+        scene,
+        accel,
+        emitters,
+        settings,
+    } = trace;
     let first = chunk * CHUNK;
     let last = (first + CHUNK).min(settings.photons);
     let mut rays = 0;

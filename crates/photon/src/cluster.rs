@@ -13,11 +13,8 @@
 //! every process (MPI's `MPI_Allgatherv`, in the `invlight-cluster` crate), and
 //! a visitor that can be shipped is [`Pack`]ed into words and unpacked on every process.
 
-use crate::chunks::{BLOCK, BLOCK_MEMORY, CHUNK, TraceSettings, trace_chunk, trace_chunks_from};
-use crate::emit::Emitters;
+use crate::chunks::{BLOCK, BLOCK_MEMORY, CHUNK, PhotonTrace, trace_chunk, trace_chunks_from};
 use crate::path::PathVisitor;
-use invlight_scene::Scene;
-use invlight_trace::Accel;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
@@ -119,40 +116,22 @@ fn unsqueeze(squeezed: &[u64]) -> Vec<u64> {
 /// process alone would trace at a time, so each rank's memory is the same as alone and
 /// a trace of up to 256·K chunks (10⁶·K photons) takes one exchange. `progress` hears
 /// of every block once gathered. On one process it is [`trace_chunks`](crate::trace_chunks) itself.
-#[allow(clippy::too_many_arguments)]
 pub fn trace_shared<V: PathVisitor + Pack + Send>(
-    scene: &Scene,
-    accel: &Accel,
-    emitters: &Emitters,
-    settings: &TraceSettings,
+    trace: PhotonTrace<'_>,
     new_visitor: impl Fn() -> V + Sync,
     fold: impl FnMut(V),
     progress: Option<&(dyn Fn(u64) + Sync)>,
     cluster: &dyn Cluster,
 ) -> u64 {
-    trace_shared_from(
-        0,
-        scene,
-        accel,
-        emitters,
-        settings,
-        new_visitor,
-        fold,
-        progress,
-        cluster,
-    )
+    trace_shared_from(0, trace, new_visitor, fold, progress, cluster)
 }
 
 /// [`trace_shared`] from chunk `first_chunk` on, as
 /// [`trace_chunks_from`](crate::chunks::trace_chunks_from) continues a trace: the chunks
 /// before it are left out, the others split and folded as a whole trace would.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn trace_shared_from<V: PathVisitor + Pack + Send>(
     first_chunk: u64,
-    scene: &Scene,
-    accel: &Accel,
-    emitters: &Emitters,
-    settings: &TraceSettings,
+    trace: PhotonTrace<'_>,
     new_visitor: impl Fn() -> V + Sync,
     mut fold: impl FnMut(V),
     progress: Option<&(dyn Fn(u64) + Sync)>,
@@ -160,21 +139,12 @@ pub(crate) fn trace_shared_from<V: PathVisitor + Pack + Send>(
 ) -> u64 {
     let (rank, ranks) = (cluster.rank() as u64, cluster.ranks() as u64);
     if ranks <= 1 {
-        return trace_chunks_from(
-            first_chunk,
-            scene,
-            accel,
-            emitters,
-            settings,
-            new_visitor,
-            fold,
-            progress,
-        );
+        return trace_chunks_from(first_chunk, trace, new_visitor, fold, progress);
     }
-    if emitters.is_empty() {
+    if trace.emitters.is_empty() {
         return 0;
     }
-    let chunks = settings.photons.div_ceil(CHUNK);
+    let chunks = trace.settings.photons.div_ceil(CHUNK);
     let bytes = new_visitor().bytes().max(1);
     // The same on every rank: it depends on the request and K alone, not on threads.
     let block = ((BLOCK_MEMORY / bytes) as u64).clamp(1, BLOCK) * ranks;
@@ -188,8 +158,7 @@ pub(crate) fn trace_shared_from<V: PathVisitor + Pack + Send>(
             .into_par_iter()
             .map(|chunk| {
                 let mut visitor = new_visitor();
-                let (chunk_rays, _) =
-                    trace_chunk(scene, accel, emitters, settings, chunk, &mut visitor);
+                let (chunk_rays, _) = trace_chunk(trace, chunk, &mut visitor);
                 (visitor, chunk_rays)
             })
             .collect();
@@ -210,7 +179,7 @@ pub(crate) fn trace_shared_from<V: PathVisitor + Pack + Send>(
             fold(visitor);
         }
         if let Some(report) = progress {
-            report((block_end * CHUNK).min(settings.photons) - first_chunk * CHUNK);
+            report((block_end * CHUNK).min(trace.settings.photons) - first_chunk * CHUNK);
         }
         block_start = block_end;
     }

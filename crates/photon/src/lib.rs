@@ -79,7 +79,9 @@ mod tally;
 
 pub use cells::{GridMeasurement, Uniformity};
 pub use channels::{Components, Side, SideParseError};
-pub use chunks::{BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, TraceSettings, trace_chunks};
+pub use chunks::{
+    BLOCK, BLOCK_MEMORY, CHUNK, DEFAULT_MAX_BOUNCES, PhotonTrace, TraceSettings, trace_chunks,
+};
 pub use cluster::{Alone, Cluster, Pack, cluster, join_cluster, leads, trace_shared};
 pub use connect::{Connection, Departure, Lobe, SOLID_ANGLE_TRIANGLES, SolidAngles, Targets};
 pub use direct::OPENING_SAMPLES;

@@ -9,7 +9,7 @@
 
 use crate::cells::{CellTallies, GridMeasurement};
 use crate::channels::{Components, Side, SurfaceTallies, side_weights};
-use crate::chunks::{CHUNK, TraceSettings};
+use crate::chunks::{CHUNK, PhotonTrace, TraceSettings};
 use crate::cluster::{Cluster, cluster, trace_shared_from};
 use crate::connect::Targets;
 use crate::direct::direct_on_grid;
@@ -593,12 +593,15 @@ fn trace_into(
         .then_some(settings.photons / CHUNK);
     let mut chunk = first_chunk;
     let mut boundary = None;
-    let rays = trace_shared_from(
-        first_chunk,
+    let trace = PhotonTrace {
         scene,
         accel,
-        &emitters,
+        emitters: &emitters,
         settings,
+    };
+    let rays = trace_shared_from(
+        first_chunk,
+        trace,
         || ChunkTally {
             plan: &plan,
             connect: connect.then_some((&shapes, accel)),

@@ -19,7 +19,7 @@
 //! fixed radius from the mean photon density suits the grid (BENCHMARKS.md, "Rendering benchmarks").
 
 use glam::Vec3;
-use invlight_photon::{Departure, Emitters, PathVisitor, TraceSettings, trace_chunks};
+use invlight_photon::{Departure, Emitters, PathVisitor, PhotonTrace, TraceSettings, trace_chunks};
 use invlight_scene::{Rgb, Scene};
 use invlight_trace::{Accel, Interaction};
 use rayon::prelude::*;
@@ -203,11 +203,15 @@ impl PhotonMap {
             ..TraceSettings::default()
         };
         let mut photons = Vec::new();
-        trace_chunks(
+        let emitters = Emitters::new(scene);
+        let photon_trace = PhotonTrace {
             scene,
             accel,
-            &Emitters::new(scene),
-            &trace,
+            emitters: &emitters,
+            settings: &trace,
+        };
+        trace_chunks(
+            photon_trace,
             || Collector {
                 scene,
                 store: settings.store,
