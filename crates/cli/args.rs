@@ -269,7 +269,8 @@ impl ReportArgs {
     /// problem's own, or 1).
     pub fn requirement(&self, mf: f64) -> anyhow::Result<Option<Requirement>> {
         let (t, mf) = (self.task.as_deref(), self.maintenance_factor.unwrap_or(mf));
-        Ok(Requirement::from_flags(t, self.em, self.u0, mf).map_err(InputError)?)
+        Ok(Requirement::from_flags(t, self.em, self.u0, mf)
+            .map_err(|e| InputError(e.to_string()))?)
     }
 }
 

@@ -67,6 +67,35 @@ impl Requirement {
     }
 }
 
+/// A requirement the command line cannot ask for.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RequirementError {
+    /// A `--maintenance-factor` outside (0, 1].
+    MaintenanceFactor(f64),
+    /// A `--task` that names no task of [`TASKS`].
+    UnknownTask(String),
+}
+
+impl fmt::Display for RequirementError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RequirementError::MaintenanceFactor(mf) => {
+                write!(f, "--maintenance-factor {mf}: expected a factor in (0, 1]")
+            }
+            RequirementError::UnknownTask(name) => {
+                let names: Vec<&str> = TASKS.iter().map(|t| t.name).collect();
+                write!(
+                    f,
+                    "--task {name}: not a task of the table; it has {}",
+                    names.join(", ")
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for RequirementError {}
+
 impl Requirement {
     /// The requirement the command line asks for: a task's (`--task`), with `em` and
     /// `u0` given replacing its values, or these alone; `None` when nothing is asked.
@@ -75,20 +104,14 @@ impl Requirement {
         em: Option<f64>,
         u0: Option<f64>,
         maintenance_factor: f64,
-    ) -> Result<Option<Requirement>, String> {
+    ) -> Result<Option<Requirement>, RequirementError> {
         if !(maintenance_factor > 0.0 && maintenance_factor <= 1.0) {
-            return Err(format!(
-                "--maintenance-factor {maintenance_factor}: expected a factor in (0, 1]"
-            ));
+            return Err(RequirementError::MaintenanceFactor(maintenance_factor));
         }
         let task = match task_name {
-            Some(name) => Some(*task(name).ok_or_else(|| {
-                let names: Vec<&str> = TASKS.iter().map(|t| t.name).collect();
-                format!(
-                    "--task {name}: not a task of the table; it has {}",
-                    names.join(", ")
-                )
-            })?),
+            Some(name) => {
+                Some(*task(name).ok_or_else(|| RequirementError::UnknownTask(name.to_string()))?)
+            }
             None => None,
         };
         if task.is_none() && em.is_none() && u0.is_none() {
@@ -225,21 +248,21 @@ pub fn assess(
     if let Some(u) = requirement.u0 {
         let n = cells.len().max(1) as f64;
         let z = normal_quantile(1.0 - alpha / (k * n));
-        let (e, s) = (mean.mean, mean.std_error);
+        let (e, around) = (mean.mean, mean.interval(z));
         let emin = cells.iter().map(|c| c.mean).fold(f64::INFINITY, f64::min);
         let low_min = cells
             .iter()
-            .map(|c| c.mean - z * c.std_error)
+            .map(|c| c.interval(z).low)
             .fold(f64::INFINITY, f64::min);
         let high_min = cells
             .iter()
-            .map(|c| c.mean + z * c.std_error)
+            .map(|c| c.interval(z).high)
             .fold(f64::INFINITY, f64::min);
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { f64::INFINITY };
         let value = ratio(emin, e);
-        let low = ratio(low_min, e + z * s).max(0.0);
-        let high = if e - z * s > 0.0 {
-            ratio(high_min, e - z * s)
+        let low = ratio(low_min, around.high).max(0.0);
+        let high = if around.low > 0.0 {
+            ratio(high_min, around.low)
         } else {
             f64::INFINITY
         };
@@ -452,6 +475,7 @@ mod tests {
         assert!(
             Requirement::from_flags(Some("kitchen"), None, None, 1.0)
                 .unwrap_err()
+                .to_string()
                 .contains("office")
         );
         assert!(Requirement::from_flags(None, Some(500.0), None, 1.5).is_err());

@@ -41,7 +41,9 @@ pub use areas::{AreaReport, AreaVerdict, area_requirement, overall};
 pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
-pub use compliance::{Compliance, Criterion, Requirement, Verdict, assess, plain};
+pub use compliance::{
+    Compliance, Criterion, Requirement, RequirementError, Verdict, assess, plain,
+};
 pub use false_colour::{auto_scale, false_colour, legend_width};
 /// The `image` crate the pictures are made with, so callers can save them without
 /// depending on it themselves.
@@ -52,8 +54,9 @@ pub use integrator::{
 };
 pub use invlight_scene::en12464::{ROOM_U0, SURROUNDING_U0, TASKS, Task, surrounding_em, task};
 pub use map::{
-    GridSpacing, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint, MapReport, MapSettings,
-    MapSummary, MapTarget, illuminance_map, illuminance_map_across, illuminance_maps_across,
+    GridSpacing, GridSpacingError, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint,
+    MapReport, MapSettings, MapSummary, MapTarget, illuminance_map, illuminance_map_across,
+    illuminance_maps_across,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{

@@ -32,17 +32,31 @@ pub enum GridSpacing {
     Metres(f32),
 }
 
+/// A `--grid` that is no spacing: the text given.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct GridSpacingError(pub String);
+
+impl fmt::Display for GridSpacingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "'{}' is neither 'auto' nor a positive length in metres",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for GridSpacingError {}
+
 impl std::str::FromStr for GridSpacing {
-    type Err = String;
-    fn from_str(s: &str) -> Result<GridSpacing, String> {
+    type Err = GridSpacingError;
+    fn from_str(s: &str) -> Result<GridSpacing, GridSpacingError> {
         if s == "auto" {
             return Ok(GridSpacing::Auto);
         }
         match s.parse::<f32>() {
             Ok(m) if m > 0.0 && m.is_finite() => Ok(GridSpacing::Metres(m)),
-            _ => Err(format!(
-                "'{s}' is neither 'auto' nor a positive length in metres"
-            )),
+            _ => Err(GridSpacingError(s.to_string())),
         }
     }
 }
@@ -418,6 +432,12 @@ impl MapReport {
     pub fn summary(&self) -> String {
         use invlight_stats::significant;
         let z = Confidence::new(self.confidence).unwrap_or_default().z();
+        let u0 = Estimate {
+            mean: self.u0,
+            std_error: self.u0_std_error,
+            samples: self.photons,
+        }
+        .interval(z);
         let ratio = match self.emax_over_emin {
             Some(r) => format!("{r:.2}"),
             None => "∞ (Emin 0)".into(),
@@ -440,8 +460,8 @@ impl MapReport {
             significant(self.eavg),
             significant(self.emax),
             self.u0,
-            (self.u0 - z * self.u0_std_error).max(0.0),
-            self.u0 + z * self.u0_std_error
+            u0.low.max(0.0),
+            u0.high
         )
     }
 }
