@@ -13,11 +13,16 @@ use glam::Vec3;
 use image::RgbImage;
 use invlight_stats::{Confidence, significant};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// Width of a plan picture, pixels; its height follows the grid's proportions.
 pub const PLAN_WIDTH: u32 = 960;
+
+/// Font size of a plan's labels, pixels; the title and the smaller labels are sized
+/// from it.
+const FONT: u32 = 18;
 
 /// The segments where the bilinear surface through the cell centres crosses `level`,
 /// by marching squares (Lorensen & Cline 1987, in two dimensions): every square of four
@@ -196,12 +201,83 @@ impl<'a> MapPlan<'a> {
     where
         DB::ErrorType: 'static,
     {
-        const FONT: u32 = 18;
         let m = self.map;
-        let s = m.summary();
         root.fill(&WHITE)?;
         let (w, h) = root.dim_in_pixel();
         let (head, body) = root.split_vertically(3 * FONT + 10);
+        self.draw_heading(&head)?;
+        let (main, bar) = body.split_horizontally(w - 110);
+        let scale = self.scale();
+        colour_bar(&bar.margin(20, 70, 0, 0), &scale, "lx", FONT - 2)?;
+        let (gw, gh) = (
+            m.columns as f64 * m.cell_u as f64,
+            m.rows as f64 * m.cell_v as f64,
+        );
+        // Equal metres per pixel: the grid's box scaled into the plotting area.
+        let (label_x, label_y, margin) = (3 * FONT + 14, 4 * FONT, 12u32);
+        let pw = (w - 110 - label_y - 2 * margin) as f64;
+        let ph = (h - 3 * FONT - 10 - label_x - 2 * margin) as f64;
+        let k = (gw / pw).max(gh / ph);
+        let x = (0.5 * gw - 0.5 * k * pw, 0.5 * gw + 0.5 * k * pw);
+        let y = (0.5 * gh - 0.5 * k * ph, 0.5 * gh + 0.5 * k * ph);
+        let mut chart = ChartBuilder::on(&main)
+            .margin(margin)
+            .x_label_area_size(label_x)
+            .y_label_area_size(label_y)
+            .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
+        let page = PlanPage {
+            cell: (m.cell_u as f64, m.cell_v as f64),
+            height: gh,
+            flip: self.flip,
+        };
+        self.draw_axes(&mut chart, page)?;
+        let (cu, cv) = page.cell;
+        chart.draw_series(m.cells.iter().enumerate().map(|(i, cell)| {
+            let (c, r) = ((i as u32 % m.columns) as f64, (i as u32 / m.columns) as f64);
+            let colour = match cell {
+                Some(cell) => rgb(scale.colour(cell.estimate.mean)).filled(),
+                None => RGBColor(230, 230, 230).filled(),
+            };
+            Rectangle::new(
+                [
+                    (c * cu, page.y(r * cv)),
+                    ((c + 1.0) * cu, page.y((r + 1.0) * cv)),
+                ],
+                colour,
+            )
+        }))?;
+        self.draw_isolux(&mut chart, &scale, page)?;
+        let frame = {
+            let (columns, rows) = chart.plotting_area().get_pixel_range();
+            Frame {
+                x,
+                y,
+                columns: (columns.start, columns.end - 1),
+                rows: (rows.end - 1, rows.start),
+            }
+        };
+        let cell_px = (cu / k, cv / k);
+        if cell_px.0 >= 48.0 && cell_px.1 >= 22.0 {
+            self.draw_cell_values(&mut chart, &scale, page)?;
+        }
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(0.0, 0.0), (gw, gh)],
+            BLACK.stroke_width(1),
+        )))?;
+        Ok(frame)
+    }
+
+    /// Draws the title and the figures a designer checks first (Emin, Eavg with its
+    /// interval, Emax, U0 and the cells) above the plan.
+    fn draw_heading<DB: DrawingBackend>(
+        &self,
+        head: &DrawingArea<DB, Shift>,
+    ) -> Result<(), ChartError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let m = self.map;
+        let s = m.summary();
         let i = m.mean.interval(self.confidence.z());
         let figures = format!(
             "Emin {} lx · Eavg {} lx [{}, {}] · Emax {} lx · U0 = Emin/Eavg {:.2} · {}×{} cells of {}×{} m",
@@ -222,25 +298,20 @@ impl<'a> MapPlan<'a> {
             (12, 8 + FONT as i32 + 6),
             text(FONT - 3),
         ))?;
-        let (main, bar) = body.split_horizontally(w - 110);
-        let scale = self.scale();
-        colour_bar(&bar.margin(20, 70, 0, 0), &scale, "lx", FONT - 2)?;
-        let (gw, gh) = (
-            m.columns as f64 * m.cell_u as f64,
-            m.rows as f64 * m.cell_v as f64,
-        );
-        // Equal metres per pixel: the grid's box scaled into the plotting area.
-        let (label_x, label_y, margin) = (3 * FONT + 14, 4 * FONT, 12u32);
-        let pw = (w - 110 - label_y - 2 * margin) as f64;
-        let ph = (h - 3 * FONT - 10 - label_x - 2 * margin) as f64;
-        let k = (gw / pw).max(gh / ph);
-        let x = (0.5 * gw - 0.5 * k * pw, 0.5 * gw + 0.5 * k * pw);
-        let y = (0.5 * gh - 0.5 * k * ph, 0.5 * gh + 0.5 * k * ph);
-        let mut chart = ChartBuilder::on(&main)
-            .margin(margin)
-            .x_label_area_size(label_x)
-            .y_label_area_size(label_y)
-            .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
+        Ok(())
+    }
+
+    /// Draws the axes in world metres (ticks read as the coordinates along the world
+    /// axis each grid axis follows, when it follows one) and says which side is seen.
+    fn draw_axes<DB: DrawingBackend>(
+        &self,
+        chart: &mut PlanChart<'_, DB>,
+        page: PlanPage,
+    ) -> Result<(), ChartError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let m = self.map;
         let (un, ua) = axis_name(m.u);
         let (vn, va) = axis_name(m.v);
         let (o, ou, ov) = (m.origin, ua, va);
@@ -248,17 +319,14 @@ impl<'a> MapPlan<'a> {
             Some((k, sign)) => tick_label(o[k] as f64 + sign as f64 * s, 0.01),
             None => tick_label(*s, 0.01),
         };
-        let flip = self.flip;
-        // Page y of a grid coordinate t (m along v), and back.
-        let fy = move |t: f64| if flip { gh - t } else { t };
         let fv = move |s: &f64| {
-            let t = fy(*s);
+            let t = page.y(*s);
             match ov {
                 Some((k, sign)) => tick_label(o[k] as f64 + sign as f64 * t, 0.01),
                 None => tick_label(t, 0.01),
             }
         };
-        let normal = if flip {
+        let normal = if self.flip {
             -m.u.cross(m.v)
         } else {
             m.u.cross(m.v)
@@ -273,20 +341,22 @@ impl<'a> MapPlan<'a> {
             .label_style(text(FONT - 2))
             .axis_desc_style(text(FONT - 2))
             .draw()?;
-        let (cu, cv) = (m.cell_u as f64, m.cell_v as f64);
-        chart.draw_series(m.cells.iter().enumerate().map(|(i, cell)| {
-            let (c, r) = ((i as u32 % m.columns) as f64, (i as u32 / m.columns) as f64);
-            let colour = match cell {
-                Some(cell) => rgb(scale.colour(cell.estimate.mean)).filled(),
-                None => RGBColor(230, 230, 230).filled(),
-            };
-            Rectangle::new(
-                [(c * cu, fy(r * cv)), ((c + 1.0) * cu, fy((r + 1.0) * cv))],
-                colour,
-            )
-        }))?;
-        // Isolux lines, each level labelled once: at its segment farthest from the
-        // labels placed before (nearest the centre among equals), so labels do not pile up.
+        Ok(())
+    }
+
+    /// Draws the isolux lines, each level labelled once: at its segment farthest from
+    /// the labels placed before (nearest the centre among equals), so labels do not
+    /// pile up; in black over light colours and white over dark ones.
+    fn draw_isolux<DB: DrawingBackend>(
+        &self,
+        chart: &mut PlanChart<'_, DB>,
+        scale: &ColourScale,
+        page: PlanPage,
+    ) -> Result<(), ChartError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let m = self.map;
         let values: Vec<Option<f64>> = m.cells.iter().map(|c| c.map(|c| c.estimate.mean)).collect();
         let mut placed: Vec<(f64, f64)> = Vec::new();
         let centre = (0.5 * m.columns as f64, 0.5 * m.rows as f64);
@@ -297,12 +367,9 @@ impl<'a> MapPlan<'a> {
             } else {
                 WHITE
             };
-            let page = |p: (f64, f64)| (p.0 * cu, fy(p.1 * cv));
-            chart.draw_series(
-                segments
-                    .iter()
-                    .map(|[a, b]| PathElement::new(vec![page(*a), page(*b)], ink.stroke_width(2))),
-            )?;
+            chart.draw_series(segments.iter().map(|[a, b]| {
+                PathElement::new(vec![page.at(*a), page.at(*b)], ink.stroke_width(2))
+            }))?;
             let mid = |s: &[(f64, f64); 2]| (0.5 * (s[0].0 + s[1].0), 0.5 * (s[0].1 + s[1].1));
             let d2 = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).powi(2) + (a.1 - b.1).powi(2);
             let score = |s: &[(f64, f64); 2]| {
@@ -322,47 +389,72 @@ impl<'a> MapPlan<'a> {
                 placed.push(at);
                 chart.draw_series(std::iter::once(Text::new(
                     format!("{} lx", plain(level)),
-                    page(at),
+                    page.at(at),
                     text(FONT - 4)
                         .color(&ink)
                         .pos(Pos::new(HPos::Center, VPos::Bottom)),
                 )))?;
             }
         }
-        // Each cell's value where there is room for it.
-        let frame = {
-            let (columns, rows) = chart.plotting_area().get_pixel_range();
-            Frame {
-                x,
-                y,
-                columns: (columns.start, columns.end - 1),
-                rows: (rows.end - 1, rows.start),
-            }
-        };
-        let cell_px = (cu / k, cv / k);
-        if cell_px.0 >= 48.0 && cell_px.1 >= 22.0 {
-            chart.draw_series(m.cells.iter().flatten().map(|cell| {
-                let (c, r) = (cell.index.0 as f64, cell.index.1 as f64);
-                let e = cell.estimate.mean;
-                let ink: &'static RGBColor = if scale.fraction(e) > 0.55 {
-                    &BLACK
-                } else {
-                    &WHITE
-                };
-                Text::new(
-                    three_digits(e),
-                    ((c + 0.5) * cu, fy((r + 0.5) * cv)),
-                    text(FONT - 4)
-                        .color(ink)
-                        .pos(Pos::new(HPos::Center, VPos::Center)),
-                )
-            }))?;
-        }
-        chart.draw_series(std::iter::once(Rectangle::new(
-            [(0.0, 0.0), (gw, gh)],
-            BLACK.stroke_width(1),
-        )))?;
-        Ok(frame)
+        Ok(())
+    }
+
+    /// Writes each cell's value in its middle, in black over light colours and white
+    /// over dark ones (only called when the cells have room for it).
+    fn draw_cell_values<DB: DrawingBackend>(
+        &self,
+        chart: &mut PlanChart<'_, DB>,
+        scale: &ColourScale,
+        page: PlanPage,
+    ) -> Result<(), ChartError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (cu, cv) = page.cell;
+        chart.draw_series(self.map.cells.iter().flatten().map(|cell| {
+            let (c, r) = (cell.index.0 as f64, cell.index.1 as f64);
+            let e = cell.estimate.mean;
+            let ink: &'static RGBColor = if scale.fraction(e) > 0.55 {
+                &BLACK
+            } else {
+                &WHITE
+            };
+            Text::new(
+                three_digits(e),
+                ((c + 0.5) * cu, page.y((r + 0.5) * cv)),
+                text(FONT - 4)
+                    .color(ink)
+                    .pos(Pos::new(HPos::Center, VPos::Center)),
+            )
+        }))?;
+        Ok(())
+    }
+}
+
+/// The chart a plan draws on: metres along the grid's axes.
+type PlanChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Where the grid lands on the plan: a cell's size in metres, the grid's height, and
+/// whether rows run down the page ([`MapPlan::from_above`]).
+#[derive(Debug, Clone, Copy)]
+struct PlanPage {
+    /// A cell's sides along u and v, m.
+    cell: (f64, f64),
+    /// The grid's extent along v, m.
+    height: f64,
+    /// Whether rows run down the page.
+    flip: bool,
+}
+
+impl PlanPage {
+    /// The chart's y of the grid coordinate `t` (m along v), which is also its inverse.
+    fn y(self, t: f64) -> f64 {
+        if self.flip { self.height - t } else { t }
+    }
+
+    /// The chart's point of a point in cells (a cell's centre at (c + ½, r + ½)).
+    fn at(self, p: (f64, f64)) -> (f64, f64) {
+        (p.0 * self.cell.0, self.y(p.1 * self.cell.1))
     }
 }
 
