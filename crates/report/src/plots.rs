@@ -6,7 +6,8 @@
 use crate::describe::{compass, subject};
 use glam::DVec3;
 use invlight_ilp::{
-    Axes, Binding, Domain, Goal, Isoc, Record, Role, VariableKind, Verdict, visits,
+    Axes, Binding, Domain, Goal, Hemisphere, Isoc, Parallelogram, Record, Role, VariableKind,
+    Verdict, Visit, visits,
 };
 use invlight_render::{
     ConvergencePlot, ConvergencePoint, Mark, PlanAxis, PlanFrame, PlotKind, PlotPoint, SearchPlot,
@@ -83,117 +84,12 @@ pub fn search_plot(
     let (axes, cell, visited) = visits(binding, i, records, isoc);
     let spec = &binding.specs[i];
     let domain = &binding.space.variables()[i].domain;
-    let points = |at: &dyn Fn([f64; 2]) -> ([f64; 2], Vec<[f64; 2]>)| -> Vec<PlotPoint> {
-        visited
-            .iter()
-            .map(|v| {
-                let (at, cell) = at(v.coords);
-                PlotPoint {
-                    at,
-                    cell,
-                    mean: v.mean,
-                    low: v.low,
-                    high: v.high,
-                    mark: mark(v.role),
-                    isoc: v.isoc,
-                }
-            })
-            .collect()
-    };
     let title = format!("What the search tried for {}", subject(spec));
     let (kind, points) = match (axes, domain) {
         (Axes::Placement { width, height }, Domain::Parallelogram(r)) => {
-            let initial = binding.values(&binding.initial);
-            let offset = match initial[i] {
-                invlight_ilp::VariableValue::Position { point, anchor } => anchor - point,
-                _ => DVec3::ZERO,
-            };
-            let n = r.e1.cross(r.e2).normalize_or_zero();
-            let up = scene.up.as_dvec3().normalize_or_zero();
-            let proj = Projection::new(n, up);
-            let world = |s: f64, t: f64| r.a + r.e1 * s + r.e2 * t;
-            let (w, h) = (width.max(1e-12), height.max(1e-12));
-            let (ds, dt) = (0.5 * cell[0] / w, 0.5 * cell[1] / h);
-            let pts = points(&|c| {
-                let (s, t) = (c[0] / w, c[1] / h);
-                let corners = [(-ds, -dt), (ds, -dt), (ds, dt), (-ds, dt)]
-                    .map(|(a, b)| proj.at(world(s + a, t + b) + offset))
-                    .to_vec();
-                (proj.at(world(s, t) + offset), corners)
-            });
-            let corners = |o: DVec3| {
-                [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-                    .map(|(s, t)| proj.at(world(s, t) + o))
-            };
-            let room = scene.bounds().map(|(lo, hi)| {
-                let (a, b) = (proj.at(lo.as_dvec3()), proj.at(hi.as_dvec3()));
-                [
-                    [a[0].min(b[0]), a[1].min(b[1])],
-                    [a[0].max(b[0]), a[1].max(b[1])],
-                ]
-            });
-            let mut target = Vec::new();
-            let plan = binding.reading.plan_surface();
-            let instances = plan.map_or(&[][..], |(s, _)| &scene.surfaces[s].instances[..]);
-            let count: usize = instances
-                .iter()
-                .map(|&k| scene.world_triangles(k).count())
-                .sum();
-            if count <= MAX_TARGET_TRIANGLES {
-                for &k in instances {
-                    target.extend(
-                        scene
-                            .world_triangles(k)
-                            .map(|t| t.corners.map(|c| proj.at(c.as_dvec3()))),
-                    );
-                }
-            }
-            let plan = PlanFrame {
-                axes: proj.axes(),
-                room,
-                target,
-                range: corners(offset),
-                rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
-                moved: subject(spec),
-                target_name: plan.map_or(String::new(), |(s, _)| scene.surfaces[s].name.clone()),
-            };
-            (PlotKind::Plan(Box::new(plan)), pts)
+            placement_plot(scene, binding, i, r, [width, height], cell, &visited)
         }
-        (Axes::Direction, Domain::Hemisphere(hemi)) => {
-            let compass = compass(scene);
-            let (dt, dp) = (0.5 * cell[0], 0.5 * cell[1]);
-            let angles = |theta: f64, phi: f64| {
-                let d = hemi.direction(
-                    (phi / 360.0).rem_euclid(1.0),
-                    (theta / hemi.max_zenith.to_degrees()).clamp(0.0, 1.0),
-                );
-                compass
-                    .as_ref()
-                    .map(|c| crate::describe::sun_angles(c, d))
-                    .map_or([phi, 90.0 - theta], |(el, az)| [az, el])
-            };
-            let pts = points(&|c| {
-                let centre = angles(c[0], c[1]);
-                let corners = [(-dt, -dp), (dt, -dp), (dt, dp), (-dt, dp)]
-                    .map(|(a, b)| {
-                        let mut q = angles(c[0] + a, c[1] + b);
-                        // Keep a cell whole across north: azimuths near its centre's.
-                        q[0] = centre[0] + (q[0] - centre[0] + 180.0).rem_euclid(360.0) - 180.0;
-                        q
-                    })
-                    .to_vec();
-                (centre, corners)
-            });
-            let north = compass.as_ref().map_or("φ = 0".to_string(), |c| {
-                let n = c.north();
-                let k = (0..3)
-                    .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
-                    .unwrap_or(0);
-                let sign = if n[k] < 0.0 { "−" } else { "+" };
-                format!("{sign}{}", ["x", "y", "z"][k])
-            });
-            (PlotKind::Sky { north }, pts)
-        }
+        (Axes::Direction, Domain::Hemisphere(hemi)) => sky_plot(scene, hemi, cell, &visited),
         (Axes::Value { min, max }, _) => {
             let label = match spec.kind {
                 VariableKind::LightPower { .. } => "dimming level (1 = as authored)",
@@ -208,7 +104,7 @@ pub fn search_plot(
                 max,
                 label: label.into(),
             };
-            (kind, points(&|c| (c, Vec::new())))
+            (kind, plot_points(&visited, &|c| (c, Vec::new())))
         }
         // A domain and axes that disagree cannot come out of `visits`.
         (_, _) => {
@@ -230,6 +126,149 @@ pub fn search_plot(
         cap,
         points: summarised(points, &binding.goal, value_plot),
     }
+}
+
+/// A place on the page for every visit: `at` turns a visit's coordinates into the
+/// point drawn and the corners of its cell.
+fn plot_points(
+    visited: &[Visit],
+    at: &dyn Fn([f64; 2]) -> ([f64; 2], Vec<[f64; 2]>),
+) -> Vec<PlotPoint> {
+    visited
+        .iter()
+        .map(|v| {
+            let (at, cell) = at(v.coords);
+            PlotPoint {
+                at,
+                cell,
+                mean: v.mean,
+                low: v.low,
+                high: v.high,
+                mark: mark(v.role),
+                isoc: v.isoc,
+            }
+        })
+        .collect()
+}
+
+/// The plan of placement variable `i` over its rectangle `r` (its sides' lengths
+/// `[width, height]`, cells of `cell`): the visits where the moved thing stood, in world
+/// metres on the rectangle's plane, with the room's box, the target and the range the
+/// thing moved over.
+fn placement_plot(
+    scene: &Scene,
+    binding: &Binding,
+    i: usize,
+    r: &Parallelogram,
+    [width, height]: [f64; 2],
+    cell: [f64; 2],
+    visited: &[Visit],
+) -> (PlotKind, Vec<PlotPoint>) {
+    let initial = binding.values(&binding.initial);
+    let offset = match initial[i] {
+        invlight_ilp::VariableValue::Position { point, anchor } => anchor - point,
+        _ => DVec3::ZERO,
+    };
+    let n = r.e1.cross(r.e2).normalize_or_zero();
+    let up = scene.up.as_dvec3().normalize_or_zero();
+    let proj = Projection::new(n, up);
+    let world = |s: f64, t: f64| r.a + r.e1 * s + r.e2 * t;
+    let (w, h) = (width.max(1e-12), height.max(1e-12));
+    let (ds, dt) = (0.5 * cell[0] / w, 0.5 * cell[1] / h);
+    let pts = plot_points(visited, &|c| {
+        let (s, t) = (c[0] / w, c[1] / h);
+        let corners = [(-ds, -dt), (ds, -dt), (ds, dt), (-ds, dt)]
+            .map(|(a, b)| proj.at(world(s + a, t + b) + offset))
+            .to_vec();
+        (proj.at(world(s, t) + offset), corners)
+    });
+    let corners = |o: DVec3| {
+        [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(s, t)| proj.at(world(s, t) + o))
+    };
+    let room = scene.bounds().map(|(lo, hi)| {
+        let (a, b) = (proj.at(lo.as_dvec3()), proj.at(hi.as_dvec3()));
+        [
+            [a[0].min(b[0]), a[1].min(b[1])],
+            [a[0].max(b[0]), a[1].max(b[1])],
+        ]
+    });
+    let plan = binding.reading.plan_surface();
+    let plan = PlanFrame {
+        axes: proj.axes(),
+        room,
+        target: target_triangles(scene, binding, &proj),
+        range: corners(offset),
+        rectangle: (offset.length() > 1e-9).then(|| corners(DVec3::ZERO)),
+        moved: subject(&binding.specs[i]),
+        target_name: plan.map_or(String::new(), |(s, _)| scene.surfaces[s].name.clone()),
+    };
+    (PlotKind::Plan(Box::new(plan)), pts)
+}
+
+/// The objective surface's triangles as `proj` sees them; none when it has more than
+/// [`MAX_TARGET_TRIANGLES`], so that a finely meshed surface does not swell the plot.
+fn target_triangles(scene: &Scene, binding: &Binding, proj: &Projection) -> Vec<[[f64; 2]; 3]> {
+    let mut target = Vec::new();
+    let plan = binding.reading.plan_surface();
+    let instances = plan.map_or(&[][..], |(s, _)| &scene.surfaces[s].instances[..]);
+    let count: usize = instances
+        .iter()
+        .map(|&k| scene.world_triangles(k).count())
+        .sum();
+    if count <= MAX_TARGET_TRIANGLES {
+        for &k in instances {
+            target.extend(
+                scene
+                    .world_triangles(k)
+                    .map(|t| t.corners.map(|c| proj.at(c.as_dvec3()))),
+            );
+        }
+    }
+    target
+}
+
+/// The sun chart of a direction variable over `hemi` (cells of `cell` degrees in
+/// zenith and azimuth): the visits as compass azimuth and elevation, or as φ and
+/// 90° − θ when the scene has no compass, and the axis north lies along.
+fn sky_plot(
+    scene: &Scene,
+    hemi: &Hemisphere,
+    cell: [f64; 2],
+    visited: &[Visit],
+) -> (PlotKind, Vec<PlotPoint>) {
+    let compass = compass(scene);
+    let (dt, dp) = (0.5 * cell[0], 0.5 * cell[1]);
+    let angles = |theta: f64, phi: f64| {
+        let d = hemi.direction(
+            (phi / 360.0).rem_euclid(1.0),
+            (theta / hemi.max_zenith.to_degrees()).clamp(0.0, 1.0),
+        );
+        compass
+            .as_ref()
+            .map(|c| crate::describe::sun_angles(c, d))
+            .map_or([phi, 90.0 - theta], |(el, az)| [az, el])
+    };
+    let pts = plot_points(visited, &|c| {
+        let centre = angles(c[0], c[1]);
+        let corners = [(-dt, -dp), (dt, -dp), (dt, dp), (-dt, dp)]
+            .map(|(a, b)| {
+                let mut q = angles(c[0] + a, c[1] + b);
+                // Keep a cell whole across north: azimuths near its centre's.
+                q[0] = centre[0] + (q[0] - centre[0] + 180.0).rem_euclid(360.0) - 180.0;
+                q
+            })
+            .to_vec();
+        (centre, corners)
+    });
+    let north = compass.as_ref().map_or("φ = 0".to_string(), |c| {
+        let n = c.north();
+        let k = (0..3)
+            .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+            .unwrap_or(0);
+        let sign = if n[k] < 0.0 { "−" } else { "+" };
+        format!("{sign}{}", ["x", "y", "z"][k])
+    });
+    (PlotKind::Sky { north }, pts)
 }
 
 /// Bins along a value plot's axis: the points of one bin are drawn as one.

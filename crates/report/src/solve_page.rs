@@ -17,6 +17,7 @@ use invlight_render::{
     ChartError, GridSpacing, MapError, MapSettings, Requirement, illuminance_map_across, plain,
 };
 use invlight_scene::Scene;
+use invlight_scene::daylight::Compass;
 use invlight_stats::significant;
 use invlight_trace::Accel;
 use std::fmt;
@@ -281,13 +282,8 @@ impl<'a> SolveReport<'a> {
 
     /// The page, and why the objective has no plan when it has none.
     pub fn html(&self) -> Result<(String, Option<String>), ReportError> {
-        let (p, b, f) = (self.problem, self.binding, self.folder);
+        let (p, f) = (self.problem, self.folder);
         let goal = &f.result.objective;
-        let unit = goal.unit_suffix();
-        let plan_surface = b.reading.plan_surface();
-        let surface =
-            plan_surface.map_or(String::new(), |(s, _)| self.scene.surfaces[s].name.clone());
-        let level = plain(p.confidence.level() * 100.0);
         let name = p
             .path
             .file_name()
@@ -300,81 +296,129 @@ impl<'a> SolveReport<'a> {
                 p.path.display()
             ),
         );
-        let compass = compass(self.scene);
-        let start = b.values(&b.initial);
-        let members = f.members();
-        let feasible = !f.isoc.members().is_empty();
-        let z_one_sided = p.confidence.z_one_sided();
+        let facts = PageFacts {
+            unit: goal.unit_suffix(),
+            level: plain(p.confidence.level() * 100.0),
+            compass: compass(self.scene),
+            members: f.members(),
+            feasible: !f.isoc.members().is_empty(),
+        };
+        page.section("The answer", &self.answer(&facts));
+        page.section("The problem", &self.problem_words(&facts));
+        page.section("The best configurations (ISOC)", &self.gallery(&facts));
+        page.section("The search", &self.search(&facts)?);
+        let no_plan = self.plan(&facts, &mut page)?;
+        let title = if facts.feasible {
+            "Every member of the ISOC"
+        } else {
+            "The configurations closest to meeting the constraints"
+        };
+        page.section(title, &self.member_table(&facts));
+        let photons: u64 = f.records.iter().map(|r| r.evaluation.goal.samples).sum();
+        let r = &f.result;
+        page.section(
+            "How long it took",
+            &format!(
+                "<p>{} evaluations ({} candidates refused untraced), {} photons traced in {:.1} s of search. The renders, plots and this page came after.</p>",
+                r.evaluations, r.refused, photons, r.seconds
+            ),
+        );
+        Ok((page.finish(), no_plan))
+    }
 
-        // 1. The answer.
-        let answer = match members.first() {
-            Some(best) => {
-                let e = &best.evaluation.goal;
-                let i = e.interval(f.isoc.z());
-                let words = capitalised(&goal.words());
-                let opening = answer_opening(
-                    &words,
-                    (e.mean, i),
-                    &unit,
-                    &level,
-                    b.specs.is_empty(),
-                    feasible,
-                );
-                let mut s = format!("<div class=\"answer\"><p>{opening}</p><ul>");
-                for ((spec, v), from) in b.specs.iter().zip(b.values(&best.config)).zip(&start) {
-                    s += &format!(
-                        "<li>{} is {} — {} from where the scene has it ({})</li>",
-                        escape(&subject(spec)),
-                        escape(&describe::value(&v, compass.as_ref())),
-                        escape(&describe::moved(from, &v)),
-                        escape(&describe::value(from, compass.as_ref()))
-                    );
-                }
-                s += "</ul>";
-                for l in f.result.answer().iter().flat_map(|m| &m.layouts) {
-                    s += &format!("<p>As laid out: {}.</p>", escape(&l.description));
-                }
-                if let Some((have, need)) = f
-                    .result
-                    .closest
-                    .first()
-                    .and_then(|m| m.lamps_needed(&f.result.constraints, |n| b.lit_only_by(n)))
-                {
-                    s += &format!(
-                        "<p>Every one of the {have} lamps is at full output: by the lumen method (illuminance in proportion to the lamps' count at the layout's utilisation factor), about {need} such lamps would give the minimum.</p>"
-                    );
-                }
-                if let Some(r) = f.result.regular_beside() {
-                    let e = &r.estimate;
-                    let layouts: Vec<&str> = r.layouts.iter().map(|l| l.description.as_str()).collect();
-                    s += &format!(
-                        "<p>The best regular array tried gives {}{unit} [{}, {}] (at {} photons): {}.</p>",
-                        significant(e.mean),
-                        significant(e.low),
-                        significant(e.high),
-                        e.photons,
-                        escape(&layouts.join("; "))
-                    );
-                }
-                s += &constraint_list(b, best, f.isoc.z(), z_one_sided);
-                s += &match (feasible, members.len()) {
-                    (false, n) => format!("<p>The {n} configurations that came closest are shown below.</p>"),
-                    (true, 1) => format!("<p>It is better, at {level} % confidence, than every other configuration tried.</p>"),
-                    (true, n) => format!("<p>{} other configurations cannot be told apart from it at {level} % confidence (the ISOC, thesis §3.3.4); each is better than every configuration left out. All are shown below.</p>", n - 1),
-                };
-                s + "</div>"
-            }
+    /// The answer: the best configuration (or the closest, when none is feasible) in
+    /// world terms, its value and constraints, and why the search ended when it says.
+    fn answer(&self, facts: &PageFacts<'_>) -> String {
+        let f = self.folder;
+        let answer = match facts.members.first() {
+            Some(best) => self.best_answer(facts, best),
             None => "<div class=\"answer\"><p>No configuration could be ranked: every one tried was invalid.</p></div>".into(),
         };
         // Why the search ended: above all that no configuration tried lit the goal's
         // surface, which the answer's figures alone would not say.
-        let answer = match &f.result.stopped {
+        match &f.result.stopped {
             Some(why) => format!("{answer}<p>The search stopped: {}.</p>", escape(why)),
             None => answer,
-        };
-        page.section("The answer", &answer);
+        }
+    }
 
-        // 2. The problem in words.
+    /// The answer about `best`, the first member shown: its value, what moved from
+    /// where the scene has it, its layouts, the lamps a lumen method would ask for, the
+    /// best regular array beside it, its constraints and how it stands to the others.
+    fn best_answer(&self, facts: &PageFacts<'_>, best: &Member) -> String {
+        let (p, b, f) = (self.problem, self.binding, self.folder);
+        let (unit, level) = (&facts.unit, &facts.level);
+        let goal = &f.result.objective;
+        let e = &best.evaluation.goal;
+        let i = e.interval(f.isoc.z());
+        let words = capitalised(&goal.words());
+        let opening = answer_opening(
+            &words,
+            (e.mean, i),
+            unit,
+            level,
+            b.specs.is_empty(),
+            facts.feasible,
+        );
+        let mut s = format!("<div class=\"answer\"><p>{opening}</p><ul>");
+        let start = b.values(&b.initial);
+        for ((spec, v), from) in b.specs.iter().zip(b.values(&best.config)).zip(&start) {
+            s += &format!(
+                "<li>{} is {} — {} from where the scene has it ({})</li>",
+                escape(&subject(spec)),
+                escape(&describe::value(&v, facts.compass.as_ref())),
+                escape(&describe::moved(from, &v)),
+                escape(&describe::value(from, facts.compass.as_ref()))
+            );
+        }
+        s += "</ul>";
+        for l in f.result.answer().iter().flat_map(|m| &m.layouts) {
+            s += &format!("<p>As laid out: {}.</p>", escape(&l.description));
+        }
+        if let Some((have, need)) = f
+            .result
+            .closest
+            .first()
+            .and_then(|m| m.lamps_needed(&f.result.constraints, |n| b.lit_only_by(n)))
+        {
+            s += &format!(
+                "<p>Every one of the {have} lamps is at full output: by the lumen method (illuminance in proportion to the lamps' count at the layout's utilisation factor), about {need} such lamps would give the minimum.</p>"
+            );
+        }
+        if let Some(r) = f.result.regular_beside() {
+            let e = &r.estimate;
+            let layouts: Vec<&str> = r.layouts.iter().map(|l| l.description.as_str()).collect();
+            s += &format!(
+                "<p>The best regular array tried gives {}{unit} [{}, {}] (at {} photons): {}.</p>",
+                significant(e.mean),
+                significant(e.low),
+                significant(e.high),
+                e.photons,
+                escape(&layouts.join("; "))
+            );
+        }
+        s += &constraint_list(b, best, f.isoc.z(), p.confidence.z_one_sided());
+        s += &match (facts.feasible, facts.members.len()) {
+            (false, n) => {
+                format!("<p>The {n} configurations that came closest are shown below.</p>")
+            }
+            (true, 1) => format!(
+                "<p>It is better, at {level} % confidence, than every other configuration tried.</p>"
+            ),
+            (true, n) => format!(
+                "<p>{} other configurations cannot be told apart from it at {level} % confidence (the ISOC, thesis §3.3.4); each is better than every configuration left out. All are shown below.</p>",
+                n - 1
+            ),
+        };
+        s + "</div>"
+    }
+
+    /// The problem in words: scene, goal, cap, constraints, variables, the photons and
+    /// budget, and the requirement when one is checked.
+    fn problem_words(&self, facts: &PageFacts<'_>) -> String {
+        let (p, b, f) = (self.problem, self.binding, self.folder);
+        let level = &facts.level;
+        let goal = &f.result.objective;
         let mut words = String::from("<dl>");
         words += &format!(
             "<dt>Scene</dt><dd>{}</dd>",
@@ -426,12 +470,15 @@ impl<'a> SolveReport<'a> {
                 escape(&requirement_words(r))
             );
         }
-        words += "</dl>";
-        page.section("The problem", &words);
+        words + "</dl>"
+    }
 
-        // 3. The ISOC as captioned renders.
+    /// The ISOC as captioned renders, from the pictures the solve left in its folder.
+    fn gallery(&self, facts: &PageFacts<'_>) -> String {
+        let (b, f) = (self.binding, self.folder);
+        let unit = &facts.unit;
         let mut gallery = String::new();
-        for (k, m) in members.iter().enumerate() {
+        for (k, m) in facts.members.iter().enumerate() {
             let file = f.dir.join(format!("isoc-{:02}.png", k + 1));
             let Ok(bytes) = std::fs::read(&file) else {
                 continue;
@@ -445,7 +492,7 @@ impl<'a> SolveReport<'a> {
                     format!(
                         "{} {}",
                         subject(spec),
-                        describe::value(&v, compass.as_ref())
+                        describe::value(&v, facts.compass.as_ref())
                     )
                 })
                 .collect();
@@ -462,15 +509,20 @@ impl<'a> SolveReport<'a> {
             );
         }
         if gallery.is_empty() {
-            gallery = "<p>No renders in the folder (the solve ran with --no-images).</p>".into();
+            "<p>No renders in the folder (the solve ran with --no-images).</p>".into()
         } else {
-            gallery = format!(
+            format!(
                 "<p>Each member rendered from the scene's camera, best first, at one exposure (a brighter picture is a brighter configuration); the moved thing circled.</p><div class=\"gallery\">{gallery}</div>"
-            );
+            )
         }
-        page.section("The best configurations (ISOC)", &gallery);
+    }
 
-        // 4. The search.
+    /// The search: a plot of what was tried for each searched variable, and the
+    /// convergence of the best configuration against the photons traced.
+    fn search(&self, facts: &PageFacts<'_>) -> Result<String, ReportError> {
+        let (b, f) = (self.binding, self.folder);
+        let goal = &f.result.objective;
+        let level = &facts.level;
         let mut search = String::new();
         // Levels the evaluator solves are not searched: a plot of them would show
         // the arrangements' answers, not a walk.
@@ -498,64 +550,78 @@ impl<'a> SolveReport<'a> {
                 "The best configuration so far (line) and its {level} % interval (band) against the photons traced; the last step is the final ISOC's best."
             ),
         );
-        page.section("The search", &search);
+        Ok(search)
+    }
 
-        // 5. The objective's plan.
-        let mut no_plan = None;
-        if let (Some(g), Some(best), Some((target, side))) =
-            (self.grid, members.first(), plan_surface)
-        {
-            let mut scene = self.scene.clone();
-            b.apply(&mut scene, &best.config);
-            let started = Instant::now();
-            let settings = MapSettings {
-                spacing: g.spacing,
-                side,
-                trace: g.trace,
-                estimator: Estimator::Connected,
-                values: g.values,
-            };
-            // Nothing moves: one world-space tree, as `invlight map` builds. The page is
-            // rank 0's alone in a cluster job (the others have ended): its own trace.
-            let accel = Accel::with_movable(&scene, &[]);
-            let map = illuminance_map_across(&scene, &accel, target, &settings, None, &Alone);
-            match map {
-                Ok(map) => {
-                    let mut s = grid_section(
-                        &map,
-                        self.scene.up,
-                        &format!("{surface} in the best configuration"),
-                        p.confidence,
-                        self.requirement,
-                    )?;
-                    s += &format!(
-                        "<p class=\"sub\">Traced for this report in {:.1} s.</p>",
-                        started.elapsed().as_secs_f64()
-                    );
-                    page.section(&format!("Light on {surface}"), &s);
-                }
-                Err(e) => {
-                    let why = match e {
-                        MapError::Grid(GridError::NotPlanar { .. }) => {
-                            format!("{surface} is not planar, so it has no plan or grid ({e})")
-                        }
-                        e => format!("no grid on {surface}: {e}"),
-                    };
-                    let mut s = format!("<p>{}.</p>", escape(&why));
-                    if self.requirement.is_some() {
-                        s += "<p>The requirement cannot be checked without a grid.</p>";
+    /// Adds to `page` the light on the objective's surface in the best configuration,
+    /// traced now, unless the report asks for no grid, nothing was ranked or the
+    /// objective reads no surface. Returns why the surface has no plan when it has none.
+    fn plan(&self, facts: &PageFacts<'_>, page: &mut Page) -> Result<Option<String>, ReportError> {
+        let (p, b) = (self.problem, self.binding);
+        let plan_surface = b.reading.plan_surface();
+        let (Some(g), Some(best), Some((target, side))) =
+            (self.grid, facts.members.first(), plan_surface)
+        else {
+            return Ok(None);
+        };
+        let surface = self.scene.surfaces[target].name.clone();
+        let mut scene = self.scene.clone();
+        b.apply(&mut scene, &best.config);
+        let started = Instant::now();
+        let settings = MapSettings {
+            spacing: g.spacing,
+            side,
+            trace: g.trace,
+            estimator: Estimator::Connected,
+            values: g.values,
+        };
+        // Nothing moves: one world-space tree, as `invlight map` builds. The page is
+        // rank 0's alone in a cluster job (the others have ended): its own trace.
+        let accel = Accel::with_movable(&scene, &[]);
+        let map = illuminance_map_across(&scene, &accel, target, &settings, None, &Alone);
+        let title = format!("Light on {surface}");
+        match map {
+            Ok(map) => {
+                let mut s = grid_section(
+                    &map,
+                    self.scene.up,
+                    &format!("{surface} in the best configuration"),
+                    p.confidence,
+                    self.requirement,
+                )?;
+                s += &format!(
+                    "<p class=\"sub\">Traced for this report in {:.1} s.</p>",
+                    started.elapsed().as_secs_f64()
+                );
+                page.section(&title, &s);
+                Ok(None)
+            }
+            Err(e) => {
+                let why = match e {
+                    MapError::Grid(GridError::NotPlanar { .. }) => {
+                        format!("{surface} is not planar, so it has no plan or grid ({e})")
                     }
-                    page.section(&format!("Light on {surface}"), &s);
-                    no_plan = Some(why);
+                    e => format!("no grid on {surface}: {e}"),
+                };
+                let mut s = format!("<p>{}.</p>", escape(&why));
+                if self.requirement.is_some() {
+                    s += "<p>The requirement cannot be checked without a grid.</p>";
                 }
+                page.section(&title, &s);
+                Ok(Some(why))
             }
         }
+    }
 
-        // 6. Every member.
+    /// Every member shown as a table row: its value, interval, standard error and
+    /// photons, and its variables' values in world terms.
+    fn member_table(&self, facts: &PageFacts<'_>) -> String {
+        let (b, f) = (self.binding, self.folder);
+        let goal = &f.result.objective;
         let mean = format!(
             "{}{}",
             goal.sense,
-            if unit.is_empty() {
+            if facts.unit.is_empty() {
                 String::new()
             } else {
                 format!(" ({})", goal.unit)
@@ -564,7 +630,8 @@ impl<'a> SolveReport<'a> {
         let mut header = vec!["#", mean.as_str(), "low", "high", "σ", "photons"];
         let ids: Vec<String> = b.specs.iter().map(subject).collect();
         header.extend(ids.iter().map(String::as_str));
-        let rows: Vec<Vec<String>> = members
+        let rows: Vec<Vec<String>> = facts
+            .members
             .iter()
             .enumerate()
             .map(|(k, m)| {
@@ -581,30 +648,27 @@ impl<'a> SolveReport<'a> {
                 row.extend(
                     b.values(&m.config)
                         .iter()
-                        .map(|v| escape(&describe::value(v, compass.as_ref()))),
+                        .map(|v| escape(&describe::value(v, facts.compass.as_ref()))),
                 );
                 row
             })
             .collect();
-        let title = if feasible {
-            "Every member of the ISOC"
-        } else {
-            "The configurations closest to meeting the constraints"
-        };
-        page.section(title, &table(&header, &rows));
-
-        // 7. Time.
-        let photons: u64 = f.records.iter().map(|r| r.evaluation.goal.samples).sum();
-        let r = &f.result;
-        page.section(
-            "How long it took",
-            &format!(
-                "<p>{} evaluations ({} candidates refused untraced), {} photons traced in {:.1} s of search. The renders, plots and this page came after.</p>",
-                r.evaluations, r.refused, photons, r.seconds
-            ),
-        );
-        Ok((page.finish(), no_plan))
+        table(&header, &rows)
     }
+}
+
+/// What several sections of a solve's page read, worked out once.
+struct PageFacts<'r> {
+    /// The goal's unit as a suffix of its values (` lx`), or empty.
+    unit: String,
+    /// The confidence as a percentage, in words (`95`).
+    level: String,
+    /// The scene's compass, for sun directions.
+    compass: Option<Compass>,
+    /// The members shown: the ISOC best first, or the closest configurations.
+    members: Vec<&'r Member>,
+    /// Whether some configuration met the constraints.
+    feasible: bool,
 }
 
 /// The sentence that opens the answer: the goal's value `(mean, interval)` in `unit`
