@@ -404,20 +404,14 @@ impl Emitters {
     #[inline]
     pub fn sample(&self, sampler: &mut Sampler<'_>) -> EmitSample<'_> {
         let index = self.by_flux.sample(sampler.uniform());
-        let source = &self.sources[index];
-        let source_index = index as u32;
         let (u1, u2) = sampler.uniform2();
         let (u3, u4) = sampler.uniform2();
-        match *source {
-            Source::Point { position, power } => EmitSample {
-                source: source_index,
-                origin: position,
-                dir: sampling::sphere(u1, u2),
-                surface_normal: None,
-                power,
-                lumens: luminance(power),
-                lobe: Lobe::Sphere,
-            },
+        let draw = PhotonDraw {
+            source: index as u32,
+            u: [u1, u2, u3, u4],
+        };
+        match self.sources[index] {
+            Source::Point { position, power } => draw.point(position, power),
             Source::Spot {
                 position,
                 axis,
@@ -425,124 +419,209 @@ impl Emitters {
                 cos_outer,
                 flat_share,
                 power,
-            } => {
-                let cos_theta = if u3 < flat_share {
-                    // Uniform in solid angle inside the inner cone.
-                    1.0 - u1 * (1.0 - cos_inner)
-                } else {
-                    // Density ∝ t² on t ∈ [0, 1]: t = u^(1/3).
-                    cos_outer + u1.cbrt() * (cos_inner - cos_outer)
-                };
-                EmitSample {
-                    source: source_index,
-                    origin: position,
-                    dir: sampling::cone(axis, cos_theta, u2),
-                    surface_normal: None,
-                    power,
-                    lumens: luminance(power),
-                    lobe: Lobe::Spot {
-                        axis,
-                        cos_inner,
-                        cos_outer,
-                        flat_share,
-                    },
-                }
-            }
+            } => draw.spot(position, axis, [cos_inner, cos_outer], flat_share, power),
             Source::Directional {
                 direction,
                 centre,
                 radius,
                 power,
-            } => {
-                let (x, y) = sampling::disk(u1, u2);
-                let (t, b) = sampling::basis(direction);
-                EmitSample {
-                    source: source_index,
-                    origin: centre + (t * x + b * y - direction * 1.01) * radius,
-                    dir: direction,
-                    surface_normal: None,
-                    power,
-                    lumens: luminance(power),
-                    lobe: Lobe::Parallel {
-                        direction,
-                        area: PI * radius * radius,
-                    },
-                }
-            }
+            } => draw.directional(direction, centre, radius, power),
             Source::Sky {
                 ref sky,
                 centre,
                 radius,
                 power,
-            } => {
-                // The direction from (u1, u2), the stratified pair; the point from (u3, u4).
-                let drawn = sky.sample(u1, u2);
-                let to_sky = drawn.to_sky;
-                // r = L/(p·∫L dω): exactly 1 for the overcast sky, whose density is ∝ L;
-                // near 1 for the clear sky's table, whose cells are uniform where L is not.
-                let r = if drawn.pdf > 0.0 {
-                    (drawn.luminance as f64 / (drawn.pdf as f64 * sky.dome_luminance())) as f32
-                } else {
-                    0.0
-                };
-                let (x, y) = sampling::disk(u3, u4);
-                let (t, b) = sampling::basis(to_sky);
-                EmitSample {
-                    source: source_index,
-                    origin: centre + (t * x + b * y + to_sky * 1.01) * radius,
-                    dir: -to_sky,
-                    surface_normal: None,
-                    power: power * r,
-                    lumens: luminance(power * r),
-                    lobe: Lobe::Parallel {
-                        direction: -to_sky,
-                        area: PI * radius * radius,
-                    },
-                }
-            }
+            } => draw.sky(sky, centre, radius, power),
             Source::Triangle {
                 p0,
                 e1,
                 e2,
                 normal,
                 power,
-            } => {
-                let (b1, b2) = sampling::triangle(u1, u2);
-                EmitSample {
-                    source: source_index,
-                    origin: p0 + e1 * b1 + e2 * b2,
-                    dir: sampling::cosine_hemisphere(normal, u3, u4),
-                    surface_normal: Some(normal),
-                    power,
-                    lumens: luminance(power),
-                    lobe: Lobe::Cosine { normal },
-                }
-            }
+            } => draw.triangle(p0, e1, e2, normal, power),
             Source::Goniometric {
                 position,
                 frame,
                 ref photometry,
                 power,
-            } => {
-                // Direction from (u1, u2), the point on the opening from (u3, u4).
-                let d = photometry.sample(u1, u2);
-                let origin = match photometry.opening {
-                    Opening::Point => position,
-                    opening => position + frame * opening.point(u3, u4),
-                };
-                EmitSample {
-                    source: source_index,
-                    origin,
-                    dir: (frame * d.dir).normalize(),
-                    surface_normal: None,
-                    power: power * d.weight,
-                    lumens: luminance(power),
-                    lobe: Lobe::Goniometric {
-                        to_local: frame.transpose(),
-                        photometry,
-                    },
-                }
-            }
+            } => draw.goniometric(position, frame, photometry, power),
+        }
+    }
+}
+
+/// What a photon has drawn before its light's kind shapes it: the source it leaves and
+/// the four uniform numbers every kind reads, (u1, u2) the stratified pair. Each kind
+/// turns them into a photon in a method of its own, inlined into [`Emitters::sample`].
+#[derive(Debug, Clone, Copy)]
+struct PhotonDraw {
+    /// Index of the source (an [`EmitSample::source`]).
+    source: u32,
+    /// The uniform numbers u1 … u4.
+    u: [f32; 4],
+}
+
+impl PhotonDraw {
+    /// A point light's photon: a direction uniform over the sphere from (u1, u2).
+    #[inline]
+    fn point(self, position: Vec3, power: Rgb) -> EmitSample<'static> {
+        let [u1, u2, _, _] = self.u;
+        EmitSample {
+            source: self.source,
+            origin: position,
+            dir: sampling::sphere(u1, u2),
+            surface_normal: None,
+            power,
+            lumens: luminance(power),
+            lobe: Lobe::Sphere,
+        }
+    }
+
+    /// A spot light's photon: u3 chooses between the inner cone and the ring out to the
+    /// outer cone (the inner cone with probability `flat_share`), u1 the angle from the
+    /// axis within it and u2 the turn about the axis.
+    #[inline]
+    fn spot(
+        self,
+        position: Vec3,
+        axis: Vec3,
+        [cos_inner, cos_outer]: [f32; 2],
+        flat_share: f32,
+        power: Rgb,
+    ) -> EmitSample<'static> {
+        let [u1, u2, u3, _] = self.u;
+        let cos_theta = if u3 < flat_share {
+            // Uniform in solid angle inside the inner cone.
+            1.0 - u1 * (1.0 - cos_inner)
+        } else {
+            // Density ∝ t² on t ∈ [0, 1]: t = u^(1/3).
+            cos_outer + u1.cbrt() * (cos_inner - cos_outer)
+        };
+        EmitSample {
+            source: self.source,
+            origin: position,
+            dir: sampling::cone(axis, cos_theta, u2),
+            surface_normal: None,
+            power,
+            lumens: luminance(power),
+            lobe: Lobe::Spot {
+                axis,
+                cos_inner,
+                cos_outer,
+                flat_share,
+            },
+        }
+    }
+
+    /// The sun's photon: along `direction`, from a point of the disk across it (from
+    /// (u1, u2)) that covers the scene's bounding sphere, placed outside it.
+    #[inline]
+    fn directional(
+        self,
+        direction: Vec3,
+        centre: Vec3,
+        radius: f32,
+        power: Rgb,
+    ) -> EmitSample<'static> {
+        let [u1, u2, _, _] = self.u;
+        let (x, y) = sampling::disk(u1, u2);
+        let (t, b) = sampling::basis(direction);
+        EmitSample {
+            source: self.source,
+            origin: centre + (t * x + b * y - direction * 1.01) * radius,
+            dir: direction,
+            surface_normal: None,
+            power,
+            lumens: luminance(power),
+            lobe: Lobe::Parallel {
+                direction,
+                area: PI * radius * radius,
+            },
+        }
+    }
+
+    /// The sky's photon: a direction from the sky's luminance (from the stratified pair
+    /// (u1, u2)), then a point from (u3, u4) on the disk across it that covers the
+    /// bounding sphere, its power weighted by r = L/(p·∫L dω).
+    #[inline]
+    fn sky(self, sky: &Sky, centre: Vec3, radius: f32, power: Rgb) -> EmitSample<'static> {
+        let [u1, u2, u3, u4] = self.u;
+        let drawn = sky.sample(u1, u2);
+        let to_sky = drawn.to_sky;
+        // r = L/(p·∫L dω): exactly 1 for the overcast sky, whose density is ∝ L;
+        // near 1 for the clear sky's table, whose cells are uniform where L is not.
+        let r = if drawn.pdf > 0.0 {
+            (drawn.luminance as f64 / (drawn.pdf as f64 * sky.dome_luminance())) as f32
+        } else {
+            0.0
+        };
+        let (x, y) = sampling::disk(u3, u4);
+        let (t, b) = sampling::basis(to_sky);
+        EmitSample {
+            source: self.source,
+            origin: centre + (t * x + b * y + to_sky * 1.01) * radius,
+            dir: -to_sky,
+            surface_normal: None,
+            power: power * r,
+            lumens: luminance(power * r),
+            lobe: Lobe::Parallel {
+                direction: -to_sky,
+                area: PI * radius * radius,
+            },
+        }
+    }
+
+    /// An emissive triangle's photon: a point uniform over the triangle from (u1, u2),
+    /// leaving its front in a cosine-weighted direction from (u3, u4).
+    #[inline]
+    fn triangle(
+        self,
+        p0: Vec3,
+        e1: Vec3,
+        e2: Vec3,
+        normal: Vec3,
+        power: Rgb,
+    ) -> EmitSample<'static> {
+        let [u1, u2, u3, u4] = self.u;
+        let (b1, b2) = sampling::triangle(u1, u2);
+        EmitSample {
+            source: self.source,
+            origin: p0 + e1 * b1 + e2 * b2,
+            dir: sampling::cosine_hemisphere(normal, u3, u4),
+            surface_normal: Some(normal),
+            power,
+            lumens: luminance(power),
+            lobe: Lobe::Cosine { normal },
+        }
+    }
+
+    /// A photometric light's photon: a direction from the table's density (from
+    /// (u1, u2)), weighted by the intensity over it, leaving a point of the luminous
+    /// opening from (u3, u4).
+    #[inline]
+    fn goniometric(
+        self,
+        position: Vec3,
+        frame: Mat3,
+        photometry: &Photometry,
+        power: Rgb,
+    ) -> EmitSample<'_> {
+        let [u1, u2, u3, u4] = self.u;
+        let d = photometry.sample(u1, u2);
+        let origin = match photometry.opening {
+            Opening::Point => position,
+            opening => position + frame * opening.point(u3, u4),
+        };
+        EmitSample {
+            source: self.source,
+            origin,
+            dir: (frame * d.dir).normalize(),
+            surface_normal: None,
+            power: power * d.weight,
+            lumens: luminance(power),
+            lobe: Lobe::Goniometric {
+                to_local: frame.transpose(),
+                photometry,
+            },
         }
     }
 }
