@@ -31,7 +31,7 @@ pub enum Verdict {
     /// `REFINE_ISOC_ON_END` and `RACE_ISOC_ON_END`: an ISOC member re-evaluated with
     /// N; the final ISOC is rebuilt from these rows.
     Final,
-    /// The global screening of [`Strategy::Paired`] and [`Strategy::RaceOnEnd`]: a cell
+    /// The global screening of [`Strategy::Paired`](crate::Strategy::Paired) and [`Strategy::RaceOnEnd`](crate::Strategy::RaceOnEnd): a cell
     /// of a space-filling set looked at once with the fewest samples, not offered to the
     /// ISOC (the search may evaluate it again as a candidate).
     Screened,
@@ -99,7 +99,7 @@ impl Sense {
         Estimate { mean, ..*goal }
     }
 
-    /// The groups' scores ([`Evaluation::groups`]) where the score is linear in the
+    /// The groups' scores ([`Evaluation::groups`](crate::Evaluation::groups)) where the score is linear in the
     /// goal — the goal or minus it — so that the mean of the groups' scores is the
     /// score; none for a target, whose |E − T| of a group's E is not a group of |Ē − T|.
     pub fn score_groups(self, groups: &[f64]) -> Vec<f64> {
@@ -112,7 +112,7 @@ impl Sense {
 }
 
 /// What one evaluation estimated: the goal, and each constraint's quantity in the
-/// order of [`Settings::constraints`].
+/// order of [`Settings::constraints`](crate::Settings::constraints).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
     /// The goal's quantity (lx, U0, lm), not its score.
@@ -122,11 +122,11 @@ pub struct Evaluation {
     /// The goal as each independent group of samples estimates it, in group order
     /// (their mean is `goal.mean`); group g of every configuration uses the same random
     /// numbers, so two configurations are compared by their groups' paired differences
-    /// ([`Strategy::Paired`]). Empty when the goal is no mean of groups (a uniformity
+    /// ([`Strategy::Paired`](crate::Strategy::Paired)). Empty when the goal is no mean of groups (a uniformity
     /// ratio, a power) or the evaluator does not keep them: eq. 3.7 decides then.
     pub groups: Vec<f64>,
     /// The configuration evaluated, when the evaluator chose the values of the space's
-    /// solved variables itself ([`Space::with_solved`]: the least-power levels of the
+    /// solved variables itself ([`Space::with_solved`](crate::Space::with_solved): the least-power levels of the
     /// candidate's arrangement): the search records and keeps this one in place of
     /// the candidate it asked for.
     pub solved: Option<Configuration>,
@@ -171,7 +171,7 @@ pub struct Settings {
 
 impl Settings {
     /// n and N, the samples of a fast and of a full evaluation as `eval` will take
-    /// them ([`Evaluate::samples`]: the photon tracer traces whole groups, at least
+    /// them ([`Evaluate::samples`](crate::Evaluate::samples): the photon tracer traces whole groups, at least
     /// 2 048 photons): n from q·N rounded up, never more than N.
     pub fn sample_counts<E: Evaluate>(&self, eval: &E) -> (u64, u64) {
         let full = eval.samples(self.photons);
@@ -198,9 +198,9 @@ pub trait Evaluate {
     fn evaluate(&mut self, config: &Configuration, photons: u64)
     -> Result<Evaluation, Self::Error>;
 
-    /// Evaluates each of `configs` with `photons` samples, as [`Evaluate::evaluate`]
+    /// Evaluates each of `configs` with `photons` samples, as [`Evaluate::evaluate`](crate::Evaluate::evaluate)
     /// would one after another and with the same numbers, after readying them all at
-    /// once ([`Evaluate::prepare`]).
+    /// once ([`Evaluate::prepare`](crate::Evaluate::prepare)).
     fn evaluate_all(
         &mut self,
         configs: &[Configuration],
@@ -210,7 +210,7 @@ pub trait Evaluate {
         configs.iter().map(|c| self.evaluate(c, photons)).collect()
     }
 
-    /// Readies evaluations of `configs` with `photons` samples that [`Evaluate::evaluate`]
+    /// Readies evaluations of `configs` with `photons` samples that [`Evaluate::evaluate`](crate::Evaluate::evaluate)
     /// may be asked for next: an evaluator that can trace several at once on all cores
     /// does. The search may go on to ask for only some of them, in their order, or for
     /// none (the walk readies the candidates it will draw if none of them changes its
@@ -219,7 +219,7 @@ pub trait Evaluate {
     /// depend on the thread count or on how far ahead it readied.
     fn prepare(&mut self, _configs: &[Configuration], _photons: u64) {}
 
-    /// How many evaluations of `photons` samples [`Evaluate::prepare`] would trace side
+    /// How many evaluations of `photons` samples [`Evaluate::prepare`](crate::Evaluate::prepare) would trace side
     /// by side to keep every core busy: the walk readies that many candidates ahead
     /// (1, the default: none ahead).
     fn side_by_side(&self, _photons: u64) -> usize {

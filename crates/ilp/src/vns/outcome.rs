@@ -31,11 +31,11 @@ pub enum Outcome {
     Exhausted,
     /// The observer asked to stop; the ISOC is as it was (not refined).
     Interrupted,
-    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: a whole sweep of the radii
+    /// [`Strategy::Paired`](crate::Strategy::Paired), [`Strategy::RaceOnEnd`](crate::Strategy::RaceOnEnd): a whole sweep of the radii
     /// 0.05 … 0.95 around the ISOC, I candidates each, admitted no configuration, nor
-    /// did the cells adjacent to its members (see [`Search::run`]).
+    /// did the cells adjacent to its members (see [`Search::run`](crate::Search::run)).
     Settled,
-    /// [`Strategy::Paired`], [`Strategy::RaceOnEnd`]: the global screening found every
+    /// [`Strategy::Paired`](crate::Strategy::Paired), [`Strategy::RaceOnEnd`](crate::Strategy::RaceOnEnd): the global screening found every
     /// configuration it tried (and the initial one) indistinguishable from no light at
     /// all, until the budget or the cells ran out.
     Unlit,
@@ -60,7 +60,7 @@ impl Outcome {
     }
 
     /// What a user should know about it, if anything (the table already ends with
-    /// [`Outcome::stopped`]).
+    /// [`Outcome::stopped`](crate::Outcome::stopped)).
     pub fn note(self) -> Option<&'static str> {
         match self {
             Outcome::Finished | Outcome::Settled | Outcome::Unlit => None,

@@ -53,7 +53,7 @@ pub struct Standing<'a> {
     /// The configurations that violate the constraints least (by the largest relative
     /// shortfall of their means), least first, with that shortfall.
     pub closest: &'a [(f64, Member)],
-    /// The best of the structured starts ([`Space::regular_arrays`]) that was decided
+    /// The best of the structured starts ([`Space::regular_arrays`](crate::Space::regular_arrays)) that was decided
     /// feasible: the regular array an answer of free positions is to be weighed
     /// against, even when the search went past it.
     pub best_start: Option<&'a Member>,

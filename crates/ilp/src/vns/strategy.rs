@@ -15,9 +15,9 @@ pub enum Strategy {
     /// As `RefineOnIntersection`, but a candidate is compared with each ISOC member by
     /// the paired differences of their groups (common random numbers) instead
     /// of eq. 3.7's independent variances, wherever both kept their groups; a candidate
-    /// is looked at with n/16, n/4, n, 4n, … samples ([`looks`]) and is out as soon as
+    /// is looked at with n/16, n/4, n, 4n, … samples ([`looks`](crate::looks)) and is out as soon as
     /// a member beats it by pairs or it falls below the SIISOC or its constraints at
-    /// an early look's level ([`early_look_z`]); [`Search::run`]'s stopping rule
+    /// an early look's level ([`early_look_z`](crate::early_look_z)); [`Search::run`](crate::Search::run)'s stopping rule
     /// ends the search when it is decided. `solutions.csv` keeps no groups, so the
     /// members a resumed run rebuilds from it are compared by eq. 3.7.
     Paired,
@@ -26,7 +26,7 @@ pub enum Strategy {
     /// stopping rule; at the end the ISOC is raced to N rather than re-evaluated whole
     /// (`race`): its members are looked at together with 4n, 16n, … samples, and a
     /// member that another beats by the paired differences of their groups at an early
-    /// look's level ([`early_look_z`]) goes no further. The walk's decisions at n do
+    /// look's level ([`early_look_z`](crate::early_look_z)) goes no further. The walk's decisions at n do
     /// not pair (only its early looks screen by pairs, at their stricter level): with
     /// n's few groups pairs decide many more comparisons than eq. 3.7, each at its
     /// nominal error, and over a walk's hundreds of them they drop the optimum more
@@ -92,7 +92,7 @@ impl std::str::FromStr for Strategy {
     }
 }
 
-/// A name that is not one of [`Strategy::names`].
+/// A name that is not one of [`Strategy::names`](crate::Strategy::names).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct UnknownStrategy(pub String);
 

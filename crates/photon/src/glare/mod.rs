@@ -132,7 +132,7 @@ const UNTOLD_SPREAD: f64 = 100.0;
 /// at the eye `indirect` (lx, Lb = E/π), as an estimate: its standard error the
 /// first-order spread 8/ln 10 · σ_E/E. Without a luminaire in view it is 0 (below the
 /// scale: no discomfort glare), exactly; over a background not yet told from black its
-/// spread is [`UNTOLD_SPREAD`].
+/// spread is 100, wider than the whole scale, so that no limit is decided on it.
 pub fn ugr_estimate(sum: f64, indirect: &Estimate) -> Estimate {
     let samples = indirect.samples;
     if sum <= 0.0 {
