@@ -9,10 +9,10 @@
 //! light reaches the eye from behind and is not counted on its front.
 
 use glam::{Mat3, Mat4, Vec3};
-use invlight_photon::TraceSettings;
 use invlight_photon::glare::{
-    GlareError, Observer, glare_sources, position_index, unified_glare_rating,
+    GlareError, Observer, add_eye, eye_grid, glare_sources, position_index, unified_glare_rating,
 };
+use invlight_photon::{Components, Estimator, Measurement, Request, TraceSettings, measure_with};
 use invlight_scene::{Light, LightKind, Material, Mesh, Scene, read_photometry};
 use invlight_stats::Confidence;
 use invlight_trace::Accel;
@@ -205,4 +205,34 @@ fn a_point_light_in_view_is_refused_not_guessed() {
     let err = glare_sources(&scene, &accel, &eye()).unwrap_err();
     assert!(matches!(err, GlareError::NoLuminousArea { ref light, .. } if light == "Bulb"));
     assert!(err.to_string().contains("luminous dimensions"), "{err}");
+}
+
+#[test]
+fn a_measurement_carries_each_observers_glare_sum_through_a_cluster_exchange() {
+    let mut scene = with_panel(wall_scene(), Vec3::new(2.0, 0.0, 1.0), 1.0);
+    let accel = Accel::with_movable(&scene, &[]);
+    let sum: f64 = glare_sources(&scene, &accel, &eye())
+        .unwrap()
+        .iter()
+        .map(|s| s.contribution)
+        .sum();
+    assert!(sum > 0.0, "the panel is in view");
+    let eye_square = add_eye(&mut scene, &eye(), "eye").unwrap();
+    let accel = Accel::with_movable(&scene, &[]);
+    let components = Components::one(&scene);
+    let targets = [eye_square];
+    let request = Request {
+        grids: vec![eye_grid(&scene, eye_square, 0)],
+        observers: vec![eye()],
+        ..Request::means(&targets, &components, Estimator::Connected)
+    };
+    let m = measure_with(&scene, &accel, &request, &settings(20_000), None);
+    // Exact and per component: the panel's sum at level 1, a quarter of it at half.
+    assert!((m.glare_sum(0, &[1.0]) - sum).abs() < 1e-9 * sum);
+    assert!((m.glare_sum(0, &[0.5]) - 0.25 * sum).abs() < 1e-9 * sum);
+    // What another rank reads back is the same measurement, glare sums included.
+    let mut words = Vec::new();
+    m.pack(&mut words);
+    let back = Measurement::unpack(&request, &mut words.into_iter());
+    assert_eq!(back, m);
 }

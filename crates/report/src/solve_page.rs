@@ -432,7 +432,11 @@ impl<'a> SolveReport<'a> {
             );
         }
         for c in &f.result.constraints {
-            let sign = if c.bound == "maxLux" { "≤" } else { "≥" };
+            let sign = if matches!(c.bound.as_str(), "maxLux" | "maxUGR") {
+                "≤"
+            } else {
+                "≥"
+            };
             let cu = if c.unit.is_empty() {
                 String::new()
             } else {
