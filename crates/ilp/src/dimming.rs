@@ -390,10 +390,12 @@ impl Rows {
 /// Whether every constraint of a problem is one the program can hold or one it may
 /// leave to the evaluation: the lamps' light is linear in their levels for the
 /// illuminances and U0, and not for a daylight factor (lamps are off under its sky). A
-/// UGR limit is not linear (L² over Lb), and is judged at the levels found: the least
-/// power dims the lamps as far as the illuminances allow, and dimming lowers UGR
-/// (every lamp by k: by 8·log10(1/k)), so an arrangement is rejected when its
-/// least-power levels glare, though some other dimming of it might not.
+/// UGR limit is not linear (L² over Lb), and is judged at the levels found: an
+/// arrangement is rejected when its least-power levels glare. Dimming every lamp by k
+/// lowers UGR by 8·log10(1/k), but dimming the lamps out of view lowers the background
+/// and raises it, so another dimming of a rejected arrangement, at more power, might
+/// pass: the search answers the least power among the arrangements whose least-power
+/// levels meet the limit.
 pub fn solvable(bounds: &[Bound]) -> bool {
     bounds.iter().all(|b| {
         matches!(

@@ -155,7 +155,7 @@ impl Reading {
                 first.line,
                 format!("glare is rated at '{}', and the light '{light}' is {kind} without a luminous area: UGR needs each luminaire's luminance, its intensity over its luminous area", first.name),
             )
-            .with_hint("give it a photometric file with luminous dimensions (IES width and length, EULUMDAT luminous area): any light may come into view as the search moves them"));
+            .with_hint("give it a photometric file with luminous dimensions (IES width and length, EULUMDAT luminous area) with <luminaire light=… file=…>: a glare search rates every light of the scene, since a moved or turned one may come into view"));
         }
         Ok(reading)
     }

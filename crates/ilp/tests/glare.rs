@@ -271,3 +271,26 @@ fn a_lamp_without_a_luminous_area_or_an_eye_outside_is_refused_before_the_search
     };
     assert!(e.message.contains("is outside the scene"), "{e}");
 }
+
+#[test]
+fn an_observer_named_as_a_surface_is_refused_and_a_scene_bound_twice_keeps_its_eye() {
+    let named_floor = problem(
+        DIMMED,
+        "<maximizeRadiance surface=\"Floor\"/><constraint maxUGR=\"19\" observer=\"1,2,1.2\" view=\"1,0,0\" name=\"Floor\"/>",
+        10,
+    );
+    let Err(e) = Binding::new(&named_floor, &mut room()) else {
+        panic!("an observer named as a surface is refused")
+    };
+    assert!(e.message.contains("has the name of a surface"), "{e}");
+    let pb = problem(DIMMED, &format!("<minimizeGlare {OBSERVER}/>"), 10);
+    let mut scene = room();
+    Binding::new(&pb, &mut scene).unwrap();
+    let surfaces = scene.surfaces.len();
+    Binding::new(&pb, &mut scene).unwrap();
+    assert_eq!(
+        scene.surfaces.len(),
+        surfaces,
+        "the eye square is added once"
+    );
+}

@@ -185,8 +185,10 @@ pub struct Departure<'a> {
     /// The source the photon left ([`crate::EmitSample::source`]): its light reaches
     /// every surface it arrives on or connects to as that source's light.
     pub source: u32,
-    /// Whether it leaves the light itself: what arrives from it is the source's direct
-    /// light, what arrives from any later departure has been reflected or transmitted.
+    /// Whether it carries light straight from the light: it leaves the light itself, or
+    /// continues such a departure through glass or off a mirror (a delta lobe). What
+    /// arrives from it is the source's direct light; what arrives from a diffuse
+    /// departure has been reflected.
     pub emitted: bool,
 }
 

@@ -157,12 +157,12 @@ pub fn trace_photon(
             }
             Event::Mirror(f) => {
                 power *= f;
-                from = specular(at.point, power, source);
+                from = specular(at.point, power, source, from.emitted);
                 reflect(ray.dir, n)
             }
             Event::Dielectric(f) => {
                 power *= f;
-                from = specular(at.point, power, source);
+                from = specular(at.point, power, source, from.emitted);
                 let entering = at.normal.dot(ray.dir) < 0.0;
                 let ior = scene.materials[at.material].ior;
                 let eta = if entering { 1.0 / ior } else { ior };
@@ -260,15 +260,18 @@ impl Roulette {
 }
 
 /// A departure along a delta lobe (mirror, glass), which no connection competes with.
+/// It keeps `emitted` from the departure it continues: a lamp's light through a glass
+/// cover or off a mirror is still that lamp's direct light, not reflected light a glare
+/// background counts ([`crate::GridValues::Indirect`]).
 #[inline]
-fn specular(point: Vec3, power: Rgb, source: u32) -> Departure<'static> {
+fn specular(point: Vec3, power: Rgb, source: u32, emitted: bool) -> Departure<'static> {
     Departure {
         point,
         lobe: Lobe::Specular,
         lumens: luminance(power),
         survival: 1.0,
         source,
-        emitted: false,
+        emitted,
     }
 }
 

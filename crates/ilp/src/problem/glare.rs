@@ -18,7 +18,7 @@
 use super::task::TaskSpec;
 use super::{Node, Problem, Reader};
 use crate::intention::{Bound, Constraint, FromTask, Goal, Side, SurfaceRef};
-use invlight_photon::glare::{GlareError, Observer, add_eye};
+use invlight_photon::glare::{GlareError, Observer, add_eye, is_eye_of};
 use invlight_scene::{Diagnostic, Scene, Vec3};
 
 /// An observer of the problem: an eye, where it looks, the name its eye square takes.
@@ -123,11 +123,16 @@ impl Reader<'_, '_> {
             None => format!("observer {}", observers.specs.len() + 1),
         };
         if let Some(other) = observers.specs.iter().find(|o| o.name == name) {
+            let given = if node.attribute("name").is_some() {
+                ""
+            } else {
+                ", the name an observer without 'name' takes by default"
+            };
             return Err(self
                 .error(
                     node,
                     format!(
-                        "a second observer named '{name}' (the first is on line {}), expected one name per eye and view",
+                        "a second observer named '{name}'{given} (the first is on line {}), expected one name per eye and view",
                         other.line
                     ),
                 )
@@ -152,11 +157,11 @@ impl Reader<'_, '_> {
         let limit = self
             .real(c, "maxUGR", "a UGR limit (CIE 117's scale: 10 to 30)")?
             .unwrap_or_default();
-        if !(0.0..=40.0).contains(&limit) {
+        if !(limit > 0.0 && limit <= 40.0) {
             return Err(self
                 .error(
                     c,
-                    format!("'maxUGR' of <constraint> is {limit}, expected a UGR limit from 10 to 30"),
+                    format!("'maxUGR' of <constraint> is {limit}, expected a UGR limit in (0, 40] (CIE 117's scale runs from 10 to 30)"),
                 )
                 .with_hint("EN 12464-1's UGR_L: 16 for technical drawing, 19 for offices and classrooms, 22 for industry"));
         }
@@ -272,7 +277,7 @@ impl Problem {
                 .with_hint("give the eye inside the room, in the scene's metres (EN 12464-1: 1.2 m above the floor seated)"));
             }
             if let Some(s) = scene.surface(&o.name) {
-                if scene.is_calculation_surface(s) {
+                if is_eye_of(scene, s, &o.observer) {
                     continue;
                 }
                 return Err(Diagnostic::at_line(
@@ -283,7 +288,7 @@ impl Problem {
                         o.name
                     ),
                 )
-                .with_hint("give the observer another name="));
+                .with_hint("give the observer another name=\"…\" (a surface, a workplane and a calculation surface name theirs)"));
             }
             add_eye(scene, &o.observer, &o.name).map_err(|e| {
                 Diagnostic::at_line(&self.path, o.line, format!("observer '{}': {e}", o.name))
@@ -367,11 +372,23 @@ mod tests {
             ),
             (
                 "<constraint maxUGR=\"55\" observer=\"1,2,1.2\" view=\"0,1,0\"/>",
-                "expected a UGR limit from 10 to 30",
+                "expected a UGR limit in (0, 40]",
             ),
             (
                 "<observer position=\"1,2,1.2\" view=\"0,1,0\" name=\"a\"/><observer position=\"1,3,1.2\" view=\"0,1,0\" name=\"a\"/>",
                 "a second observer named 'a'",
+            ),
+            (
+                "<observer position=\"1,2,1.2\" view=\"0,1,0\"/><observer position=\"1,3,1.2\" view=\"0,1,0\" name=\"observer 1\"/>",
+                "a second observer named 'observer 1'",
+            ),
+            (
+                "<observer position=\"1,3,1.2\" view=\"0,1,0\" name=\"observer 2\"/><observer position=\"1,2,1.2\" view=\"0,1,0\"/>",
+                "the name an observer without 'name' takes by default",
+            ),
+            (
+                "<task name=\"office\" ugrL=\"-3\"/>",
+                "'ugrL' of <task> is -3, expected a UGR limit in (0, 40]",
             ),
         ];
         for (xml, want) in cases {

@@ -111,9 +111,15 @@ impl Reader<'_, '_> {
         };
         let em = self.lux(t, "em")?.or(named.map(|n| n.em));
         let u0 = self.unit(t, "u0", 0.0, 1.0)?.or(named.map(|n| n.u0));
-        let ugr_l = self
-            .real(t, "ugrL", "a UGR limit (CIE 117's scale: 10 to 30)")?
-            .or(named.and_then(|n| n.ugr_l));
+        let ugr_l = match self.real(t, "ugrL", "a UGR limit (CIE 117's scale: 10 to 30)")? {
+            Some(u) if !(u > 0.0 && u <= 40.0) => {
+                return Err(self.error(
+                    t,
+                    format!("'ugrL' of <task> is {u}, expected a UGR limit in (0, 40] (CIE 117's scale runs from 10 to 30)"),
+                ));
+            }
+            u => u.or(named.and_then(|n| n.ugr_l)),
+        };
         if named.is_none() && em.is_none() && u0.is_none() {
             return Err(self
                 .error(t, format!("<task> needs 'name', a task of EN 12464-1's table ({}), or its figures 'em' and 'u0'", names()))

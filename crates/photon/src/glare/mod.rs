@@ -130,8 +130,9 @@ const UNTOLD_SPREAD: f64 = 100.0;
 
 /// The UGR of the glare sum `sum` (Σ L²ω/p², cd²/m⁴·sr) over the indirect illuminance
 /// at the eye `indirect` (lx, Lb = E/π), as an estimate: its standard error the
-/// first-order spread 8/ln 10 · σ_E/E. Without a luminaire in view it is 0 (below the
-/// scale: no discomfort glare), exactly; over a background not yet told from black its
+/// first-order spread 8/ln 10 · σ_E/E, its mean at least 0. Without a luminaire in view
+/// it is 0 (below the scale: no discomfort glare), exactly; over a background not yet
+/// told from black its
 /// spread is 100, wider than the whole scale, so that no limit is decided on it.
 pub fn ugr_estimate(sum: f64, indirect: &Estimate) -> Estimate {
     let samples = indirect.samples;
@@ -150,7 +151,11 @@ pub fn ugr_estimate(sum: f64, indirect: &Estimate) -> Estimate {
             samples,
         };
     }
-    let mean = ugr_of(sum, e / std::f64::consts::PI).unwrap_or(0.0);
+    // Below 0 the formula ranks nothing a designer reads (CIE 117's scale starts at
+    // 10): a faint source in view must not rate better than none.
+    let mean = ugr_of(sum, e / std::f64::consts::PI)
+        .unwrap_or(0.0)
+        .max(0.0);
     let std_error = if indirect.mean > indirect.std_error {
         8.0 / std::f64::consts::LN_10 * indirect.std_error / indirect.mean
     } else {
@@ -199,7 +204,7 @@ pub fn add_eye(
     let (view, vertical) = sight(observer, scene.up)?;
     let right = view.cross(vertical);
     let (c, a) = (observer.eye, EYE_HALF_SIDE);
-    let material = scene.add_material(Material::diffuse("eye (glare)", Vec3::ZERO));
+    let material = scene.add_material(Material::diffuse(EYE_MATERIAL, Vec3::ZERO));
     let corners = [
         c - a * right - a * vertical,
         c - a * right + a * vertical,
@@ -211,6 +216,34 @@ pub fn add_eye(
     let s = scene.surface(name).expect("the surface just added");
     scene.make_calculation_surface(s);
     Ok(s)
+}
+
+/// The material of every eye square, by which [`is_eye_of`] knows one.
+const EYE_MATERIAL: &str = "eye (glare)";
+
+/// Whether surface `s` of `scene` is the eye square [`add_eye`] added for `observer`: a
+/// calculation surface of two triangles of the eye's material, centred on the eye and
+/// facing the view. A scene bound to a problem twice keeps its eyes; any other surface
+/// of an observer's name is not one.
+pub fn is_eye_of(scene: &Scene, s: SurfaceId, observer: &Observer) -> bool {
+    let Ok((view, _)) = sight(observer, scene.up) else {
+        return false;
+    };
+    let surface = &scene.surfaces[s];
+    if !scene.is_calculation_surface(s) || surface.instances.len() != 1 {
+        return false;
+    }
+    let triangles: Vec<_> = scene.world_triangles(surface.instances[0]).collect();
+    let centre = triangles
+        .iter()
+        .flat_map(|t| t.corners)
+        .fold(Vec3::ZERO, |a, p| a + p)
+        / (3 * triangles.len().max(1)) as f32;
+    triangles.len() == 2
+        && triangles.iter().all(|t| {
+            scene.materials[t.material].name == EYE_MATERIAL && t.normal().dot(view) > 0.999
+        })
+        && centre.distance(observer.eye) < 1e-4
 }
 
 /// The one-cell grid of the eye square `eye` ([`add_eye`]) that reads the background:
@@ -330,6 +363,52 @@ mod tests {
             "{e:?} {high}"
         );
         assert!((e.mean - z * e.std_error - low).abs() < 0.01, "{e:?} {low}");
+    }
+
+    #[test]
+    fn a_faint_source_in_view_rates_no_better_than_none() {
+        let bright_background = Estimate {
+            mean: 5_000.0,
+            std_error: 10.0,
+            samples: 10,
+        };
+        // 0.25·Σ/Lb < 1: the formula alone would read below 0.
+        assert!(ugr_of(100.0, 5_000.0 / std::f64::consts::PI).unwrap() < 0.0);
+        assert_eq!(ugr_estimate(100.0, &bright_background).mean, 0.0);
+    }
+
+    #[test]
+    fn an_eye_square_is_known_as_its_observers_and_no_other_surface_is() {
+        let mut scene = Scene::default();
+        scene.up = Vec3::Z;
+        let observer = Observer {
+            eye: Vec3::new(1.0, 2.0, 1.2),
+            view: Vec3::Y,
+        };
+        let s = add_eye(&mut scene, &observer, "pupil").unwrap();
+        assert!(is_eye_of(&scene, s, &observer));
+        let elsewhere = Observer {
+            eye: Vec3::new(1.0, 3.0, 1.2),
+            ..observer
+        };
+        assert!(!is_eye_of(&scene, s, &elsewhere));
+        let other_way = Observer {
+            view: Vec3::X,
+            ..observer
+        };
+        assert!(!is_eye_of(&scene, s, &other_way));
+        let m = scene.add_material(Material::diffuse("desk", Vec3::splat(0.5)));
+        let quad = [
+            Vec3::new(0.9, 2.0, 1.1),
+            Vec3::new(1.1, 2.0, 1.1),
+            Vec3::new(1.1, 2.0, 1.3),
+            Vec3::new(0.9, 2.0, 1.3),
+        ];
+        let mesh = scene.add_mesh(Mesh::quad(quad, m));
+        scene.add_instance("desk", mesh, Mat4::IDENTITY);
+        let desk = scene.surface("desk").unwrap();
+        scene.make_calculation_surface(desk);
+        assert!(!is_eye_of(&scene, desk, &observer));
     }
 
     #[test]
