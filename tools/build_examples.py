@@ -694,6 +694,47 @@ def open_office_scene(out, stem, lamps):
         g.write(f.read())
 
 
+CLASSROOM = (9.0, 3.0, 7.2)  # width x (along the board), height, depth z (board at z = 0)
+CLASSROOM_LAMPS = 12
+CLASSROOM_ZONE_MARGIN = 0.6  # m, the lamps' centres from the walls
+
+
+def classroom(_scenes_dir, out):
+    """examples/classroom: a 9.0 m x 7.2 m x 3.0 m classroom (reflectances 0.7 / 0.5 /
+    0.2), twelve linear LED luminaires (linear.ldt: 1500 x 60 mm, 3000 lm, 25 W) hung
+    0.05 m under the ceiling, authored in a row (the problems set them out), the ceiling
+    zone they may take and a camera at the back. The board wall is z = 0; the pupils
+    face it (-z)."""
+    w, h, d = CLASSROOM
+    gl = Gltf("invlight tools/build_examples.py: classroom")
+    room = gl.node("Room")
+    office_room(gl, room, w, h, d)
+    m = CLASSROOM_ZONE_MARGIN
+    ly = h - 0.05
+    zone = quad((m, ly, m), (w - m, ly, m), (w - m, ly, d - m), (m, ly, d - m))
+    gl.node("LampZone__Geometry", mesh=gl.mesh("LampZone__Geometry", *zone,
+                                                  gl.material("Zone", (0.7, 0.7, 0.7))))
+    for k in range(CLASSROOM_LAMPS):
+        x = m + (k + 0.5) * (w - 2 * m) / CLASSROOM_LAMPS
+        gl.point_light("Lamp%d" % (k + 1), (x, ly, d / 2), 100.0)
+    gl.camera("Camera", (w / 2, 1.6, d - 0.3), (w / 2, 1.0, 0.0), 70.0)
+    gl.write(out, "scene")
+    # The luminaire: tests/data/photometry/linear.ldt's distribution behind a 300 mm
+    # wide opal cover (luminaire 1520 x 320 mm, luminous area 1500 x 300 mm), so that
+    # its luminance is a classroom luminaire's rather than a bare LED strip's.
+    src = os.path.join(REPO, "tests", "data", "photometry", "linear.ldt")
+    with open(src, encoding="ascii", newline="") as f:
+        text = f.read()
+    newline = "\r\n" if "\r\n" in text else "\n"
+    lines = text.split(newline)
+    lines[8] = "Linear LED luminaire 1500 mm, opal cover 300 mm (invlight example)"
+    lines[10] = "classroom.ldt"
+    lines[13] = "320"  # width of the luminaire, mm
+    lines[16] = "300"  # width of the luminous area, mm
+    with open(os.path.join(out, "classroom.ldt"), "w", encoding="ascii", newline="") as g:
+        g.write(newline.join(lines))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=os.path.join(os.path.dirname(REPO), "shared", "scenes"),
@@ -701,7 +742,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(REPO, "examples"), help="examples folder")
     ap.add_argument("--only", choices=["atrium-skylight", "atrium-colour", "conference-sun",
                                        "office-target", "office-ies", "office-daylight",
-                                       "open-office"])
+                                       "open-office", "classroom"])
     ap.add_argument("--wall-value", type=float,
                     help="write only atrium-colour, with this inner-wall HSV value, into --out")
     args = ap.parse_args()
@@ -711,7 +752,7 @@ def main():
     builders = {"atrium-skylight": atrium_skylight, "atrium-colour": atrium_colour,
                 "conference-sun": conference, "office-target": office,
                 "office-ies": office_ies, "office-daylight": office_daylight,
-                "open-office": open_office}
+                "open-office": open_office, "classroom": classroom}
     for name, build in builders.items():
         if args.only in (None, name):
             build(args.scenes, os.path.join(args.out, name))

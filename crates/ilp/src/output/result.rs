@@ -110,6 +110,7 @@ impl ObjectiveInfo {
                 "the least lamp power as luminous flux (lm: not every lamp's file gives watts)"
                     .into()
             }
+            "minimizeGlare" => "the least glare (UGR, CIE 117) at its observer".into(),
             _ => on("the most light"),
         }
     }
