@@ -549,7 +549,7 @@ impl SearchPlot {
             .y_label_area_size(5 * FONT)
             .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
         let unit = match self.unit.as_str() {
-            "" | "U0" => String::new(),
+            "" | "U0" | "UGR" => String::new(),
             u => format!(" ({u})"),
         };
         value_axes(&mut chart, label, &format!("{}{unit}", self.quantity))?;

@@ -297,7 +297,7 @@ fn summarised(points: Vec<PlotPoint>, goal: &Goal, value_plot: bool) -> Vec<Plot
     // Lower is better.
     let key = |p: &PlotPoint| {
         let worse = match goal {
-            Goal::Minimize { .. } | Goal::MinimizePower => p.mean,
+            Goal::Minimize { .. } | Goal::MinimizePower | Goal::MinimizeGlare { .. } => p.mean,
             Goal::Target { lux, .. } => (p.mean - lux).abs(),
             _ => -p.mean,
         };
@@ -359,11 +359,13 @@ pub fn convergence(records: &[Record], isoc: &Isoc, binding: &Binding) -> Conver
     }
 }
 
-/// The unit a plot labels the goal's values with: lx, W or lm, or U0 for a uniformity.
+/// The unit a plot labels the goal's values with: lx, W or lm, U0 for a uniformity, UGR
+/// for a glare rating.
 pub fn goal_unit(binding: &Binding) -> String {
-    match binding.goal_unit() {
-        "" => "U0".into(),
-        u => u.into(),
+    match (binding.goal_unit(), &binding.goal) {
+        ("", Goal::MinimizeGlare { .. }) => "UGR".into(),
+        ("", _) => "U0".into(),
+        (u, _) => u.into(),
     }
 }
 
