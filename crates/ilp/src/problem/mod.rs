@@ -160,6 +160,10 @@ pub struct ArraySpec {
     pub columns: (u32, u32),
     /// The least and greatest number of rows.
     pub rows: (u32, u32),
+    /// `orientation`: degrees every lamp of the array is turned about its aim, on top
+    /// of its own (`<luminaire rotation>`): 0 or 90, a linear luminaire along or across
+    /// the rectangle's first edge's as authored.
+    pub orientation: f32,
 }
 
 impl VariableKind {
@@ -380,6 +384,7 @@ impl Problem {
         options.up = up.or(self.scene.up);
         let mut scene = invlight_scene::load_with(path, &options, &self.scene.luminaires)?;
         scene.set_luminaires(path, luminaires, &options)?;
+        self.turn_arrays(&mut scene);
         scene.set_calculation(path, &self.scene.calculation)?;
         self.build_task_areas(&mut scene)?;
         // A sun below the horizon was warned of with its line when the file was read.

@@ -747,3 +747,50 @@ fn a_luminaire_takes_its_rotation() {
     let e = with("rotation=\"400\"").unwrap_err().to_string();
     assert!(e.contains(":2:") && e.contains("[-360, 360]"), "{e}");
 }
+
+#[test]
+fn an_arrays_orientation_turns_its_lamps_as_each_luminaires_rotation_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/classroom");
+    for f in ["scene.gltf", "scene.bin", "classroom.ldt"] {
+        std::fs::copy(example.join(f), dir.path().join(f)).unwrap();
+    }
+    let frames = |array: &str, rotation: &str| {
+        let luminaires: String = (1..=12)
+            .map(|k| format!("<luminaire light=\"Lamp{k}\" file=\"classroom.ldt\"{rotation}/>"))
+            .collect();
+        let text = format!(
+            "<input><scene path=\"scene.gltf\">{luminaires}</scene><conditions><lightArray id=\"Grid\" lights=\"Lamp1 … Lamp12\" surface=\"LampZone__Geometry\" columns=\"2..4\" rows=\"2..4\"{array}/></conditions><objectives><minimizePower/></objectives></input>"
+        );
+        let path = dir.path().join("p.xml");
+        std::fs::write(&path, text).unwrap();
+        let mut p = Problem::read(&path).unwrap();
+        let scene = p
+            .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
+            .unwrap();
+        scene
+            .lights
+            .iter()
+            .map(|l| match &l.kind {
+                invlight_scene::LightKind::Goniometric { frame, .. } => *frame,
+                _ => panic!("a luminaire"),
+            })
+            .collect::<Vec<_>>()
+    };
+    let (along, across) = (frames("", ""), frames(" orientation=\"90\"", ""));
+    let each = frames("", " rotation=\"90\"");
+    for ((a, b), c) in along.iter().zip(&across).zip(&each) {
+        // A quarter turn about the aim: C0 goes where C90 was, the aim stays.
+        assert!(b.x_axis.abs_diff_eq(a.y_axis, 1e-5), "{a} {b}");
+        assert!(b.z_axis.abs_diff_eq(a.z_axis, 1e-5), "{a} {b}");
+        assert!(b.abs_diff_eq(*c, 1e-6), "orientation {b} and rotation {c}");
+    }
+    let refused = |o: &str| {
+        let text = format!(
+            "<input><scene path=\"s.gltf\"/><conditions><lightArray id=\"G\" lights=\"A B\" surface=\"Z\" columns=\"1\" rows=\"1\" orientation=\"{o}\"/></conditions><objectives><minimizePower/></objectives></input>"
+        );
+        Problem::parse(Path::new("/p/problem.xml"), &text).unwrap_err()
+    };
+    assert!(refused("45").message.contains("expected 0 or 90"));
+    assert!(refused("search").message.contains("does not search yet"));
+}

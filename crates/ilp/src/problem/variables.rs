@@ -3,10 +3,10 @@
 //! dimming, a material's colour; `<sunTime>` is read in `sun_time.rs`.
 
 use super::{
-    Anchor, ArraySpec, LightGroup, Node, PlacementSpec, Reader, VariableKind, VariableSpec,
+    Anchor, ArraySpec, LightGroup, Node, PlacementSpec, Problem, Reader, VariableKind, VariableSpec,
 };
-use invlight_scene::Diagnostic;
 use invlight_scene::daylight::SunSchedule;
+use invlight_scene::{Diagnostic, Scene};
 
 const VARIABLES: &[&str] = &[
     "objectInSurface",
@@ -214,7 +214,7 @@ impl<'a, 'i> Reader<'a, 'i> {
     /// search, not here, so that "2..4" × "2..6" over six lamps means every array of
     /// six or fewer.
     fn light_array(&self, v: Node) -> Result<VariableKind, Diagnostic> {
-        let mut known = vec!["id", "lights", "surface", "columns", "rows"];
+        let mut known = vec!["id", "lights", "surface", "columns", "rows", "orientation"];
         known.extend(VERTEX_ATTRS);
         self.check_attributes(v, &known);
         let id = self.required(v, "id")?;
@@ -243,12 +243,28 @@ impl<'a, 'i> Reader<'a, 'i> {
                 )
                 .with_hint("name more lamps in 'lights', or lower the least 'columns' or 'rows'"));
         }
+        let orientation = match v.attribute("orientation").map(str::trim) {
+            None | Some("0") => 0.0,
+            Some("90") => 90.0,
+            Some("search") => {
+                return Err(self
+                    .error(v, "'orientation' of <lightArray> is 'search', which invlight does not search yet; expected 0 or 90")
+                    .with_hint("solve once with orientation=\"0\" and once with orientation=\"90\", and compare the answers"));
+            }
+            Some(o) => {
+                return Err(self.error(
+                    v,
+                    format!("'orientation' of <lightArray> is '{o}', expected 0 or 90 (degrees every lamp is turned about its aim)"),
+                ));
+            }
+        };
         Ok(VariableKind::LightArray(ArraySpec {
             lights,
             surface: self.required(v, "surface")?,
             vertices: self.vertices(v)?,
             columns,
             rows,
+            orientation,
         }))
     }
 
@@ -378,4 +394,24 @@ pub(super) fn parse_mesh(s: &str) -> Option<Vec<u32>> {
         .map(|p| p.trim().parse().ok().filter(|&n| n > 0))
         .collect();
     v.filter(|v| !v.is_empty())
+}
+
+impl Problem {
+    /// Turns every lamp of each `<lightArray orientation="90">` a quarter turn about its
+    /// aim on `scene` as loaded (a name the scene lacks is the binder's to refuse).
+    pub(super) fn turn_arrays(&self, scene: &mut Scene) {
+        for spec in &self.variables {
+            let VariableKind::LightArray(a) = &spec.kind else {
+                continue;
+            };
+            if a.orientation == 0.0 {
+                continue;
+            }
+            for name in &a.lights {
+                if let Some(l) = scene.light(name) {
+                    scene.lights[l].kind.turn_about_aim(a.orientation);
+                }
+            }
+        }
+    }
 }
