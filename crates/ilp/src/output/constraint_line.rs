@@ -9,8 +9,10 @@ use invlight_stats::significant;
 
 impl ResultConstraint {
     /// Its line in the table, for the constraint `info`, at the run's `level` %: the
-    /// estimate with the one-sided bound that decides it, the limit and the verdict.
+    /// estimate with the one-sided bound that decides it, the limit and the verdict. A
+    /// UGR reads as a rating ("UGR 18.9", below CIE 117's scale "< 10": [`rating`]).
     pub(super) fn line(&self, info: &ConstraintInfo, level: f64) -> String {
+        let ugr = info.bound == "maxUGR";
         let cu = match info.unit.as_str() {
             "" => String::new(),
             u => format!(" {u}"),
@@ -19,11 +21,15 @@ impl ResultConstraint {
             "maxLux" | "maxUGR" => "≤",
             _ => "≥",
         };
-        if info.bound == "maxUGR" {
-            return self.ugr_line(info, level);
-        }
+        let (prefix, value): (&str, fn(f64) -> String) = if ugr {
+            ("UGR ", rating)
+        } else {
+            ("", significant)
+        };
         let maintained = match (info.maintained_limit, info.maintenance_factor) {
-            (Some(m), Some(f)) => format!(" ({}{cu} maintained ÷ MF {f})", significant(m)),
+            (Some(m), Some(f)) if !ugr => {
+                format!(" ({}{cu} maintained ÷ MF {f})", significant(m))
+            }
             _ => String::new(),
         };
         let named = info
@@ -34,46 +40,23 @@ impl ResultConstraint {
         // written before it was recorded shows its two-sided interval.
         let read = match self.bound {
             Some(b) => format!(
-                "{}{cu} ({sign} {}{cu} at {level} %, one-sided)",
-                significant(self.estimate.mean),
-                invlight_stats::significant_beside(b, info.limit)
+                "{prefix}{}{cu} ({sign} {}{cu} at {level} %, one-sided)",
+                value(self.estimate.mean),
+                if ugr {
+                    rating(b)
+                } else {
+                    invlight_stats::significant_beside(b, info.limit)
+                }
             ),
             None => format!(
-                "{}{cu} [{}, {}]",
-                significant(self.estimate.mean),
-                significant(self.estimate.low),
-                significant(self.estimate.high)
+                "{prefix}{}{cu} [{}, {}]",
+                value(self.estimate.mean),
+                value(self.estimate.low),
+                value(self.estimate.high)
             ),
         };
         format!(
             "       {}{named}: {read}, {sign} {}{cu}{maintained}: {}\n",
-            self.label,
-            significant(info.limit),
-            self.verdict
-        )
-    }
-    /// A UGR limit's line: ratings to a tenth and below CIE 117's scale as "< 10"
-    /// ([`rating`]), the one-sided upper bound that decides it.
-    fn ugr_line(&self, info: &ConstraintInfo, level: f64) -> String {
-        let named = info
-            .standard
-            .as_ref()
-            .map_or(String::new(), |s| format!(" ({s})"));
-        let read = match self.bound {
-            Some(b) => format!(
-                "UGR {} (≤ {} at {level} %, one-sided)",
-                rating(self.estimate.mean),
-                rating(b)
-            ),
-            None => format!(
-                "UGR {} [{}, {}]",
-                rating(self.estimate.mean),
-                rating(self.estimate.low),
-                rating(self.estimate.high)
-            ),
-        };
-        format!(
-            "       {}{named}: {read}, ≤ {}: {}\n",
             self.label,
             significant(info.limit),
             self.verdict
