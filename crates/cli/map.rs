@@ -215,7 +215,13 @@ fn areas_to_judge(
             .find(|t| t.surface.name == args.surface && !t.built.is_empty())
     });
     match built {
-        Some(t) => t.built.clone(),
+        // Ēz is a mean over prisms, judged by the solve, not a planar map.
+        Some(t) => t
+            .built
+            .iter()
+            .filter(|a| a.kind != AreaKind::Cylindrical)
+            .cloned()
+            .collect(),
         None => scene
             .add_task_areas(&args.scene.scene, surface, &AreaKind::ALL)
             .unwrap_or_else(|e| {

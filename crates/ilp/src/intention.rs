@@ -335,6 +335,7 @@ impl Constraint {
         let quantity = match self.bound {
             Bound::MinUniformity(..) => "U0",
             Bound::MaxUgr(_) => return Some(format!("EN 12464-1 {}: UGR_L", task.task)),
+            _ if task.area == Some(AreaKind::Cylindrical) => "Ēz",
             _ => "Ēm",
         };
         Some(format!("{} {quantity}", task.words()))

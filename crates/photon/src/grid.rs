@@ -12,47 +12,7 @@ use std::fmt;
 /// nothing.
 pub const MAX_CELLS: u64 = 1 << 20;
 
-/// EN 12464-1:2021's grid spacing (§5.4 / Annex A; EN 12464-1:2011 §4.4): p = 0.2 ·
-/// 5^log10(d) m, d the longer side of the area, or the shorter when the longer is at
-/// least twice it, and p at most 10 m. The grid then has ⌈d/p⌉ points along d, the other
-/// side spaced alike. Tabulated: 1 m → 0.20 m, 5 m → 0.60 m, 10 m → 1 m, 100 m → 5 m.
-pub fn en12464_spacing(longer: f64, shorter: f64) -> f64 {
-    let (d, _) = en12464_side(longer, shorter);
-    (0.2 * 5f64.powf(d.log10())).min(10.0)
-}
-
-/// The side d that [`en12464_spacing`] is reckoned from, and whether it is the
-/// shorter side (the longer being at least twice it).
-fn en12464_side(a: f64, b: f64) -> (f64, bool) {
-    let (longer, shorter) = (a.max(b), a.min(b));
-    // "2 or more", read with the rounding of coordinates in metres: a 1.6 m × 0.8 m
-    // desk whose sides come out as 1.5999999 and 0.8000001 is 2:1.
-    if longer >= 2.0 * shorter * (1.0 - 1e-6) {
-        (shorter, true)
-    } else {
-        (longer, false)
-    }
-}
-
-/// [`en12464_spacing`] of an `a` × `b` m area as a reader checks it: "EN 12464-1's grid
-/// rule: p = 0.2 × 5^log10(d) = 0.79 m, d = 7.20 m (the longer side)".
-pub fn en12464_rule(a: f64, b: f64) -> String {
-    let (d, shorter) = en12464_side(a, b);
-    let side = if shorter {
-        "the shorter side, the longer being at least twice it"
-    } else {
-        "the longer side"
-    };
-    let p = en12464_spacing(a, b);
-    let capped = if p < 0.2 * 5f64.powf(d.log10()) {
-        ", at most 10 m"
-    } else {
-        ""
-    };
-    format!(
-        "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {p:.2} m{capped}, d = {d:.2} m ({side})"
-    )
-}
+pub use invlight_scene::en12464::{en12464_rule, en12464_spacing};
 
 /// Why a grid cannot be laid on a surface.
 #[derive(Debug, Clone, PartialEq)]

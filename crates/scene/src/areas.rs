@@ -47,10 +47,15 @@ pub enum AreaKind {
     Wall,
     /// The ceiling.
     Ceiling,
+    /// Cylindrical illuminance Ez over the task area at the height of a seated or
+    /// standing person's eye ([`Scene::add_cylindrical_area`]).
+    Cylindrical,
 }
 
 impl AreaKind {
-    /// Every kind, in the order [`Scene::add_task_areas`] builds them.
+    /// Every kind [`Scene::add_task_areas`] builds, in its order (the cylindrical
+    /// illuminance has its own builder, and a task asks it only where the standard
+    /// gives an Ēz).
     pub const ALL: [AreaKind; 4] = [
         AreaKind::Surrounding,
         AreaKind::Background,
@@ -76,6 +81,7 @@ impl AreaKind {
             AreaKind::Background => "background",
             AreaKind::Wall => "wall",
             AreaKind::Ceiling => "ceiling",
+            AreaKind::Cylindrical => "cylindrical illuminance",
         }
     }
 }
@@ -96,9 +102,9 @@ pub struct TaskArea {
 
 /// A rectangle in a plan frame: its extents along the frame's two axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Span {
-    x: (f64, f64),
-    y: (f64, f64),
+pub(crate) struct Span {
+    pub(crate) x: (f64, f64),
+    pub(crate) y: (f64, f64),
 }
 
 impl Span {
@@ -109,14 +115,14 @@ impl Span {
         }
     }
 
-    fn grown(self, by: f64) -> Span {
+    pub(crate) fn grown(self, by: f64) -> Span {
         Span {
             x: (self.x.0 - by, self.x.1 + by),
             y: (self.y.0 - by, self.y.1 + by),
         }
     }
 
-    fn clipped(self, to: Span) -> Span {
+    pub(crate) fn clipped(self, to: Span) -> Span {
         Span {
             x: (self.x.0.max(to.x.0), self.x.1.min(to.x.1)),
             y: (self.y.0.max(to.y.0), self.y.1.min(to.y.1)),
@@ -152,18 +158,32 @@ impl Span {
     }
 }
 
+/// The room around a task area, in a plan frame: what every area built around it is
+/// measured from.
+pub(crate) struct RoomFrame {
+    /// The scene's unit up axis.
+    pub(crate) up: Vec3,
+    /// The room's outline: its axis `a` is the plan frame's first.
+    pub(crate) outline: Rectangle,
+    /// The task area's height along up.
+    pub(crate) level: f64,
+    /// The floor's height.
+    pub(crate) floor: f64,
+    /// The ceiling's height.
+    pub(crate) ceiling: f64,
+    /// The room's outline in the plan frame.
+    pub(crate) room_span: Span,
+    /// The task area in the plan frame, within the room.
+    pub(crate) inner: Span,
+}
+
 impl Scene {
-    /// Builds EN 12464-1's areas around the task area `task` (a horizontal planar
-    /// surface) as calculation surfaces, as the module doc says: the immediate
-    /// surrounding and the background (left out where the room leaves no room for
-    /// them), the four walls and the ceiling, those of `kinds` only. `scene` is the
-    /// scene file, named in errors.
-    pub fn add_task_areas(
-        &mut self,
-        scene: &Path,
-        task: SurfaceId,
-        kinds: &[AreaKind],
-    ) -> Result<Vec<TaskArea>, LoadError> {
+    /// The room around the task area `task` (a horizontal planar surface): its floor is
+    /// the highest level at or below the task area covering a quarter of the scene's
+    /// footprint, facing either way (a room's box may face out); its ceiling the lowest
+    /// such level above it, else the top of the scene. `scene` is the scene file, named
+    /// in errors.
+    pub(crate) fn room_frame(&self, scene: &Path, task: SurfaceId) -> Result<RoomFrame, LoadError> {
         let task_name = self.surfaces[task].name.clone();
         let err = |message: String| {
             Diagnostic::at(
@@ -194,9 +214,6 @@ impl Scene {
                 .with_hint("measure a horizontal task area (a <workplane>, or a desk top made a calculation surface), or give --no-areas to judge the task area alone"));
             }
         };
-        // The floor: the highest level at or below the task area covering a quarter of
-        // the scene's footprint, facing either way (a room's box may face out); the
-        // ceiling: the lowest such level above it, else the top of the scene.
         let calc = self.calculation_instances();
         let room_tris = (0..self.instances.len())
             .filter(|&i| !calc[i])
@@ -224,6 +241,37 @@ impl Scene {
                 room.floor_name
             )));
         }
+        Ok(RoomFrame {
+            up,
+            outline,
+            level: level.height,
+            floor: floor_level.height,
+            ceiling,
+            room_span,
+            inner,
+        })
+    }
+
+    /// Builds EN 12464-1's areas around the task area `task` (a horizontal planar
+    /// surface) as calculation surfaces, as the module doc says: the immediate
+    /// surrounding and the background (left out where the room leaves no room for
+    /// them), the four walls and the ceiling, those of `kinds` only. `scene` is the
+    /// scene file, named in errors.
+    pub fn add_task_areas(
+        &mut self,
+        scene: &Path,
+        task: SurfaceId,
+        kinds: &[AreaKind],
+    ) -> Result<Vec<TaskArea>, LoadError> {
+        let RoomFrame {
+            up,
+            outline,
+            level,
+            floor,
+            ceiling,
+            room_span,
+            inner,
+        } = self.room_frame(scene, task)?;
         let mut areas = Vec::new();
         let surrounding = inner.grown(SURROUNDING_BAND).clipped(room_span);
         let background = surrounding.grown(BACKGROUND_BAND).clipped(room_span);
@@ -249,14 +297,14 @@ impl Scene {
                         (s.x.1, s.y.1),
                         (s.x.0, s.y.1),
                     ]
-                    .map(|(x, y)| plan_point(up, outline.a, x, y, level.height))
+                    .map(|(x, y)| plan_point(up, outline.a, x, y, level))
                 })
                 .collect();
             let surface = self.add_area(kind.name(), quads);
             areas.push(self.area(kind, surface, (band, band)));
         }
 
-        let (floor, e) = (floor_level.height, ROOM_SURFACE_OFFSET);
+        let e = ROOM_SURFACE_OFFSET;
         let inside = room_span.grown(-e);
         let at = |x: f64, y: f64, h: f64| plan_point(up, outline.a, x, y, h);
         areas.extend(self.room_areas(inside, (floor + e, ceiling - e), at, kinds));
@@ -309,7 +357,7 @@ impl Scene {
 
     /// Adds a calculation surface of `quads` named `name`, or `name (EN 12464-1)` when
     /// the scene has a surface called `name`.
-    fn add_area(&mut self, name: &str, quads: Vec<[Vec3; 4]>) -> SurfaceId {
+    pub(crate) fn add_area(&mut self, name: &str, quads: Vec<[Vec3; 4]>) -> SurfaceId {
         let mut unique = name.to_string();
         let mut n = 1;
         while self.surface(&unique).is_some() || self.placement(&unique).is_some() {
@@ -333,7 +381,7 @@ impl Scene {
         s
     }
 
-    fn area(&self, kind: AreaKind, surface: SurfaceId, size: (f64, f64)) -> TaskArea {
+    pub(crate) fn area(&self, kind: AreaKind, surface: SurfaceId, size: (f64, f64)) -> TaskArea {
         TaskArea {
             kind,
             surface,

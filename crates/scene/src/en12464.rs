@@ -163,6 +163,48 @@ pub const TASKS: &[Task] = &[
     },
 ];
 
+/// EN 12464-1:2021's grid spacing (§5.4 / Annex A; EN 12464-1:2011 §4.4): p = 0.2 ·
+/// 5^log10(d) m, d the longer side of the area, or the shorter when the longer is at
+/// least twice it, and p at most 10 m. The grid then has ⌈d/p⌉ points along d, the other
+/// side spaced alike. Tabulated: 1 m → 0.20 m, 5 m → 0.60 m, 10 m → 1 m, 100 m → 5 m.
+pub fn en12464_spacing(longer: f64, shorter: f64) -> f64 {
+    let (d, _) = en12464_side(longer, shorter);
+    (0.2 * 5f64.powf(d.log10())).min(10.0)
+}
+
+/// The side d that [`en12464_spacing`] is reckoned from, and whether it is the
+/// shorter side (the longer being at least twice it).
+fn en12464_side(a: f64, b: f64) -> (f64, bool) {
+    let (longer, shorter) = (a.max(b), a.min(b));
+    // "2 or more", read with the rounding of coordinates in metres: a 1.6 m × 0.8 m
+    // desk whose sides come out as 1.5999999 and 0.8000001 is 2:1.
+    if longer >= 2.0 * shorter * (1.0 - 1e-6) {
+        (shorter, true)
+    } else {
+        (longer, false)
+    }
+}
+
+/// [`en12464_spacing`] of an `a` × `b` m area as a reader checks it: "EN 12464-1's grid
+/// rule: p = 0.2 × 5^log10(d) = 0.79 m, d = 7.20 m (the longer side)".
+pub fn en12464_rule(a: f64, b: f64) -> String {
+    let (d, shorter) = en12464_side(a, b);
+    let side = if shorter {
+        "the shorter side, the longer being at least twice it"
+    } else {
+        "the longer side"
+    };
+    let p = en12464_spacing(a, b);
+    let capped = if p < 0.2 * 5f64.powf(d.log10()) {
+        ", at most 10 m"
+    } else {
+        ""
+    };
+    format!(
+        "EN 12464-1's grid rule: p = 0.2 × 5^log10(d) = {p:.2} m{capped}, d = {d:.2} m ({side})"
+    )
+}
+
 /// The task called `name`.
 pub fn task(name: &str) -> Option<&'static Task> {
     TASKS.iter().find(|t| t.name == name)
@@ -192,13 +234,15 @@ impl AreaKind {
     /// What this area must receive, as (maintained Ēm in lx, U0), around a task area
     /// required to receive `task_em` (the bands are derived from it, so without one they
     /// ask nothing) of the named `task`, if any (the walls and the ceiling read its
-    /// figures, else the standard's general 50 and 30 lx).
+    /// figures, else the standard's general 50 and 30 lx). The cylindrical illuminance
+    /// asks its Ēz alone ([`Task::ez`]), not an Ēm and a U0: `None`.
     pub fn required(self, task_em: Option<f64>, task: Option<&Task>) -> Option<(f64, f64)> {
         Some(match self {
             AreaKind::Surrounding => (surrounding_em(task_em?), SURROUNDING_U0),
             AreaKind::Background => (surrounding_em(task_em?) / 3.0, ROOM_U0),
             AreaKind::Wall => (task.map_or(50.0, |t| t.walls_em), ROOM_U0),
             AreaKind::Ceiling => (task.map_or(30.0, |t| t.ceiling_em), ROOM_U0),
+            AreaKind::Cylindrical => return None,
         })
     }
 }

@@ -5,7 +5,10 @@
 //! it — the immediate surrounding, the background, the walls and the ceiling
 //! ([`invlight_scene::Scene::add_task_areas`]) — as calculation surfaces when the scene
 //! is loaded, each with its own Ēm and U0 ([`AreaKind::required`]) as constraints of the
-//! search. The figures are the standard's ([`invlight_scene::en12464`]); the file's
+//! search, and where the task has an Ēz (`ez`, else the table's), the cylindrical
+//! illuminance over the task area and its surrounding at a seated eye's height
+//! ([`invlight_scene::Scene::add_cylindrical_area`]; `ezHeight` for another) as one
+//! more. The figures are the standard's ([`invlight_scene::en12464`]); the file's
 //! `maintenanceFactor` makes every Ēm a maintained value, as for any `minLux`.
 
 use super::{Node, Problem, Reader};
@@ -29,6 +32,11 @@ pub struct TaskSpec {
     /// The UGR limit every observer of the problem is held to: `ugrL`, else the
     /// task's UGR_L (none where the table's source gives none).
     pub ugr_l: Option<f64>,
+    /// Required maintained cylindrical illuminance Ēz, lx: `ez`, else the task's
+    /// (none where the table's source gives none).
+    pub ez: Option<f64>,
+    /// The height Ēz is asked at above the floor, m: `ezHeight`, else a seated eye's.
+    pub ez_height: f64,
     /// The task area's grid for U0.
     pub grid: Grid,
     /// The areas built around it (`areas`, default all).
@@ -77,11 +85,12 @@ impl TaskSpec {
 }
 
 /// The `areas` words, in the order they are built.
-const AREAS: [(&str, AreaKind); 4] = [
+const AREAS: [(&str, AreaKind); 5] = [
     ("surrounding", AreaKind::Surrounding),
     ("background", AreaKind::Background),
     ("walls", AreaKind::Wall),
     ("ceiling", AreaKind::Ceiling),
+    ("cylindrical", AreaKind::Cylindrical),
 ];
 
 impl Reader<'_, '_> {
@@ -91,7 +100,7 @@ impl Reader<'_, '_> {
         self.check_attributes(
             t,
             &[
-                "name", "surface", "side", "em", "u0", "ugrL", "grid", "areas",
+                "name", "surface", "side", "em", "u0", "ugrL", "ez", "ezHeight", "grid", "areas",
             ],
         );
         const EXAMPLE: &str = "<task name=\"office\" surface=\"Task\"/>";
@@ -120,6 +129,15 @@ impl Reader<'_, '_> {
             }
             u => u.or(named.and_then(|n| n.ugr_l)),
         };
+        let ez = self.lux(t, "ez")?.or(named.and_then(|n| n.ez));
+        let ez_height = match self.real(t, "ezHeight", "a height above the floor in metres")? {
+            Some(h) if !(h > 0.0 && h < 10.0) => {
+                return Err(self
+                    .error(t, format!("'ezHeight' of <task> is {h}, expected a height above the floor in metres"))
+                    .with_hint("EN 12464-1 asks Ez 1.2 m above the floor for seated people, 1.6 m for standing ones"));
+            }
+            h => h.unwrap_or(invlight_scene::SEATED),
+        };
         if named.is_none() && em.is_none() && u0.is_none() {
             return Err(self
                 .error(t, format!("<task> needs 'name', a task of EN 12464-1's table ({}), or its figures 'em' and 'u0'", names()))
@@ -141,7 +159,7 @@ impl Reader<'_, '_> {
             Some(_) => self.surface_ref(t)?.side,
         };
         let areas = match t.attribute("areas").map(str::trim) {
-            None | Some("all") => AreaKind::ALL.to_vec(),
+            None | Some("all") => AREAS.iter().map(|&(_, k)| k).collect(),
             Some("none") => Vec::new(),
             Some(list) => {
                 let mut kinds = Vec::new();
@@ -173,6 +191,8 @@ impl Reader<'_, '_> {
             em,
             u0,
             ugr_l,
+            ez,
+            ez_height,
             grid: self.grid(t)?,
             areas,
             built: Vec::new(),
@@ -201,13 +221,43 @@ impl Problem {
                     "surfaces",
                 )));
             };
-            let areas = scene
-                .add_task_areas(&self.scene.path, surface, &spec.areas)
+            let planar: Vec<AreaKind> = spec
+                .areas
+                .iter()
+                .copied()
+                .filter(|&k| k != AreaKind::Cylindrical)
+                .collect();
+            let mut areas = scene
+                .add_task_areas(&self.scene.path, surface, &planar)
                 .map_err(|e| {
                     at(format!("<task>: {}", e.message)).with_hint(
                         "make the task area one horizontal plane (a <workplane>), or give areas=\"none\" to ask the task area alone",
                     )
                 })?;
+            let cylindrical = match spec.ez {
+                Some(ez) if spec.areas.contains(&AreaKind::Cylindrical) => Some(ez),
+                _ => None,
+            };
+            let ez = match cylindrical {
+                Some(ez) => {
+                    let area = scene
+                        .add_cylindrical_area(&self.scene.path, surface, spec.ez_height)
+                        .map_err(|e| Diagnostic {
+                            hint: e.hint.clone(),
+                            ..at(format!("<task>: {}", e.message))
+                        })?;
+                    let surface = SurfaceRef {
+                        name: area.name.clone(),
+                        side: Side::Front,
+                    };
+                    let mut lux = spec.constraint(surface, Bound::MinLux(ez), Some(area.kind));
+                    lux.bound = lux.bound.for_new(self.maintenance_factor);
+                    lux.maintenance_factor = self.maintenance_factor;
+                    areas.push(area);
+                    Some(lux)
+                }
+                None => None,
+            };
             spec.built = areas.clone();
             for a in areas {
                 let Some((em, u0)) = a.kind.required(spec.em, spec.task.as_ref()) else {
@@ -225,6 +275,7 @@ impl Problem {
                 let even = spec.constraint(surface, Bound::MinUniformity(u0, grid), Some(a.kind));
                 self.constraints.extend([lux, even]);
             }
+            self.constraints.extend(ez);
         }
         Ok(())
     }
@@ -256,7 +307,8 @@ mod tests {
     #[test]
     fn a_named_task_asks_every_area_what_the_standard_does() {
         let dir = tempfile::tempdir().unwrap();
-        let mut p = problem(dir.path(), "<task name=\"office\"/>").unwrap();
+        // The test room is 1.2 m high: Ēz at 0.9 m.
+        let mut p = problem(dir.path(), "<task name=\"office\" ezHeight=\"0.9\"/>").unwrap();
         // Read: the task area's own two, on the only workplane.
         assert_eq!(p.constraints.len(), 2);
         let scene = load(&mut p);
@@ -293,6 +345,9 @@ mod tests {
         for n in 1..=4 {
             assert!(has(&format!("wall {n}"), "Em", 75.0), "{asked:?}");
         }
+        // The office's Ēz 150 lx, over the prisms' mean: no grid, no U0.
+        assert!(has("cylindrical illuminance", "Em", 150.0), "{asked:?}");
+        assert!(!has("cylindrical illuminance", "U0", 0.1), "{asked:?}");
         // Every illuminance is maintained: the search holds the new installation to ÷ MF;
         // and every Ēm is the mean of its grid's points, as EN 12464-1 takes it.
         for c in p
@@ -301,6 +356,14 @@ mod tests {
             .filter(|c| c.bound.attribute() == "minLux")
         {
             assert!((c.bound.limit() - c.maintained_limit() / 0.8).abs() < 1e-9);
+            if c.surface.name == "cylindrical illuminance" {
+                assert_eq!(c.average_over, None);
+                assert_eq!(
+                    c.standard_name().unwrap(),
+                    "EN 12464-1 office: cylindrical illuminance Ēz"
+                );
+                continue;
+            }
             let grid = c.average_over.expect("Em over a grid");
             assert_eq!(grid.values, crate::GridValues::Points, "{}", c.surface.name);
         }
@@ -340,6 +403,44 @@ mod tests {
             "EN 12464-1 task: task area Ēm"
         );
         assert_eq!(p.constraints[1].surface.side, Side::Front);
+    }
+
+    #[test]
+    fn a_tasks_cylindrical_illuminance_is_asked_where_it_has_an_ez() {
+        let dir = tempfile::tempdir().unwrap();
+        // The test room is 1.2 m high: Ēz at 0.9 m.
+        let ez = |objectives: &str| {
+            let objectives = objectives.replace("/>", " ezHeight=\"0.9\"/>");
+            let mut p = problem(dir.path(), &objectives).unwrap();
+            load(&mut p);
+            p.constraints
+                .iter()
+                .find(|c| c.surface.name == "cylindrical illuminance")
+                .map(Constraint::maintained_limit)
+        };
+        // The table's row, the file's own figure, and none where neither gives one or
+        // the areas asked leave it out.
+        assert_eq!(ez("<task name=\"classroom\"/>"), Some(150.0));
+        assert_eq!(ez("<task name=\"classroom\" ez=\"200\"/>"), Some(200.0));
+        assert_eq!(ez("<task name=\"filing\"/>"), None);
+        assert_eq!(ez("<task name=\"office\" areas=\"walls\"/>"), None);
+        assert_eq!(
+            ez("<task name=\"filing\" ez=\"50\" areas=\"cylindrical\"/>"),
+            Some(50.0)
+        );
+        // A height outside the room is refused with the line and what the standard asks.
+        let mut p = problem(dir.path(), "<task name=\"office\" ezHeight=\"9\"/>").unwrap();
+        let e = p
+            .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
+            .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains(":8:") && text.contains("not inside the room"),
+            "{text}"
+        );
+        assert!(text.contains("1.2 m"), "{text}");
+        let e = problem(dir.path(), "<task name=\"office\" ezHeight=\"-1\"/>").unwrap_err();
+        assert!(e.to_string().contains("'ezHeight'"), "{e}");
     }
 
     #[test]
