@@ -261,7 +261,8 @@ pub enum Domain {
         max: f64,
     },
     /// A regular array of lamps (4 dimensions: columns, rows and the two wall
-    /// fractions, [`ArrayDomain`]).
+    /// fractions, and a fifth when the lamps' orientation is searched,
+    /// [`ArrayDomain`]).
     Array(ArrayDomain),
 }
 
@@ -271,7 +272,7 @@ impl Domain {
         match self {
             Domain::Parallelogram(_) | Domain::Hemisphere(_) => 2,
             Domain::Segment { .. } | Domain::Turn { .. } => 1,
-            Domain::Array(_) => 4,
+            Domain::Array(a) => a.dimensions(),
         }
     }
 

@@ -789,6 +789,7 @@ fn an_array_search_finds_the_best_shape() {
         columns: (1, 4),
         rows: (1, 3),
         lamps: 12,
+        turns: false,
     };
     let d = domain.clone();
     let f = move |x: &[f64]| {
@@ -809,6 +810,7 @@ fn an_array_search_finds_the_best_shape() {
         columns: 3,
         rows: 2,
         walls: [0.6, 0.8],
+        orientation: None,
     };
     let optimum = domain.coords(&best).unwrap();
     for strategy in [Strategy::Paired, Strategy::RaceOnEnd] {

@@ -3,14 +3,16 @@
 //! row by row, each keeping its authored height off the rectangle's plane (a
 //! luminaire authored 5 cm under the ceiling stays 5 cm under it), and the rest are
 //! off: they emit nothing, so a trace spends no photons on them, and they draw no
-//! power ([`Binding::power`]).
+//! power ([`Binding::power`]). A searched orientation turns every lamp about its aim
+//! from its frame as loaded, each time a configuration is applied, so that turns never
+//! add up.
 
 use super::placement::{Bounds, find_parallelogram, onto_plane};
 use super::{Binding, Target};
 use crate::problem::{ArraySpec, VariableSpec};
 use crate::space::{ArrayDomain, ArrayShape, Configuration, Domain, Parallelogram};
-use glam::DVec3;
-use invlight_scene::{Diagnostic, LightId, Rgb, Scene, known_names};
+use glam::{DVec3, Mat3};
+use invlight_scene::{Diagnostic, LightId, LightKind, Rgb, Scene, known_names};
 
 /// An array's lamps, each with its offset from the rectangle's plane and its authored
 /// strength, in the order they fill the array.
@@ -20,6 +22,9 @@ pub struct Lamps {
     pub rect: Parallelogram,
     /// The light, its authored offset along the plane's normal, its authored strength.
     pub lamps: Vec<(LightId, DVec3, Rgb)>,
+    /// Each lamp's frame as loaded (its `<luminaire rotation>` included), in `lamps`'
+    /// order: what a searched orientation turns; the identity for a lamp without one.
+    pub frames: Vec<Mat3>,
 }
 
 impl Lamps {
@@ -43,7 +48,7 @@ pub(super) fn variable(
     err: &dyn Fn(String) -> Diagnostic,
 ) -> Result<(Domain, Target), Diagnostic> {
     let rect = find_parallelogram(scene, &a.surface, a.vertices, err)?;
-    let mut lamps = Vec::new();
+    let (mut lamps, mut frames) = (Vec::new(), Vec::new());
     for name in &a.lights {
         let light = scene.light(name).ok_or_else(|| {
             err(format!(
@@ -63,6 +68,10 @@ pub(super) fn variable(
             )));
         };
         let p = p.as_dvec3();
+        frames.push(match kind {
+            LightKind::Goniometric { frame, .. } => *frame,
+            _ => Mat3::IDENTITY,
+        });
         lamps.push((
             light,
             p - onto_plane(&rect, p),
@@ -74,27 +83,39 @@ pub(super) fn variable(
         columns: a.columns,
         rows: a.rows,
         lamps: lamps.len() as u32,
+        turns: a.orientation.is_none(),
     };
-    Ok((Domain::Array(domain), Target::Array(Lamps { rect, lamps })))
+    let lamps = Lamps {
+        rect,
+        lamps,
+        frames,
+    };
+    Ok((Domain::Array(domain), Target::Array(lamps)))
 }
 
 /// Sets the array's lamps out as `shape`: the first columns × rows moved to their
-/// places, at their authored strength unless `dimmed` says a level sets it; the rest
-/// off.
-pub(super) fn apply(
-    scene: &mut Scene,
-    lamps: &Lamps,
-    shape: &ArrayShape,
-    dimmed: impl Fn(LightId) -> bool,
-) {
+/// places, at their authored strength unless the binding dims them; the rest off. A
+/// searched orientation turns every lamp about its aim from its frame as loaded, or,
+/// for a lamp a `lightAim` has just aimed, from that aim's frame (the aim sets it from
+/// its own authored frame each time, so neither turn adds up).
+pub(super) fn apply(scene: &mut Scene, lamps: &Lamps, shape: &ArrayShape, binding: &Binding) {
+    let up = scene.up;
     for (k, &(light, offset, authored)) in lamps.lamps.iter().enumerate() {
         let kind = &mut scene.lights[light].kind;
+        if let (Some(turn), LightKind::Goniometric { frame, .. }) = (shape.orientation, &kind) {
+            let from = if binding.is_aimed(light) {
+                *frame
+            } else {
+                lamps.frames[k]
+            };
+            kind.set_frame(from * Mat3::from_rotation_z((turn as f32).to_radians()), up);
+        }
         if (k as u32) < shape.lamps() {
             let (s, t) = shape.place(k as u32);
             if let Some(p) = kind.position_mut() {
                 *p = (lamps.rect.point(s, t) + offset).as_vec3();
             }
-            if !dimmed(light) {
+            if !binding.is_dimmed(light) {
                 *kind.strength_mut() = authored;
             }
         } else {
@@ -119,6 +140,13 @@ impl Binding {
             }
         }
         out
+    }
+
+    /// Whether a `lightAim` (its own or its group's) aims `light`.
+    fn is_aimed(&self, light: LightId) -> bool {
+        self.targets.iter().any(
+            |t| matches!(t, Target::Aim { lights } if lights.iter().any(|&(l, _, _)| l == light)),
+        )
     }
 
     /// Whether `light`'s output is set by a `lightPower` (its own or its group's).

@@ -8,10 +8,11 @@
 //! Each outline is a rectangle (or a disk) in its luminaire's C0–C90 plane, centred on
 //! its photometric centre; two overlap unless an axis separates them (the separating
 //! axis theorem for two convex outlines in one plane: the four edge directions, and for
-//! a disk the line between the centres).
+//! a disk the line between the centres). A `<lightArray>` whose orientation is searched
+//! turns its fittings' outlines with its lamps.
 
 use super::{Binding, Target, VariableValue};
-use crate::space::{Configuration, Domain};
+use crate::space::Configuration;
 use glam::DVec3;
 use invlight_scene::{LightKind, Opening, Scene};
 
@@ -24,6 +25,13 @@ pub(super) struct Fitting {
     name: String,
     /// Where it stands for its variable.
     anchor: Anchor,
+    /// Its outline as loaded.
+    outline: Outline,
+}
+
+/// A fitting's outline in its C0–C90 plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Outline {
     /// Its C0 and C90 directions.
     axes: [DVec3; 2],
     /// Half its outline along them, m (a disk's radius twice).
@@ -43,13 +51,24 @@ enum Anchor {
     InArray { k: u32, offset: DVec3 },
 }
 
-impl Fitting {
-    /// Half its outline's extent along the unit direction `a` in its plane.
+impl Outline {
+    /// Half its extent along the unit direction `a` in its plane.
     fn reach(&self, a: DVec3) -> f64 {
         if self.round {
             self.half[0].max(self.half[1])
         } else {
             self.half[0] * self.axes[0].dot(a).abs() + self.half[1] * self.axes[1].dot(a).abs()
+        }
+    }
+
+    /// The outline turned by `degrees` about its plane's normal, C0 toward C90, as
+    /// [`invlight_scene::LightKind::turn_about_aim`] turns the luminaire.
+    fn turned(&self, degrees: f64) -> Outline {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let [x, y] = self.axes;
+        Outline {
+            axes: [cos * x + sin * y, cos * y - sin * x],
+            ..*self
         }
     }
 }
@@ -91,9 +110,11 @@ pub(super) fn fittings(scene: &Scene, targets: &[Target]) -> Vec<Fitting> {
                 variable,
                 name: l.name.clone(),
                 anchor,
-                axes: [frame.x_axis.as_dvec3(), frame.y_axis.as_dvec3()],
-                half: [0.5 * f64::from(a), 0.5 * f64::from(b)],
-                round: !matches!(outline, Opening::Rectangle { .. }),
+                outline: Outline {
+                    axes: [frame.x_axis.as_dvec3(), frame.y_axis.as_dvec3()],
+                    half: [0.5 * f64::from(a), 0.5 * f64::from(b)],
+                    round: !matches!(outline, Opening::Rectangle { .. }),
+                },
             });
         }
     }
@@ -101,7 +122,7 @@ pub(super) fn fittings(scene: &Scene, targets: &[Target]) -> Vec<Fitting> {
 }
 
 /// Whether outlines `f` at `p` and `g` at `q` overlap (see the module doc).
-fn overlap(f: &Fitting, p: DVec3, g: &Fitting, q: DVec3) -> bool {
+fn overlap(f: &Outline, p: DVec3, g: &Outline, q: DVec3) -> bool {
     let d = q - p;
     let normal = f.axes[0].cross(f.axes[1]).normalize_or_zero();
     let across = d - normal * d.dot(normal);
@@ -121,16 +142,34 @@ fn overlap(f: &Fitting, p: DVec3, g: &Fitting, q: DVec3) -> bool {
 impl Binding {
     /// The clear gaps, m, between neighbouring fittings of `variable` (a placement of
     /// interchangeable lamps, or a `<lightArray>`) whose centres stand `spacing` apart
-    /// along the unit directions `axes`: what an installer measures between two
-    /// fittings, edge to edge. `None` when its luminaires have no outline.
+    /// along the unit directions `axes`, each fitting turned `turn` degrees from its
+    /// frame as loaded: what an installer measures between two fittings, edge to edge.
+    /// `None` when its luminaires have no outline.
     pub(super) fn gaps(
         &self,
         variable: usize,
         spacing: [f64; 2],
         axes: [DVec3; 2],
+        turn: f64,
     ) -> Option<[f64; 2]> {
         let f = self.fittings.iter().find(|f| f.variable == variable)?;
-        Some([0, 1].map(|i| spacing[i] - 2.0 * f.reach(axes[i])))
+        let outline = f.outline.turned(turn);
+        Some([0, 1].map(|i| spacing[i] - 2.0 * outline.reach(axes[i])))
+    }
+
+    /// The one of the unit directions `axes` the outline of `variable`'s fittings is
+    /// longer along, turned `turn` degrees from their frame as loaded; `None` without
+    /// an outline or for one as long as it is wide.
+    pub(super) fn lengthwise(&self, variable: usize, axes: [DVec3; 2], turn: f64) -> Option<usize> {
+        let f = self.fittings.iter().find(|f| f.variable == variable)?;
+        let o = f.outline.turned(turn);
+        if o.round || (o.half[0] - o.half[1]).abs() < 1e-9 {
+            return None;
+        }
+        let long = o.axes[usize::from(o.half[1] > o.half[0])];
+        Some(usize::from(
+            long.dot(axes[1]).abs() > long.dot(axes[0]).abs(),
+        ))
     }
 
     /// The first two moved luminaires whose outlines overlap at `config`, as a reason
@@ -140,19 +179,19 @@ impl Binding {
             return None;
         }
         let values = self.values(config);
+        // Where each fitting stands and its outline, turned as its array's orientation is.
         let at = |f: &Fitting| match (f.anchor, &values[f.variable]) {
-            (Anchor::Moved(offset), VariableValue::Position { point, .. }) => Some(*point + offset),
-            (Anchor::InArray { k, offset }, _) => {
-                let (Domain::Array(a), Target::Array(lamps)) = (
-                    &self.space.variables()[f.variable].domain,
-                    &self.targets[f.variable],
-                ) else {
+            (Anchor::Moved(offset), VariableValue::Position { point, .. }) => {
+                Some((*point + offset, f.outline))
+            }
+            (Anchor::InArray { k, offset }, VariableValue::Array(shape)) => {
+                let Target::Array(lamps) = &self.targets[f.variable] else {
                     return None;
                 };
-                let shape = a.shape(self.space.slice(config, f.variable));
                 (k < shape.lamps()).then(|| {
                     let (s, t) = shape.place(k);
-                    lamps.rect.point(s, t) + offset
+                    let outline = f.outline.turned(shape.orientation.unwrap_or(0.0));
+                    (lamps.rect.point(s, t) + offset, outline)
                 })
             }
             _ => None,
@@ -161,11 +200,13 @@ impl Binding {
         let rigid = |f: &Fitting, g: &Fitting| {
             f.variable == g.variable && matches!(f.anchor, Anchor::Moved(_))
         };
+        let placed: Vec<Option<(DVec3, Outline)>> = self.fittings.iter().map(at).collect();
         for (k, f) in self.fittings.iter().enumerate() {
-            let Some(p) = at(f) else { continue };
-            for g in self.fittings[k + 1..].iter().filter(|g| !rigid(f, g)) {
-                if let Some(q) = at(g)
-                    && overlap(f, p, g, q)
+            let Some((p, a)) = placed[k] else { continue };
+            for (g, &q) in self.fittings.iter().zip(&placed).skip(k + 1) {
+                if let Some((q, b)) = q
+                    && !rigid(f, g)
+                    && overlap(&a, p, &b, q)
                 {
                     return Some(format!(
                         "it puts the fittings of '{}' and '{}' over each other ({:.2} m apart)",
@@ -184,21 +225,14 @@ impl Binding {
 mod tests {
     use super::*;
 
-    fn linear(x: f64, turned: bool) -> (Fitting, DVec3) {
-        let (c0, c90) = if turned {
-            (DVec3::Y, -DVec3::X)
-        } else {
-            (DVec3::X, DVec3::Y)
-        };
-        let f = Fitting {
-            variable: 0,
-            name: "L".into(),
-            anchor: Anchor::Moved(DVec3::ZERO),
-            axes: [c0, c90],
+    fn linear(x: f64, turned: bool) -> (Outline, DVec3) {
+        let f = Outline {
+            axes: [DVec3::X, DVec3::Y],
             // 1.5 m long along C90, 0.1 m wide.
             half: [0.05, 0.75],
             round: false,
         };
+        let f = if turned { f.turned(90.0) } else { f };
         (f, DVec3::new(x, 0.0, 0.0))
     }
 
@@ -220,10 +254,7 @@ mod tests {
         // A disk of 0.17 m beside another.
         let disk = |x: f64| {
             (
-                Fitting {
-                    variable: 0,
-                    name: "D".into(),
-                    anchor: Anchor::Moved(DVec3::ZERO),
+                Outline {
                     axes: [DVec3::X, DVec3::Y],
                     half: [0.085, 0.085],
                     round: true,
@@ -235,5 +266,21 @@ mod tests {
         assert!(overlap(&a, p, &b, q), "0.14 m apart, 0.17 m across");
         let (b, q) = disk(0.13);
         assert!(!overlap(&a, p, &b, q), "0.18 m apart");
+    }
+
+    /// A quarter turn takes C0 where C90 was and C90 where −C0 was, as
+    /// `turn_about_aim` turns a luminaire's frame; a whole turn of four is the start.
+    #[test]
+    fn an_outline_turns_as_its_luminaire() {
+        let (a, _) = linear(0.0, false);
+        let b = a.turned(90.0);
+        assert!(b.axes[0].abs_diff_eq(DVec3::Y, 1e-12), "{:?}", b.axes);
+        assert!(b.axes[1].abs_diff_eq(-DVec3::X, 1e-12), "{:?}", b.axes);
+        let round = b.turned(90.0).turned(90.0).turned(90.0);
+        assert!(round.axes[0].abs_diff_eq(a.axes[0], 1e-12));
+        assert!(
+            (b.reach(DVec3::X) - 0.75).abs() < 1e-12,
+            "its length along X"
+        );
     }
 }

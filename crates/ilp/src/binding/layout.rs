@@ -58,6 +58,15 @@ pub struct ArrayLayout {
     /// outline. Meaningless along an axis of one column or row.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub between: Option<[f64; 2]>,
+    /// The degrees a `<lightArray>` whose orientation is searched turns its fittings
+    /// about their aim, 0 or 90; absent where the problem file fixes it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<f64>,
+    /// The edge of the rectangle the fittings' length lies along as turned, 0 the
+    /// first (A→B), 1 the other; absent unless the orientation is searched and the
+    /// fittings have an outline longer one way than the other.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lengthwise: Option<usize>,
 }
 
 /// The regular array `points` (in a plane's coordinates, m) form, each of its distinct
@@ -165,7 +174,7 @@ impl Binding {
                     columns: columns.len() as u32,
                     rows: rows.len() as u32,
                     spacing,
-                    between: self.gaps(first, spacing, [u, v]),
+                    between: self.gaps(first, spacing, [u, v], 0.0),
                     deviation,
                     from_walls: self.bounds.and_then(|b| {
                         Some([
@@ -173,6 +182,8 @@ impl Binding {
                             wall_distance(&b, &anchors, v)?,
                         ])
                     }),
+                    orientation: None,
+                    lengthwise: None,
                 }
             });
             let lights: Vec<String> = group.iter().map(|m| variables[m[0]].id.clone()).collect();
@@ -229,11 +240,16 @@ impl Binding {
                 spacing(shape.columns, shape.walls[0], rect.e1),
                 spacing(shape.rows, shape.walls[1], rect.e2),
             ];
+            let turn = shape.orientation.unwrap_or(0.0);
             let array = ArrayLayout {
                 columns: shape.columns,
                 rows: shape.rows,
                 spacing,
-                between: self.gaps(variable, spacing, [u, v]),
+                between: self.gaps(variable, spacing, [u, v], turn),
+                orientation: shape.orientation,
+                lengthwise: shape
+                    .orientation
+                    .and_then(|o| self.lengthwise(variable, [u, v], o)),
                 deviation: 0.0,
                 from_walls: self.bounds.and_then(|b| {
                     Some([
@@ -304,7 +320,9 @@ fn wall_distance(bounds: &super::Bounds, points: &[DVec3], axis: DVec3) -> Optio
 }
 
 /// "Lamp1 … Lamp6 on LampZone: a 2 × 3 array (2 rows of 3), 2.40 m × 2.40 m apart,
-/// 0.60 m × 0.60 m from the walls; all at 72 %".
+/// 0.60 m × 0.60 m from the walls; all at 72 %", with the fittings' orientation after
+/// the shape where the search chose it ("fittings turned 90°, lengthwise along the
+/// first edge").
 fn describe(
     lights: &[String],
     surface: &str,
@@ -321,14 +339,24 @@ fn describe(
     let shape = match array {
         Some(a) => {
             let mut s = format!(
-                "a {} × {} array ({} rows of {}), {} × {} apart",
-                a.rows,
-                a.columns,
-                a.rows,
-                a.columns,
-                m(a.spacing[0]),
-                m(a.spacing[1])
+                "a {} × {} array ({} rows of {}), ",
+                a.rows, a.columns, a.rows, a.columns,
             );
+            if let Some(o) = a.orientation {
+                s += &if o == 0.0 {
+                    "fittings as authored (0°)".to_string()
+                } else {
+                    format!("fittings turned {o}°")
+                };
+                if let Some(e) = a.lengthwise {
+                    s += [
+                        ", lengthwise along the first edge",
+                        ", lengthwise along the other edge",
+                    ][e];
+                }
+                s += ", ";
+            }
+            s += &format!("{} × {} apart", m(a.spacing[0]), m(a.spacing[1]));
             if let Some(g) = a.between {
                 // Along an axis of one column or row there is no neighbour to stand apart from.
                 let gap = |i: usize, n: u32| if n > 1 { m(g[i]) } else { "—".into() };
@@ -448,6 +476,8 @@ mod tests {
             deviation: 0.0,
             from_walls: Some([1.2, 1.2]),
             between: None,
+            orientation: None,
+            lengthwise: None,
         };
         assert_eq!(
             describe(&lights, "LampZone", Some(&array), &[0.72; 6], &[]),
@@ -461,6 +491,26 @@ mod tests {
         assert!(
             describe(&lights, "LampZone", Some(&fitted), &[0.72; 6], &[])
                 .contains("2.40 m × 2.40 m apart (2.32 m × 0.88 m between fittings)")
+        );
+        // The orientation the search chose, and which way the fittings' length lies.
+        let turned = ArrayLayout {
+            orientation: Some(90.0),
+            lengthwise: Some(0),
+            ..fitted.clone()
+        };
+        assert!(
+            describe(&lights, "LampZone", Some(&turned), &[0.72; 6], &[]).contains(
+                "(2 rows of 3), fittings turned 90°, lengthwise along the first edge, 2.40 m × 2.40 m apart"
+            )
+        );
+        let authored = ArrayLayout {
+            orientation: Some(0.0),
+            lengthwise: Some(1),
+            ..fitted.clone()
+        };
+        assert!(
+            describe(&lights, "LampZone", Some(&authored), &[0.72; 6], &[])
+                .contains("fittings as authored (0°), lengthwise along the other edge, 2.40 m")
         );
         let one_row = ArrayLayout { rows: 1, ..fitted };
         assert!(

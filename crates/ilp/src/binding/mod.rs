@@ -101,7 +101,8 @@ enum Target {
 pub struct Binding {
     /// The variables' space.
     pub space: Space,
-    /// The scene as authored, as a configuration.
+    /// The scene as authored, as a configuration; where it is refused and an array is
+    /// searched, the first of the structured starts that is not.
     pub initial: Configuration,
     /// What the goal and constraints measure.
     pub reading: Reading,
@@ -312,6 +313,7 @@ impl Binding {
             binding.power_unit,
         ) = binding.component_power(scene);
         binding.fittings = fittings::fittings(scene, &binding.targets);
+        binding.initial = binding.first_start(binding.initial.clone());
         binding.solve_levels(problem.confidence);
         Ok(binding)
     }
@@ -596,7 +598,7 @@ impl Binding {
         // level.
         for (value, target) in values.iter().zip(&self.targets) {
             if let (VariableValue::Array(shape), Target::Array(lamps)) = (value, target) {
-                array::apply(scene, lamps, shape, |l| self.is_dimmed(l));
+                array::apply(scene, lamps, shape, self);
             }
         }
         moved
@@ -858,7 +860,7 @@ fn initial_coords(scene: &Scene, domain: &Domain, target: &Target) -> Vec<f64> {
             .starts()
             .first()
             .and_then(|shape| a.coords(shape))
-            .map_or_else(|| vec![0.5; 4], |c| c.to_vec()),
+            .unwrap_or_else(|| vec![0.5; a.dimensions()]),
         (d, _) => vec![0.5; d.dimensions()],
     }
 }

@@ -54,6 +54,23 @@ impl Binding {
         None
     }
 
+    /// Where the search starts: `authored` (the scene as authored, each array at its
+    /// first start, [`crate::space::ArrayDomain::starts`]) unless it is refused; then,
+    /// where an array is searched, the first of the structured starts
+    /// ([`crate::space::Space::regular_arrays`]) that is not. The start is evaluated
+    /// whatever it is, and one whose fittings overlap (a linear array at its first
+    /// orientation on a rectangle it only fits turned) would stand as an answer no one
+    /// can install until something beat it.
+    pub(super) fn first_start(&self, authored: Configuration) -> Configuration {
+        let arrays = (self.space.variables().iter()).any(|v| matches!(v.domain, Domain::Array(_)));
+        if !arrays || self.refusal(&authored).is_none() {
+            return authored;
+        }
+        (self.space.regular_arrays(&authored).into_iter())
+            .find(|c| self.refusal(c).is_none())
+            .unwrap_or(authored)
+    }
+
     /// The id of the first variable that would put its object (or light) outside the
     /// scene at `config`: beyond the bounds of everything no variable moves and of every
     /// moved thing as authored. Such a candidate is not traced: a lamp outside the room

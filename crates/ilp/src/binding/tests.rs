@@ -830,6 +830,7 @@ fn an_array_sets_out_its_lamps_and_leaves_the_rest_off() {
             columns,
             rows,
             walls: [0.5, 0.5],
+            orientation: None,
         })])
         .unwrap()
     };
@@ -903,6 +904,7 @@ fn an_array_larger_than_its_lamps_is_refused_and_its_id_dims_them_all() {
                 columns,
                 rows: 2,
                 walls: [0.5, 0.5],
+                orientation: None,
             }),
             VariableValue::Power(level),
         ])
@@ -1012,6 +1014,7 @@ fn an_array_whose_fittings_overlap_is_refused() {
             columns,
             rows,
             walls: [0.5, 0.5],
+            orientation: None,
         })])
         .unwrap()
     };
@@ -1040,4 +1043,90 @@ fn an_array_whose_fittings_overlap_is_refused() {
         .expect("columns 1 m apart, fittings 1.52 m long");
     assert!(why.contains("1.00 m apart"), "{why}");
     assert_eq!(along_x.refusal(&shape(&along_x, 1, 2)), None);
+}
+
+/// Linear luminaires (1.52 m long along C90, here along y as loaded) in two rows of
+/// one over the 2 m × 1 m rectangle, their orientation searched: the rows stand at
+/// most 1 m apart along y, so as loaded the fittings always collide end to end, and
+/// turned a quarter turn they stand side by side. Every 0° configuration is refused
+/// with the fittings named, every 90° one is traced, and the search starts from the
+/// first start that fits and answers with the turned array; its layout says so.
+#[test]
+fn a_searched_orientation_finds_the_one_way_the_fittings_fit() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/photometry/linear.ldt");
+    let table = std::sync::Arc::new(invlight_scene::read_photometry(&path).unwrap());
+    let mut s = scene_with_six_lamps();
+    for name in ["L1", "L2"] {
+        s.set_photometry(name, table.clone(), 1.0).unwrap();
+    }
+    let p = Problem::parse(
+        Path::new("/p/x.xml"),
+        "<input><scene path=\"s.gltf\"/><conditions><lightArray id=\"Grid\" lights=\"L1 L2\" surface=\"Floor__Geometry\" columns=\"1\" rows=\"2\" orientation=\"search\"/></conditions><objectives photons=\"2000\" maxIterations=\"30\" seed=\"3\"><maximizeRadiance surface=\"Floor\"/></objectives></input>",
+    )
+    .unwrap();
+    let b = Binding::new(&p, &mut s).unwrap();
+    let orientation = |c: &Configuration| match b.values(c)[0] {
+        VariableValue::Array(shape) => shape.orientation,
+        _ => panic!("an array"),
+    };
+    // Not from the first start, whose fittings collide, but from the first that fits.
+    assert_eq!(orientation(&b.initial), Some(90.0));
+    for tenth in 0..=10 {
+        for turn in [0.0, 90.0] {
+            let config = b
+                .configuration(&[VariableValue::Array(crate::space::ArrayShape {
+                    columns: 1,
+                    rows: 2,
+                    walls: [0.5, f64::from(tenth) / 10.0],
+                    orientation: Some(turn),
+                })])
+                .unwrap();
+            match (turn, b.refusal(&config)) {
+                (0.0, Some(why)) => assert!(why.contains("'L1' and 'L2'"), "{why}"),
+                (90.0, None) => {}
+                (turn, why) => panic!("{turn}° at wall {tenth}/10: {why:?}"),
+            }
+        }
+    }
+    // A column of its own in solutions.csv: a folder of a fixed orientation, whose
+    // header lacks it, is not resumed as this one.
+    let header = crate::csv_header(&b);
+    assert_eq!(
+        header[1..6],
+        [
+            "Grid.columns",
+            "Grid.rows",
+            "Grid.walls.columns",
+            "Grid.walls.rows",
+            "Grid.orientation"
+        ]
+    );
+    let mut search = crate::Search::new(&b.space, p.settings(), &b.initial);
+    let mut eval = crate::PhotonEvaluator::new(&b, s.clone(), p.seed, 4, p.photons);
+    struct Quiet;
+    impl crate::Observer for Quiet {
+        fn evaluated(
+            &mut self,
+            _: &crate::Record,
+            _: crate::Standing<'_>,
+            _: bool,
+        ) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    search.run(&mut eval, &mut Quiet).unwrap();
+    let members = search.isoc().members();
+    assert!(!members.is_empty());
+    for m in members {
+        assert_eq!(orientation(&m.config), Some(90.0), "{:?}", m.config);
+    }
+    let layout = &b.layouts(&members[0].config)[0];
+    assert!(
+        layout
+            .description
+            .contains("fittings turned 90°, lengthwise along the first edge"),
+        "{}",
+        layout.description
+    );
 }

@@ -283,6 +283,10 @@ pub enum ResultValue {
         /// The distance from the outer columns and rows to the edges, each a fraction
         /// of its spacing.
         walls: [f64; 2],
+        /// The degrees its lamps are turned about their aim, 0 or 90, where the search
+        /// chooses it (`orientation="search"`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        orientation: Option<f64>,
     },
 }
 
@@ -321,6 +325,7 @@ impl ResultValue {
                 columns: a.columns,
                 rows: a.rows,
                 walls: a.walls,
+                orientation: a.orientation,
             },
         }
     }
@@ -351,10 +356,12 @@ impl ResultValue {
                 columns,
                 rows,
                 walls,
+                orientation,
             } => VariableValue::Array(crate::space::ArrayShape {
                 columns,
                 rows,
                 walls,
+                orientation,
             }),
         }
     }

@@ -49,9 +49,17 @@ pub fn header(binding: &Binding) -> Vec<String> {
             }
             Domain::Hemisphere(_) => h.extend(["x", "y", "z"].map(|c| format!("{}.{c}", v.id))),
             Domain::Segment { .. } | Domain::Turn { .. } => h.push(format!("{}.value", v.id)),
-            Domain::Array(_) => h.extend(
-                ["columns", "rows", "walls.columns", "walls.rows"].map(|c| format!("{}.{c}", v.id)),
-            ),
+            Domain::Array(ref a) => {
+                h.extend(
+                    ["columns", "rows", "walls.columns", "walls.rows"]
+                        .map(|c| format!("{}.{c}", v.id)),
+                );
+                // Only where it is searched, so that a folder of the other kind is
+                // not resumed (its header differs).
+                if a.turns {
+                    h.push(format!("{}.orientation", v.id));
+                }
+            }
         }
     }
     h.extend(
@@ -120,12 +128,15 @@ impl SolutionRow {
                 | VariableValue::Scale(value)
                 | VariableValue::Angle(value)
                 | VariableValue::Time { minutes: value, .. } => f.push(value.to_string()),
-                VariableValue::Array(a) => f.extend([
-                    a.columns.to_string(),
-                    a.rows.to_string(),
-                    a.walls[0].to_string(),
-                    a.walls[1].to_string(),
-                ]),
+                VariableValue::Array(a) => {
+                    f.extend([
+                        a.columns.to_string(),
+                        a.rows.to_string(),
+                        a.walls[0].to_string(),
+                        a.walls[1].to_string(),
+                    ]);
+                    f.extend(a.orientation.map(|o| o.to_string()));
+                }
             }
         }
         let goal = &self.evaluation.goal;
@@ -352,17 +363,23 @@ impl Cells<'_> {
                     values.push(VariableValue::Direction(self.vec3(c)?));
                     c += 3;
                 }
-                Domain::Array(_) => {
+                Domain::Array(a) => {
                     let count = |k: usize| -> Result<u32, Diagnostic> {
                         let x = self.real(k)?;
                         Ok(x.clamp(0.0, f64::from(u32::MAX)) as u32)
+                    };
+                    let orientation = if a.turns {
+                        Some(self.real(c + 4)?)
+                    } else {
+                        None
                     };
                     values.push(VariableValue::Array(crate::space::ArrayShape {
                         columns: count(c)?,
                         rows: count(c + 1)?,
                         walls: [self.real(c + 2)?, self.real(c + 3)?],
+                        orientation,
                     }));
-                    c += 4;
+                    c += a.dimensions();
                 }
                 Domain::Segment { .. } | Domain::Turn { .. } => {
                     // A colour's row holds V alone; K_d follows from it (and is not

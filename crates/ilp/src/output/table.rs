@@ -183,10 +183,12 @@ fn value_words(id: &str, value: &ResultValue) -> String {
             columns,
             rows,
             walls,
+            orientation,
         } => format!(
-            "{id} {rows} × {columns} ({} × {} of a spacing from the rectangle's edges)",
+            "{id} {rows} × {columns} ({} × {} of a spacing from the rectangle's edges){}",
             significant(walls[0]),
-            significant(walls[1])
+            significant(walls[1]),
+            orientation.map_or(String::new(), |o| format!(", turned {}°", significant(o)))
         ),
     }
 }

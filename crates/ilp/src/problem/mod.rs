@@ -162,8 +162,9 @@ pub struct ArraySpec {
     pub rows: (u32, u32),
     /// `orientation`: degrees every lamp of the array is turned about its aim, on top
     /// of its own (`<luminaire rotation>`): 0 or 90, a linear luminaire along or across
-    /// the rectangle's first edge's as authored.
-    pub orientation: f32,
+    /// the rectangle's first edge's as authored; `None` for `search`, where the search
+    /// chooses between the two ([`crate::space::ArrayDomain::turns`]).
+    pub orientation: Option<f32>,
 }
 
 impl VariableKind {

@@ -748,35 +748,45 @@ fn a_luminaire_takes_its_rotation() {
     assert!(e.contains(":2:") && e.contains("[-360, 360]"), "{e}");
 }
 
+/// The classroom example's scene with its twelve luminaires in one `<lightArray>` of
+/// the attributes `array`, each `<luminaire>` with `rotation`, loaded from a copy in
+/// `dir`.
+fn classroom(dir: &Path, array: &str, rotation: &str) -> (Problem, invlight_scene::Scene) {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/classroom");
+    for f in ["scene.gltf", "scene.bin", "classroom.ldt"] {
+        std::fs::copy(example.join(f), dir.join(f)).unwrap();
+    }
+    let luminaires: String = (1..=12)
+        .map(|k| format!("<luminaire light=\"Lamp{k}\" file=\"classroom.ldt\"{rotation}/>"))
+        .collect();
+    let text = format!(
+        "<input><scene path=\"scene.gltf\">{luminaires}</scene><conditions><lightArray id=\"Grid\" lights=\"Lamp1 … Lamp12\" surface=\"LampZone__Geometry\" columns=\"2..4\" rows=\"2..4\"{array}/></conditions><objectives><minimizePower/></objectives></input>"
+    );
+    let path = dir.join("p.xml");
+    std::fs::write(&path, text).unwrap();
+    let mut p = Problem::read(&path).unwrap();
+    let scene = p
+        .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
+        .unwrap();
+    (p, scene)
+}
+
+/// Each light's frame, a luminaire's.
+fn frames(scene: &invlight_scene::Scene) -> Vec<glam::Mat3> {
+    scene
+        .lights
+        .iter()
+        .map(|l| match &l.kind {
+            invlight_scene::LightKind::Goniometric { frame, .. } => *frame,
+            _ => panic!("a luminaire"),
+        })
+        .collect()
+}
+
 #[test]
 fn an_arrays_orientation_turns_its_lamps_as_each_luminaires_rotation_does() {
     let dir = tempfile::tempdir().unwrap();
-    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/classroom");
-    for f in ["scene.gltf", "scene.bin", "classroom.ldt"] {
-        std::fs::copy(example.join(f), dir.path().join(f)).unwrap();
-    }
-    let frames = |array: &str, rotation: &str| {
-        let luminaires: String = (1..=12)
-            .map(|k| format!("<luminaire light=\"Lamp{k}\" file=\"classroom.ldt\"{rotation}/>"))
-            .collect();
-        let text = format!(
-            "<input><scene path=\"scene.gltf\">{luminaires}</scene><conditions><lightArray id=\"Grid\" lights=\"Lamp1 … Lamp12\" surface=\"LampZone__Geometry\" columns=\"2..4\" rows=\"2..4\"{array}/></conditions><objectives><minimizePower/></objectives></input>"
-        );
-        let path = dir.path().join("p.xml");
-        std::fs::write(&path, text).unwrap();
-        let mut p = Problem::read(&path).unwrap();
-        let scene = p
-            .load_scene(&invlight_scene::LoadOptions::default(), None, None, &[])
-            .unwrap();
-        scene
-            .lights
-            .iter()
-            .map(|l| match &l.kind {
-                invlight_scene::LightKind::Goniometric { frame, .. } => *frame,
-                _ => panic!("a luminaire"),
-            })
-            .collect::<Vec<_>>()
-    };
+    let frames = |array: &str, rotation: &str| frames(&classroom(dir.path(), array, rotation).1);
     let (along, across) = (frames("", ""), frames(" orientation=\"90\"", ""));
     let each = frames("", " rotation=\"90\"");
     for ((a, b), c) in along.iter().zip(&across).zip(&each) {
@@ -791,6 +801,39 @@ fn an_arrays_orientation_turns_its_lamps_as_each_luminaires_rotation_does() {
         );
         Problem::parse(Path::new("/p/problem.xml"), &text).unwrap_err()
     };
-    assert!(refused("45").message.contains("expected 0 or 90"));
-    assert!(refused("search").message.contains("does not search yet"));
+    assert!(refused("45").message.contains("expected 0, 90"));
+}
+
+/// `orientation="search"`: a configuration at 90° gives every lamp the frame
+/// `rotation="90"` on each `<luminaire>` gives it, and one at 0° the frame as loaded,
+/// set from the loaded frame each time: 90° twice is 90°, 90° then 0° is 0°.
+#[test]
+fn a_searched_orientation_sets_each_lamp_as_its_rotation_would() {
+    let dir = tempfile::tempdir().unwrap();
+    let along = frames(&classroom(dir.path(), "", "").1);
+    let across = frames(&classroom(dir.path(), "", " rotation=\"90\"").1);
+    let (p, mut scene) = classroom(dir.path(), " orientation=\"search\"", "");
+    assert_eq!(frames(&scene), along, "loaded as authored");
+    let b = crate::Binding::new(&p, &mut scene).unwrap();
+    assert_eq!(b.space.dimensions(), 5);
+    let at = |orientation: f64| {
+        b.configuration(&[crate::VariableValue::Array(crate::ArrayShape {
+            columns: 4,
+            rows: 3,
+            walls: [0.5, 0.5],
+            orientation: Some(orientation),
+        })])
+        .unwrap()
+    };
+    let same = |got: &[glam::Mat3], want: &[glam::Mat3], what: &str| {
+        for (g, w) in got.iter().zip(want) {
+            assert!(g.abs_diff_eq(*w, 1e-6), "{what}: {g} and {w}");
+        }
+    };
+    b.apply(&mut scene, &at(90.0));
+    same(&frames(&scene), &across, "90°");
+    b.apply(&mut scene, &at(90.0));
+    same(&frames(&scene), &across, "90° twice");
+    b.apply(&mut scene, &at(0.0));
+    same(&frames(&scene), &along, "90° then 0°");
 }

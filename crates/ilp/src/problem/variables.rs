@@ -207,9 +207,10 @@ impl<'a, 'i> Reader<'a, 'i> {
         })
     }
 
-    /// `<lightArray id lights surface columns rows vertex…Index>`: `lights` the lamps'
-    /// names (white space between; "Lamp1 … Lamp6" names the numbered lamps between),
-    /// `columns` and `rows` a count ("3") or a range ("2..4"). The least array must fit
+    /// `<lightArray id lights surface columns rows orientation vertex…Index>`: `lights`
+    /// the lamps' names (white space between; "Lamp1 … Lamp6" names the numbered lamps
+    /// between), `columns` and `rows` a count ("3") or a range ("2..4"), `orientation`
+    /// 0, 90 or search. The least array must fit
     /// the lamps named; a larger columns × rows than there are lamps is refused by the
     /// search, not here, so that "2..4" × "2..6" over six lamps means every array of
     /// six or fewer.
@@ -244,18 +245,16 @@ impl<'a, 'i> Reader<'a, 'i> {
                 .with_hint("name more lamps in 'lights', or lower the least 'columns' or 'rows'"));
         }
         let orientation = match v.attribute("orientation").map(str::trim) {
-            None | Some("0") => 0.0,
-            Some("90") => 90.0,
-            Some("search") => {
-                return Err(self
-                    .error(v, "'orientation' of <lightArray> is 'search', which invlight does not search yet; expected 0 or 90")
-                    .with_hint("solve once with orientation=\"0\" and once with orientation=\"90\", and compare the answers"));
-            }
+            None | Some("0") => Some(0.0),
+            Some("90") => Some(90.0),
+            Some("search") => None,
             Some(o) => {
-                return Err(self.error(
-                    v,
-                    format!("'orientation' of <lightArray> is '{o}', expected 0 or 90 (degrees every lamp is turned about its aim)"),
-                ));
+                return Err(self
+                    .error(
+                        v,
+                        format!("'orientation' of <lightArray> is '{o}', expected 0, 90 (degrees every lamp is turned about its aim) or search"),
+                    )
+                    .with_hint("search lets the search choose between 0 and 90 with the layout"));
             }
         };
         Ok(VariableKind::LightArray(ArraySpec {
@@ -404,12 +403,14 @@ impl Problem {
             let VariableKind::LightArray(a) = &spec.kind else {
                 continue;
             };
-            if a.orientation == 0.0 {
+            // A searched orientation is the binding's to set, configuration by
+            // configuration, from the frames as loaded.
+            let Some(turn) = a.orientation.filter(|&t| t != 0.0) else {
                 continue;
-            }
+            };
             for name in &a.lights {
                 if let Some(l) = scene.light(name) {
-                    scene.lights[l].kind.turn_about_aim(a.orientation);
+                    scene.lights[l].kind.turn_about_aim(turn);
                 }
             }
         }

@@ -8,6 +8,11 @@
 //! outer lamps on the edges, f = 1 a whole spacing in): n lamps along an edge of
 //! length L stand at (i + f)/(n − 1 + 2f)·L, i = 0 … n − 1, so the array is centred and
 //! its spacing L/(n − 1 + 2f). Each fraction is searched in tenths, 0 to 1.
+//!
+//! With `orientation="search"` a fifth coordinate of two cells turns every lamp of the
+//! array a quarter turn about its aim or not: a linear fitting along or across the
+//! rectangle's first edge, the choice a designer makes with the layout, since glare
+//! and the light between the rows turn on it.
 
 use super::Parallelogram;
 
@@ -16,6 +21,9 @@ const WALL_CELLS: u32 = 11;
 
 /// The most starts an array gives the search ([`ArrayDomain::starts`]).
 const MAX_STARTS: usize = 40;
+
+/// The turns, degrees about each lamp's aim, a searched orientation chooses between.
+const TURNS: [f64; 2] = [0.0, 90.0];
 
 /// Where a `<lightArray>` ranges.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +37,9 @@ pub struct ArrayDomain {
     pub rows: (u32, u32),
     /// The lamps the array may use: columns × rows beyond it are refused.
     pub lamps: u32,
+    /// Whether the lamps' orientation is searched (a fifth coordinate, 0° or 90°);
+    /// otherwise the problem file fixes it and the scene is loaded turned.
+    pub turns: bool,
 }
 
 /// An array's columns, rows and wall fractions: a `<lightArray>`'s value.
@@ -41,6 +52,9 @@ pub struct ArrayShape {
     /// The distance from the outer columns and rows to the rectangle's edges, each a
     /// fraction of its spacing, in [0, 1].
     pub walls: [f64; 2],
+    /// The degrees every lamp is turned about its aim from its frame as loaded, 0 or
+    /// 90, where the search chooses it; `None` where the problem file fixes it.
+    pub orientation: Option<f64>,
 }
 
 impl ArrayShape {
@@ -68,18 +82,29 @@ impl ArrayShape {
 }
 
 impl ArrayDomain {
-    /// The cells of each of its four coordinates: one per count of columns and of
-    /// rows, eleven per wall fraction (tenths from 0 to 1).
-    pub fn cells(&self) -> [u32; 4] {
-        [
+    /// Its coordinates: columns, rows, the two wall fractions and, when searched, the
+    /// orientation.
+    pub fn dimensions(&self) -> usize {
+        if self.turns { 5 } else { 4 }
+    }
+
+    /// The cells of each coordinate: one per count of columns and of rows, eleven per
+    /// wall fraction (tenths from 0 to 1), two for a searched orientation.
+    pub fn cells(&self) -> Vec<u32> {
+        let mut cells = vec![
             self.columns.1 - self.columns.0 + 1,
             self.rows.1 - self.rows.0 + 1,
             WALL_CELLS,
             WALL_CELLS,
-        ]
+        ];
+        if self.turns {
+            cells.push(TURNS.len() as u32);
+        }
+        cells
     }
 
-    /// The shape at normalised coordinates `x` (columns, rows, the two wall fractions).
+    /// The shape at normalised coordinates `x` (columns, rows, the two wall fractions,
+    /// the orientation when searched).
     pub fn shape(&self, x: &[f64]) -> ArrayShape {
         let cells = self.cells();
         let count = |x: f64, (lo, _): (u32, u32), n: u32| {
@@ -93,12 +118,14 @@ impl ArrayDomain {
             columns: count(x[0], self.columns, cells[0]),
             rows: count(x[1], self.rows, cells[1]),
             walls: [wall(x[2]), wall(x[3])],
+            orientation: self.turns.then(|| TURNS[usize::from(x[4] >= 0.5)]),
         }
     }
 
     /// The normalised coordinates of `shape` (the centre of its cell), or `None` when
-    /// it lies outside the domain.
-    pub fn coords(&self, shape: &ArrayShape) -> Option<[f64; 4]> {
+    /// it lies outside the domain (an orientation other than 0° or 90° where it is
+    /// searched, or any where it is not, included).
+    pub fn coords(&self, shape: &ArrayShape) -> Option<Vec<f64>> {
         let cells = self.cells();
         let inside = |n: u32, (lo, hi): (u32, u32)| (lo..=hi).contains(&n);
         if !inside(shape.columns, self.columns)
@@ -112,34 +139,55 @@ impl ArrayDomain {
         }
         let count = |n: u32, lo: u32, c: u32| (f64::from(n - lo) + 0.5) / f64::from(c);
         let wall = |f: f64| ((10.0 * f).round() + 0.5) / f64::from(WALL_CELLS);
-        Some([
+        let mut coords = vec![
             count(shape.columns, self.columns.0, cells[0]),
             count(shape.rows, self.rows.0, cells[1]),
             wall(shape.walls[0]),
             wall(shape.walls[1]),
-        ])
+        ];
+        match (self.turns, shape.orientation) {
+            (false, None) => {}
+            (true, Some(o)) => {
+                let k = TURNS.iter().position(|t| (t - o).abs() < 1e-6)?;
+                coords.push((k as f64 + 0.5) / TURNS.len() as f64);
+            }
+            _ => return None,
+        }
+        Some(coords)
     }
 
     /// The regular arrays the search starts from: every count of columns and rows of
     /// at most [`ArrayDomain::lamps`] lamps, most lamps first, half a spacing from the
-    /// walls; then, while there are fewer than 40, each of them with its
-    /// outer lamps 0.3, 0.5 or 0.7 of a spacing from each pair of walls. A look with
-    /// few photons can misjudge a shape's uniformity, and the wall distance is what
-    /// uniformity turns on, so the walk starts from a spread of them rather than one.
+    /// walls, in each orientation when it is searched; then, while there are fewer
+    /// than 40, each of them with its outer lamps 0.3, 0.5 or 0.7 of a spacing from
+    /// each pair of walls. A look with few photons can misjudge a shape's uniformity,
+    /// and the wall distance is what uniformity turns on, so the walk starts from a
+    /// spread of them rather than one; an orientation can decide feasibility outright
+    /// (fittings that only fit one way, glare across them), so both are started from.
     pub fn starts(&self) -> Vec<ArrayShape> {
         let mut shapes: Vec<(u32, u32)> = (self.rows.0..=self.rows.1)
             .flat_map(|rows| (self.columns.0..=self.columns.1).map(move |c| (c, rows)))
             .filter(|(c, r)| c * r <= self.lamps)
             .collect();
         shapes.sort_by_key(|(c, r)| std::cmp::Reverse(c * r));
-        let shape = |(columns, rows): (u32, u32), walls| ArrayShape {
+        let orientations: Vec<Option<f64>> = if self.turns {
+            TURNS.iter().map(|&t| Some(t)).collect()
+        } else {
+            vec![None]
+        };
+        let turned: Vec<((u32, u32), Option<f64>)> = shapes
+            .iter()
+            .flat_map(|&s| orientations.iter().map(move |&o| (s, o)))
+            .collect();
+        let shape = |((columns, rows), orientation): ((u32, u32), Option<f64>), walls| ArrayShape {
             columns,
             rows,
             walls,
+            orientation,
         };
-        let mut out: Vec<ArrayShape> = shapes.iter().map(|&s| shape(s, [0.5, 0.5])).collect();
+        let mut out: Vec<ArrayShape> = turned.iter().map(|&s| shape(s, [0.5, 0.5])).collect();
         const SPREAD: [f64; 3] = [0.3, 0.5, 0.7];
-        for &s in &shapes {
+        for &s in &turned {
             for a in SPREAD {
                 for b in SPREAD {
                     if out.len() < MAX_STARTS && (a, b) != (0.5, 0.5) {
@@ -171,6 +219,7 @@ mod tests {
             columns: (2, 6),
             rows: (2, 4),
             lamps: 6,
+            turns: false,
         }
     }
 
@@ -180,6 +229,7 @@ mod tests {
             columns: 3,
             rows: 2,
             walls: [0.5, 0.0],
+            orientation: None,
         };
         let along: Vec<f64> = (0..3).map(|k| s.place(k).0).collect();
         // Half a spacing from the edges: 1/6, 3/6, 5/6 of the length.
@@ -194,6 +244,7 @@ mod tests {
             columns: 1,
             rows: 1,
             walls: [0.0, 1.0],
+            orientation: None,
         };
         assert_eq!(one.place(0), (0.5, 0.5));
     }
@@ -209,6 +260,7 @@ mod tests {
                         columns,
                         rows,
                         walls: [f, 1.0 - f],
+                        orientation: None,
                     };
                     let back = d.shape(&d.coords(&s).unwrap());
                     assert_eq!((back.columns, back.rows), (columns, rows));
@@ -221,6 +273,7 @@ mod tests {
             columns: 7,
             rows: 2,
             walls: [0.5, 0.5],
+            orientation: None,
         };
         assert_eq!(d.coords(&outside), None);
     }
@@ -239,5 +292,70 @@ mod tests {
         (d.columns, d.rows, d.lamps) = ((1, 10), (1, 10), 100);
         // Every shape once at half a spacing, and no spread past the cap.
         assert_eq!(d.starts().len(), 100);
+    }
+
+    /// A searched orientation is a fifth coordinate of two cells, 0° below its middle
+    /// and 90° above; a shape goes to its cell and back, and one of the other kind (an
+    /// orientation where none is searched, none where it is) lies outside.
+    #[test]
+    fn a_searched_orientation_is_a_coordinate_of_two_cells() {
+        let mut d = domain();
+        d.turns = true;
+        assert_eq!((d.dimensions(), d.cells()[4]), (5, 2));
+        assert_eq!(d.shape(&[0.5, 0.5, 0.5, 0.5, 0.49]).orientation, Some(0.0));
+        assert_eq!(d.shape(&[0.5, 0.5, 0.5, 0.5, 0.5]).orientation, Some(90.0));
+        for orientation in [0.0, 90.0] {
+            let s = ArrayShape {
+                columns: 3,
+                rows: 2,
+                walls: [0.3, 0.7],
+                orientation: Some(orientation),
+            };
+            assert_eq!(d.shape(&d.coords(&s).unwrap()), s);
+        }
+        let fixed = ArrayShape {
+            columns: 3,
+            rows: 2,
+            walls: [0.5, 0.5],
+            orientation: None,
+        };
+        assert_eq!(d.coords(&fixed), None);
+        let askew = ArrayShape {
+            orientation: Some(45.0),
+            ..fixed
+        };
+        assert_eq!(d.coords(&askew), None);
+        let turned = ArrayShape {
+            orientation: Some(90.0),
+            ..fixed
+        };
+        assert_eq!(domain().coords(&turned), None);
+        assert_eq!(domain().dimensions(), 4);
+    }
+
+    /// Both orientations start every shape, before any spread of wall distances, and
+    /// the spread stops at the cap.
+    #[test]
+    fn a_searched_orientation_starts_both_ways() {
+        let mut d = domain();
+        d.turns = true;
+        let starts = d.starts();
+        let first: Vec<(u32, u32, Option<f64>)> = starts[..6]
+            .iter()
+            .map(|s| (s.columns, s.rows, s.orientation))
+            .collect();
+        assert_eq!(
+            first,
+            [
+                (3, 2, Some(0.0)),
+                (3, 2, Some(90.0)),
+                (2, 3, Some(0.0)),
+                (2, 3, Some(90.0)),
+                (2, 2, Some(0.0)),
+                (2, 2, Some(90.0)),
+            ]
+        );
+        assert!(starts[..6].iter().all(|s| s.walls == [0.5, 0.5]));
+        assert_eq!(starts.len(), MAX_STARTS);
     }
 }
