@@ -97,7 +97,8 @@ pub use output::{
 };
 pub use photons::{EvaluationError, PhotonEvaluator, SideSplit};
 pub use problem::{
-    Anchor, LightGroup, PlacementSpec, Problem, SceneRef, TaskSpec, VariableKind, VariableSpec,
+    Anchor, FittingSize, LightGroup, PlacementSpec, Problem, SceneRef, TaskSpec, VariableKind,
+    VariableSpec,
 };
 pub use reading::{GridSpec, Quantity, Reading};
 pub use space::{

@@ -1,7 +1,7 @@
 //! Luminaires that would stand in one another: a candidate whose moved fittings'
-//! outlines overlap is refused before it is traced. A photometric file gives the
-//! luminaire's outline (EULUMDAT's luminaire length and width, or the luminous opening
-//! where the file gives no more); two 1.5 m linear fittings 1.37 m apart cannot be
+//! outlines overlap is refused before it is traced. A `<luminaire size>` gives the
+//! luminaire's outline as installed, else its photometric file (EULUMDAT's luminaire
+//! length and width, or the luminous opening where the file gives no more); two 1.5 m linear fittings 1.37 m apart cannot be
 //! installed, and a search that traced them would answer with a layout no one can
 //! build.
 //!
@@ -12,6 +12,7 @@
 //! turns its fittings' outlines with its lamps.
 
 use super::{Binding, Target, VariableValue};
+use crate::problem::FittingSize;
 use crate::space::Configuration;
 use glam::DVec3;
 use invlight_scene::{LightKind, Opening, Scene};
@@ -73,9 +74,10 @@ impl Outline {
     }
 }
 
-/// The outlines of the luminaires `targets` move, from their photometric files; lights
-/// without a file or without dimensions are left out.
-pub(super) fn fittings(scene: &Scene, targets: &[Target]) -> Vec<Fitting> {
+/// The outlines of the luminaires `targets` move, from their `<luminaire size>` (the
+/// last of `sizes` for the light) else their photometric files; lights without a file
+/// or without dimensions are left out.
+pub(super) fn fittings(scene: &Scene, targets: &[Target], sizes: &[FittingSize]) -> Vec<Fitting> {
     let mut out = Vec::new();
     for (variable, target) in targets.iter().enumerate() {
         let lights: Vec<(invlight_scene::LightId, Anchor)> = match target {
@@ -98,10 +100,18 @@ pub(super) fn fittings(scene: &Scene, targets: &[Target]) -> Vec<Fitting> {
             else {
                 continue;
             };
-            let outline = photometry
-                .luminaire
-                .map(|(o, _)| o)
-                .unwrap_or(photometry.opening);
+            // A size as installed is a rectangle, its length along C90 as EULUMDAT's.
+            let sized = sizes.iter().rev().find(|s| s.light == l.name);
+            let outline = match sized {
+                Some(s) => Opening::Rectangle {
+                    along_c0: s.width as f32,
+                    along_c90: s.length as f32,
+                },
+                None => photometry
+                    .luminaire
+                    .map(|(o, _)| o)
+                    .unwrap_or(photometry.opening),
+            };
             let [a, b] = outline.extents();
             if outline == Opening::Point || a <= 0.0 || b <= 0.0 {
                 continue;

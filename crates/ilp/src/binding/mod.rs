@@ -312,7 +312,7 @@ impl Binding {
             binding.light_power,
             binding.power_unit,
         ) = binding.component_power(scene);
-        binding.fittings = fittings::fittings(scene, &binding.targets);
+        binding.fittings = fittings::fittings(scene, &binding.targets, &problem.scene.sizes);
         binding.initial = binding.first_start(binding.initial.clone());
         binding.solve_levels(problem.confidence);
         Ok(binding)

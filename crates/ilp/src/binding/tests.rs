@@ -1130,3 +1130,60 @@ fn a_searched_orientation_finds_the_one_way_the_fittings_fit() {
         layout.description
     );
 }
+
+/// Two linear luminaires side by side 1 m apart in a `<lightArray>`: the file's
+/// outline (0.08 m wide) lets them stand there; `<luminaire size>` of 1.2 m across
+/// refuses it, and the gap an installer reads is the size's. The photometry is the
+/// file's either way.
+#[test]
+fn a_size_as_installed_is_the_outline_kept_apart() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/photometry/linear.ldt");
+    let table = std::sync::Arc::new(invlight_scene::read_photometry(&path).unwrap());
+    let binding = |sizes: &str| {
+        let mut s = scene_with_six_lamps();
+        for name in ["L1", "L2"] {
+            s.set_photometry(name, table.clone(), 1.0).unwrap();
+        }
+        let luminaires: String = ["L1", "L2"]
+            .map(|l| format!("<luminaire light=\"{l}\" file=\"linear.ldt\"{sizes}/>"))
+            .concat();
+        let p = Problem::parse(
+            Path::new("/p/x.xml"),
+            &format!("<input><scene path=\"s.gltf\">{luminaires}</scene><conditions><lightArray id=\"Grid\" lights=\"L1 L2\" surface=\"Floor__Geometry\" columns=\"2\" rows=\"1\"/></conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"),
+        )
+        .unwrap();
+        (Binding::new(&p, &mut s).unwrap(), s)
+    };
+    let side_by_side = |b: &Binding| {
+        b.configuration(&[VariableValue::Array(crate::space::ArrayShape {
+            columns: 2,
+            rows: 1,
+            walls: [0.5, 0.5],
+            orientation: None,
+        })])
+        .unwrap()
+    };
+    let (file, s) = binding("");
+    assert_eq!(file.refusal(&side_by_side(&file)), None);
+    let (sized, t) = binding(" size=\"1.52,1.2\"");
+    let why = sized
+        .refusal(&side_by_side(&sized))
+        .expect("1.2 m wide, 1 m apart");
+    assert!(
+        why.contains("'L1' and 'L2'") && why.contains("1.00 m apart"),
+        "{why}"
+    );
+    // 1 m apart: the gap between 1.2 m wide fittings is −0.2 m, between the file's 0.92 m.
+    let gap = |b: &Binding| {
+        b.layouts(&side_by_side(b))[0]
+            .array
+            .as_ref()
+            .unwrap()
+            .between
+            .unwrap()[0]
+    };
+    assert!((gap(&file) - 0.92).abs() < 1e-6, "{}", gap(&file));
+    assert!((gap(&sized) + 0.2).abs() < 1e-6, "{}", gap(&sized));
+    assert_eq!(s.lights, t.lights, "the same photometry and frames");
+}

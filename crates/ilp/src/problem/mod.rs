@@ -244,11 +244,27 @@ pub struct SceneRef {
     /// `<luminaire light="…" file="…" multiplier="…"/>` children (invlight), in file
     /// order: the named point or spot light emits the file's candela table.
     pub luminaires: Vec<Luminaire>,
+    /// `<luminaire size>` (invlight): the fittings' sizes as installed, in file order.
+    pub sizes: Vec<FittingSize>,
     /// `<calculationSurface>` and `<workplane>` children (invlight): surfaces that
     /// receive light without touching it.
     pub calculation: Calculation,
     /// Line of its element.
     pub line: u32,
+}
+
+/// `<luminaire light size="L,W">` (invlight): a fitting's length and width as
+/// installed, m, where the photometric file gives none or another (a file measured on
+/// one module of a trunking row, say). It is the outline luminaires are kept apart by
+/// (`binding/fittings.rs`), not the luminous area: the photometry is the file's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FittingSize {
+    /// The light it sizes.
+    pub light: String,
+    /// Along the luminaire's C90–C270 axis, as EULUMDAT's length is, m.
+    pub length: f64,
+    /// Across it, along C0–C180, m.
+    pub width: f64,
 }
 
 /// A problem file, read.

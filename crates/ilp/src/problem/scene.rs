@@ -2,7 +2,7 @@
 //! the problem is posed on and where its results go, both relative to the problem
 //! file's folder.
 
-use super::{Node, Reader, SceneRef};
+use super::{FittingSize, Node, Reader, SceneRef};
 use invlight_scene::{Diagnostic, Luminaire, UpAxis};
 use std::path::{Path, PathBuf};
 
@@ -34,21 +34,23 @@ impl<'a, 'i> Reader<'a, 'i> {
                 ));
             }
         };
+        let (luminaires, sizes) = self.luminaires(scene_el)?;
         Ok(SceneRef {
             path: dir.join(self.required(scene_el, "path")?),
             scale,
             up,
-            luminaires: self.luminaires(scene_el)?,
+            luminaires,
+            sizes,
             calculation: self.calculation(scene_el)?,
             line: self.line(scene_el),
         })
     }
 
-    /// `<scene>`'s `<luminaire light file multiplier>` children; the file is kept as
-    /// written and resolved when the scene is loaded ([`Scene::set_luminaires`]), under
-    /// the folder rule of the problem file.
-    fn luminaires(&self, scene: Node) -> Result<Vec<Luminaire>, Diagnostic> {
-        let mut out = Vec::new();
+    /// `<scene>`'s `<luminaire light file multiplier rotation size>` children, and the
+    /// sizes some give; the file is kept as written and resolved when the scene is
+    /// loaded ([`Scene::set_luminaires`]), under the folder rule of the problem file.
+    fn luminaires(&self, scene: Node) -> Result<(Vec<Luminaire>, Vec<FittingSize>), Diagnostic> {
+        let (mut out, mut sizes) = (Vec::new(), Vec::new());
         for e in self.elements(scene) {
             if e.tag_name().name() != "luminaire" {
                 if !super::calculation::ELEMENTS.contains(&e.tag_name().name()) {
@@ -62,7 +64,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 continue;
             }
-            self.check_attributes(e, &["light", "file", "multiplier", "rotation"]);
+            self.check_attributes(e, &["light", "file", "multiplier", "rotation", "size"]);
             let what = "a positive factor on the file's candela";
             let multiplier = match self.real(e, "multiplier", what)? {
                 Some(m) if m <= 0.0 || m as f32 > f32::MAX => {
@@ -84,6 +86,20 @@ impl<'a, 'i> Reader<'a, 'i> {
                 }
                 r => r.unwrap_or(0.0) as f32,
             };
+            if let Some(text) = e.attribute("size") {
+                let [length, width] = parse_size(text).ok_or_else(|| {
+                    self.error(
+                        e,
+                        format!("'size' of <luminaire> is '{text}', expected the fitting's length and width in metres, both positive, with a comma between"),
+                    )
+                    .with_hint("size=\"1.5,0.1\": 1.5 m along the luminaire's C90–C270 axis (EULUMDAT's length), 0.1 m across")
+                })?;
+                sizes.push(FittingSize {
+                    light: self.required(e, "light")?,
+                    length,
+                    width,
+                });
+            }
             out.push(Luminaire {
                 light: self.required(e, "light")?,
                 file: PathBuf::from(self.required(e, "file")?),
@@ -92,7 +108,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 origin: Some((self.path.to_path_buf(), self.line(e))),
             });
         }
-        Ok(out)
+        Ok((out, sizes))
     }
 
     /// `<output path>` under `root`, at most once (default `output`); `dir` is the
@@ -106,4 +122,16 @@ impl<'a, 'i> Reader<'a, 'i> {
             None => dir.join("output"),
         })
     }
+}
+
+/// `"1.5,0.1"` → [1.5, 0.1]: two finite positive numbers with a comma between.
+fn parse_size(text: &str) -> Option<[f64; 2]> {
+    let (a, b) = text.split_once(',')?;
+    let metres = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite() && *x > 0.0)
+    };
+    Some([metres(a)?, metres(b)?])
 }

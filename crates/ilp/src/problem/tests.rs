@@ -783,6 +783,47 @@ fn frames(scene: &invlight_scene::Scene) -> Vec<glam::Mat3> {
         .collect()
 }
 
+/// `<luminaire size="L,W">` is the fitting's length and width as installed, metres;
+/// a value that is not two positive numbers names its line and shows the form.
+#[test]
+fn a_luminaire_takes_its_size_as_installed() {
+    let with = |attrs: &str| {
+        parse(&format!(
+            "<input><scene path=\"s.gltf\">\n<luminaire light=\"L\" file=\"l.ldt\" {attrs}/></scene><conditions><directionalLight id=\"S\"/></conditions><objectives><maximizeRadiance surface=\"F\"/></objectives></input>"
+        ))
+    };
+    assert!(with("").unwrap().scene.sizes.is_empty());
+    assert_eq!(
+        with("size=\" 1.5 , 0.2\"").unwrap().scene.sizes,
+        [FittingSize {
+            light: "L".into(),
+            length: 1.5,
+            width: 0.2,
+        }]
+    );
+    for bad in [
+        "1.5",
+        "1.5,0",
+        "-1,0.2",
+        "1.5;0.2",
+        "a,b",
+        "1.5,0.2,3",
+        "inf,1",
+    ] {
+        let e = with(&format!("size=\"{bad}\"")).unwrap_err();
+        assert!(
+            e.to_string().contains(":2:") && e.message.contains("both positive"),
+            "{bad}: {e}"
+        );
+        assert!(
+            e.hint
+                .as_deref()
+                .is_some_and(|h| h.contains("size=\"1.5,0.1\"")),
+            "{e:?}"
+        );
+    }
+}
+
 #[test]
 fn an_arrays_orientation_turns_its_lamps_as_each_luminaires_rotation_does() {
     let dir = tempfile::tempdir().unwrap();
