@@ -162,10 +162,14 @@ pub struct LuminaireUse {
     pub multiplier: Option<f64>,
     /// The light's flux as authored (the table's times its multiplier), lm.
     pub lm: f64,
-    /// Degrees a problem file's `<luminaire rotation>` turned it about its aim; `None`
-    /// when not turned.
+    /// Degrees a problem file turned it about its aim as loaded (`<luminaire rotation>`
+    /// and a fixed `<lightArray orientation>`); `None` when not turned.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation: Option<f64>,
+    /// Its length and width as installed (`<luminaire size>`), m; `None` when the
+    /// file's stand.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 2]>,
 }
 
 /// What `minimizePower` minimises: electrical watts when every electric light's
@@ -288,13 +292,8 @@ impl Binding {
                         path: photometry.source.as_ref().map(|s| s.path.clone()),
                         multiplier: Some(f64::from(invlight_scene::luminance(*multiplier))),
                         lm: f64::from(invlight_scene::luminance(l.kind.flux())),
-                        rotation: problem
-                            .scene
-                            .luminaires
-                            .iter()
-                            .rev()
-                            .find(|u| u.light == l.name && u.rotation != 0.0)
-                            .map(|u| f64::from(u.rotation)),
+                        rotation: problem.turn_as_installed(&l.name),
+                        size: problem.size_as_installed(&l.name),
                     }),
                     _ => None,
                 })

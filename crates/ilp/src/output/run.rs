@@ -66,7 +66,10 @@ impl LuminaireUse {
         let turned = self
             .rotation
             .map_or(String::new(), |r| format!(" turned {}°", r as f32));
-        format!("{}={file} ×{m}{turned}", self.light)
+        let sized = self.size.map_or(String::new(), |[l, w]| {
+            format!(" sized {} m × {} m", l as f32, w as f32)
+        });
+        format!("{}={file} ×{m}{turned}{sized}", self.light)
     }
 }
 

@@ -171,6 +171,7 @@ fn resume_checks_the_luminaire_files() {
         multiplier: Some(1.0),
         lm: 3000.0,
         rotation: None,
+        size: None,
     };
     let dir = Path::new("/out");
     let old = RunFile::new(&settings(), 7, &[lamp("downlight.ies")]);
@@ -206,8 +207,8 @@ fn resume_checks_the_luminaire_files() {
 }
 
 /// The same file name is not the same lamp: a resume is refused when the file read is
-/// another one (a same-named file in another folder), its multiplier or its turn about
-/// its aim differs, or the file was edited (its flux differs), naming what differs; a folder of schema 1, which
+/// another one (a same-named file in another folder), its multiplier, its turn about
+/// its aim or its size as installed differs, or the file was edited (its flux differs), naming what differs; a folder of schema 1, which
 /// recorded names alone, resumes on the names.
 #[test]
 fn resume_checks_the_luminaires_path_multiplier_and_flux() {
@@ -218,6 +219,7 @@ fn resume_checks_the_luminaires_path_multiplier_and_flux() {
         multiplier: Some(multiplier),
         lm,
         rotation: None,
+        size: None,
     };
     let dir = Path::new("/out");
     let old = RunFile::new(&settings(), 7, &[lamp("/a/lamp.ldt", 2.0, 3000.0)]);
@@ -247,6 +249,13 @@ fn resume_checks_the_luminaires_path_multiplier_and_flux() {
                 ..lamp("/a/lamp.ldt", 2.0, 3000.0)
             },
             "luminaires Lamp=/a/lamp.ldt ×2 turned 90° (the folder has Lamp=/a/lamp.ldt ×2)",
+        ),
+        (
+            LuminaireUse {
+                size: Some([1.5, 0.3]),
+                ..lamp("/a/lamp.ldt", 2.0, 3000.0)
+            },
+            "luminaires Lamp=/a/lamp.ldt ×2 sized 1.5 m × 0.3 m (the folder has Lamp=/a/lamp.ldt ×2)",
         ),
     ] {
         let e = resume(new).unwrap_err().to_string();

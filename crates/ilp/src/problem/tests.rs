@@ -845,6 +845,23 @@ fn an_arrays_orientation_turns_its_lamps_as_each_luminaires_rotation_does() {
     assert!(refused("45").message.contains("expected 0, 90"));
 }
 
+/// What a folder records of each luminaire as installed, so that `--resume` refuses
+/// rows traced another way: an array's fixed orientation adds to each `<luminaire
+/// rotation>`, a searched one is the rows' own, and a `size` is kept.
+#[test]
+fn a_luminaire_is_recorded_turned_and_sized_as_installed() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, _) = classroom(dir.path(), " orientation=\"90\"", " rotation=\"90\"");
+    assert_eq!(p.turn_as_installed("Lamp3"), Some(180.0));
+    let (p, _) = classroom(dir.path(), " orientation=\"90\"", "");
+    assert_eq!(p.turn_as_installed("Lamp3"), Some(90.0));
+    let (p, _) = classroom(dir.path(), " orientation=\"search\"", "");
+    assert_eq!(p.turn_as_installed("Lamp3"), None);
+    assert_eq!(p.size_as_installed("Lamp3"), None);
+    let (p, _) = classroom(dir.path(), "", " size=\"1.6,0.35\"");
+    assert_eq!(p.size_as_installed("Lamp3"), Some([1.6, 0.35]));
+}
+
 /// `orientation="search"`: a configuration at 90° gives every lamp the frame
 /// `rotation="90"` on each `<luminaire>` gives it, and one at 0° the frame as loaded,
 /// set from the loaded frame each time: 90° twice is 90°, 90° then 0° is 0°.

@@ -415,4 +415,38 @@ impl Problem {
             }
         }
     }
+
+    /// Degrees the light `name` is turned about its aim as the scene is loaded: its
+    /// `<luminaire rotation>` and its array's fixed `orientation`; `None` when not
+    /// turned. A folder of rows traced one way is not resumed another
+    /// (`RunFile::check_resume`).
+    pub fn turn_as_installed(&self, name: &str) -> Option<f64> {
+        let rotation = self
+            .scene
+            .luminaires
+            .iter()
+            .rev()
+            .find(|u| u.light == name)
+            .map_or(0.0, |u| u.rotation);
+        let array = self
+            .variables
+            .iter()
+            .find_map(|v| match &v.kind {
+                VariableKind::LightArray(a) if a.lights.iter().any(|l| l == name) => a.orientation,
+                _ => None,
+            })
+            .unwrap_or(0.0);
+        let turn = f64::from(rotation + array);
+        (turn != 0.0).then_some(turn)
+    }
+
+    /// The light `name`'s `<luminaire size>` as [length, width], m.
+    pub fn size_as_installed(&self, name: &str) -> Option<[f64; 2]> {
+        self.scene
+            .sizes
+            .iter()
+            .rev()
+            .find(|s| s.light == name)
+            .map(|s| [s.length, s.width])
+    }
 }
