@@ -3203,10 +3203,10 @@ fn map_of_a_task_problem_judges_the_areas_it_built() {
         surfaces,
         [
             "immediate surrounding",
-            "wall 1",
-            "wall 2",
-            "wall 3",
-            "wall 4",
+            "wall x = 0.00 m",
+            "wall z = 4.80 m",
+            "wall x = 7.20 m",
+            "wall z = 0.00 m",
             "ceiling"
         ]
     );

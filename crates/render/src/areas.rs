@@ -104,7 +104,7 @@ impl AreaVerdict {
             .collect()
     }
 
-    /// The area's name as a report prints it: "wall 1", "immediate surrounding".
+    /// The area's name as a report prints it: "wall x = 9.00 m", "immediate surrounding".
     pub fn title(&self) -> String {
         match self.kind {
             AreaKind::Wall => self.surface.clone(),

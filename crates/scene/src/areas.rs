@@ -336,14 +336,21 @@ impl Scene {
         } else {
             &[]
         };
-        for (n, &(p, q)) in walls.iter().enumerate() {
-            let quad = [
-                at(p.0, p.1, f),
-                at(q.0, q.1, f),
-                at(q.0, q.1, c),
-                at(p.0, p.1, c),
-            ];
-            let surface = self.add_area(&format!("wall {}", n + 1), vec![facing(quad, centre)]);
+        let quads: Vec<[Vec3; 4]> = walls
+            .iter()
+            .map(|&(p, q)| {
+                let quad = [
+                    at(p.0, p.1, f),
+                    at(q.0, q.1, f),
+                    at(q.0, q.1, c),
+                    at(p.0, p.1, c),
+                ];
+                facing(quad, centre)
+            })
+            .collect();
+        let names = self.wall_names(&quads, ROOM_SURFACE_OFFSET);
+        for ((&(p, q), quad), name) in walls.iter().zip(quads).zip(names) {
+            let surface = self.add_area(&name, vec![quad]);
             let length = ((q.0 - p.0).powi(2) + (q.1 - p.1).powi(2)).sqrt();
             areas.push(self.area(AreaKind::Wall, surface, (length, c - f)));
         }

@@ -64,6 +64,7 @@ mod photometry;
 mod summary;
 mod validate;
 mod values;
+mod walls;
 mod world;
 
 pub use areas::{AreaKind, BACKGROUND_BAND, ROOM_SURFACE_OFFSET, SURROUNDING_BAND, TaskArea};

@@ -342,8 +342,9 @@ mod tests {
             has("ceiling", "Em", 50.0) && has("ceiling", "U0", 0.1),
             "{asked:?}"
         );
-        for n in 1..=4 {
-            assert!(has(&format!("wall {n}"), "Em", 75.0), "{asked:?}");
+        // Each wall named for the model's wall it stands in front of.
+        for w in ["WallW", "WallN", "WallE", "WallS"] {
+            assert!(has(&format!("{w} (EN 12464-1)"), "Em", 75.0), "{asked:?}");
         }
         // The office's Ēz 150 lx, over the prisms' mean: no grid, no U0.
         assert!(has("cylindrical illuminance", "Em", 150.0), "{asked:?}");
