@@ -22,7 +22,7 @@ use std::fmt;
 
 mod array;
 
-pub use array::{ArrayDomain, ArrayShape};
+pub use array::{ArrayDomain, ArrayShape, Rows};
 
 /// A placement parallelogram: P(s, t) = A + s·e1 + t·e2, (s, t) ∈ \[0, 1\]² (thesis §4.4.1).
 ///
@@ -523,7 +523,9 @@ impl Space {
         &mut config.coords[o..o + self.variables[i].domain.dimensions()]
     }
 
-    /// The cell a configuration lies in, interchangeable members in canonical order.
+    /// The cell a configuration lies in, interchangeable members in canonical order
+    /// and each array's coordinates its layout ignores at one value
+    /// ([`ArrayDomain::canonical`]).
     pub fn cell(&self, config: &Configuration) -> Cell {
         let mut cell: Vec<u32> = config
             .coords
@@ -531,6 +533,11 @@ impl Space {
             .zip(&self.cells)
             .map(|(&x, &c)| ((x * c as f64).floor().max(0.0) as u32).min(c - 1))
             .collect();
+        for (v, &o) in self.variables.iter().zip(&self.offsets) {
+            if let Domain::Array(a) = &v.domain {
+                a.canonical(&mut cell[o..o + a.dimensions()]);
+            }
+        }
         for g in &self.exchangeable {
             let coords: Vec<Vec<usize>> = g.iter().map(|m| self.member_coords(m)).collect();
             let mut tuples: Vec<Vec<u32>> = coords

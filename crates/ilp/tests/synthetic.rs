@@ -790,6 +790,7 @@ fn an_array_search_finds_the_best_shape() {
         rows: (1, 3),
         lamps: 12,
         turns: false,
+        continuous: None,
     };
     let d = domain.clone();
     let f = move |x: &[f64]| {

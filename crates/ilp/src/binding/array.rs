@@ -5,12 +5,15 @@
 //! off: they emit nothing, so a trace spends no photons on them, and they draw no
 //! power ([`Binding::power`]). A searched orientation turns every lamp about its aim
 //! from its frame as loaded, each time a configuration is applied, so that turns never
-//! add up.
+//! add up. With `continuous="true"` the fittings of each row lie end to end
+//! ([`crate::space::Rows`]); what that asks of the lamps (one length, along an edge,
+//! a least row that fits) is checked here, at load, with the element's line.
 
+use super::fittings;
 use super::placement::{Bounds, find_parallelogram, onto_plane};
 use super::{Binding, Target};
-use crate::problem::{ArraySpec, VariableSpec};
-use crate::space::{ArrayDomain, ArrayShape, Configuration, Domain, Parallelogram};
+use crate::problem::{ArraySpec, FittingSize, VariableSpec};
+use crate::space::{ArrayDomain, ArrayShape, Configuration, Domain, Parallelogram, Rows};
 use glam::{DVec3, Mat3};
 use invlight_scene::{Diagnostic, LightId, LightKind, Rgb, Scene, known_names};
 
@@ -25,9 +28,18 @@ pub struct Lamps {
     /// Each lamp's frame as loaded (its `<luminaire rotation>` included), in `lamps`'
     /// order: what a searched orientation turns; the identity for a lamp without one.
     pub frames: Vec<Mat3>,
+    /// Where the fittings lie end to end in rows (the domain's, kept here to apply a
+    /// shape).
+    pub rows: Option<Rows>,
 }
 
 impl Lamps {
+    /// Where `shape` puts lamp `k` on the rectangle (before its offset off the plane).
+    pub fn place(&self, shape: &ArrayShape, k: u32) -> DVec3 {
+        let (s, t) = shape.place(k, self.rows.as_ref());
+        self.rect.point(s, t)
+    }
+
     /// The box every lamp may stand in: the rectangle's corners at each lamp's offset.
     pub fn bounds(&self) -> Option<Bounds> {
         let r = &self.rect;
@@ -40,11 +52,12 @@ impl Lamps {
 }
 
 /// A `<lightArray>` over the point, spot or goniometric lights `a.lights` on the
-/// rectangle `a.surface`.
+/// rectangle `a.surface`, their fittings sized by `sizes` where it is continuous.
 pub(super) fn variable(
     scene: &Scene,
     spec: &VariableSpec,
     a: &ArraySpec,
+    sizes: &[FittingSize],
     err: &dyn Fn(String) -> Diagnostic,
 ) -> Result<(Domain, Target), Diagnostic> {
     let rect = find_parallelogram(scene, &a.surface, a.vertices, err)?;
@@ -78,20 +91,120 @@ pub(super) fn variable(
             *kind.clone().strength_mut(),
         ));
     }
+    let rows = if a.continuous {
+        let ids: Vec<LightId> = lamps.iter().map(|&(l, _, _)| l).collect();
+        Some(continuous_rows(scene, spec, a, &rect, &ids, sizes, err)?)
+    } else {
+        None
+    };
     let domain = ArrayDomain {
         rect: rect.clone(),
         columns: a.columns,
         rows: a.rows,
         lamps: lamps.len() as u32,
         turns: a.orientation.is_none(),
+        continuous: rows,
     };
     let lamps = Lamps {
         rect,
         lamps,
         frames,
+        rows,
     };
     Ok((Domain::Array(domain), Target::Array(lamps)))
 }
+
+/// The continuous rows of `<lightArray continuous="true">` over `lamps` on `rect`:
+/// every lamp a fitting of one length (its `<luminaire size>` or its file's), lying
+/// along one edge of the rectangle, and the least count along the rows (in some
+/// orientation, where it is searched) laid end to end no longer than that edge.
+fn continuous_rows(
+    scene: &Scene,
+    spec: &VariableSpec,
+    a: &ArraySpec,
+    rect: &Parallelogram,
+    lamps: &[LightId],
+    sizes: &[FittingSize],
+    err: &dyn Fn(String) -> Diagnostic,
+) -> Result<Rows, Diagnostic> {
+    let what = format!("<lightArray id=\"{}\" continuous=\"true\">", spec.id);
+    let edges = [rect.e1, rect.e2];
+    let mut first: Option<(&str, f64, usize)> = None;
+    for &light in lamps {
+        let l = &scene.lights[light];
+        let Some((length, c90)) = fittings::length(&l.name, &l.kind, sizes) else {
+            return Err(err(format!(
+                "'{}' has no length, expected every lamp of {what} to be a fitting of known length, laid end to end",
+                l.name
+            ))
+            .with_hint(format!(
+                "give it <luminaire light=\"{}\" size=\"L,W\"> (its length along C90 and width, m) or a photometric file with the luminaire's dimensions (EULUMDAT), or leave continuous out",
+                l.name
+            )));
+        };
+        let Some(along) = (0..2).find(|&i| c90.dot(edges[i].normalize()).abs() > 1.0 - 1e-6) else {
+            return Err(err(format!(
+                "'{}' lies across the edges of '{}', expected every lamp of {what} to lie along one of them",
+                l.name, a.surface
+            ))
+            .with_hint("turn the fittings (<luminaire rotation>) so that their length lies along an edge of the rectangle"));
+        };
+        match first {
+            None => first = Some((&l.name, length, along)),
+            Some((name, len, _)) if (len - length).abs() > 1e-6 => {
+                return Err(err(format!(
+                    "'{name}' is {len:.3} m long and '{}' {length:.3} m, expected fittings of one length in {what}",
+                    l.name
+                ))
+                .with_hint("give them one <luminaire size>, or lay out the two kinds in two arrays"));
+            }
+            Some((name, _, edge)) if edge != along => {
+                return Err(err(format!(
+                    "'{name}' lies along the {} edge of '{}' and '{}' along the {}, expected every lamp of {what} to lie one way",
+                    EDGES[edge], a.surface, l.name, EDGES[along]
+                ))
+                .with_hint("give them one <luminaire rotation>; orientation=\"search\" turns them all together"));
+            }
+            Some(_) => {}
+        }
+    }
+    let (_, length, along) = first.expect("an array names at least one lamp");
+    let rows = Rows {
+        along,
+        pitch: edges.map(|e| length / e.length()),
+    };
+    let orientations = match a.orientation {
+        None => vec![Some(0.0), Some(90.0)],
+        Some(_) => vec![None],
+    };
+    let least = [a.columns.0, a.rows.0];
+    if orientations.iter().all(|&o| {
+        let axis = rows.axis(o);
+        f64::from(least[axis]) * rows.pitch[axis] > 1.0 + ROW_SLACK
+    }) {
+        let axis = rows.axis(orientations[0]);
+        let n = least[axis];
+        return Err(err(format!(
+            "{what} lays at least {n} fittings of {length:.2} m end to end, a row of {:.2} m along the {} edge of '{}', {:.2} m long",
+            f64::from(n) * length,
+            EDGES[axis],
+            a.surface,
+            edges[axis].length()
+        ))
+        .with_hint(format!(
+            "lower the least '{}', or turn the fittings (orientation=\"90\" or \"search\"), or use shorter ones",
+            ["columns", "rows"][axis]
+        )));
+    }
+    Ok(rows)
+}
+
+/// How much longer than its edge a row of fittings may be, as a fraction of it: the
+/// rounding of a length that fits exactly.
+pub(super) const ROW_SLACK: f64 = 1e-9;
+
+/// The rectangle's edges as a layout names them.
+pub(super) const EDGES: [&str; 2] = ["first", "other"];
 
 /// Sets the array's lamps out as `shape`: the first columns × rows moved to their
 /// places, at their authored strength unless the binding dims them; the rest off. A
@@ -111,9 +224,8 @@ pub(super) fn apply(scene: &mut Scene, lamps: &Lamps, shape: &ArrayShape, bindin
             kind.set_frame(from * Mat3::from_rotation_z((turn as f32).to_radians()), up);
         }
         if (k as u32) < shape.lamps() {
-            let (s, t) = shape.place(k as u32);
             if let Some(p) = kind.position_mut() {
-                *p = (lamps.rect.point(s, t) + offset).as_vec3();
+                *p = (lamps.place(shape, k as u32) + offset).as_vec3();
             }
             if !binding.is_dimmed(light) {
                 *kind.strength_mut() = authored;

@@ -15,7 +15,7 @@ use super::{Binding, Target, VariableValue};
 use crate::problem::FittingSize;
 use crate::space::Configuration;
 use glam::DVec3;
-use invlight_scene::{LightKind, Opening, Scene};
+use invlight_scene::{LightKind, Opening, Photometry, Scene};
 
 /// A luminaire a placement variable moves, with its outline.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,18 +100,7 @@ pub(super) fn fittings(scene: &Scene, targets: &[Target], sizes: &[FittingSize])
             else {
                 continue;
             };
-            // A size as installed is a rectangle, its length along C90 as EULUMDAT's.
-            let sized = sizes.iter().rev().find(|s| s.light == l.name);
-            let outline = match sized {
-                Some(s) => Opening::Rectangle {
-                    along_c0: s.width as f32,
-                    along_c90: s.length as f32,
-                },
-                None => photometry
-                    .luminaire
-                    .map(|(o, _)| o)
-                    .unwrap_or(photometry.opening),
-            };
+            let outline = installed(&l.name, photometry, sizes).unwrap_or(photometry.opening);
             let [a, b] = outline.extents();
             if outline == Opening::Point || a <= 0.0 || b <= 0.0 {
                 continue;
@@ -129,6 +118,36 @@ pub(super) fn fittings(scene: &Scene, targets: &[Target], sizes: &[FittingSize])
         }
     }
     out
+}
+
+/// The outline of the luminaire `name` as installed: its `<luminaire size>` (the last
+/// of `sizes` for it; a rectangle, its length along C90 as EULUMDAT's), else its
+/// photometric file's luminaire dimensions; `None` when neither gives one.
+fn installed(name: &str, photometry: &Photometry, sizes: &[FittingSize]) -> Option<Opening> {
+    match sizes.iter().rev().find(|s| s.light == name) {
+        Some(s) => Some(Opening::Rectangle {
+            along_c0: s.width as f32,
+            along_c90: s.length as f32,
+        }),
+        None => photometry.luminaire.map(|(o, _)| o),
+    }
+}
+
+/// The length of the luminaire `name` as installed (its extent along C90, as
+/// EULUMDAT's length and `<luminaire size>`'s are measured), m, and the unit C90
+/// direction it lies along: what fittings laid end to end in a row are spaced by.
+/// `None` for a light without a photometric file or with no dimensions in it and no
+/// size: a luminous opening is not the housing, and rows spaced by it would leave gaps
+/// or overlap.
+pub(super) fn length(name: &str, kind: &LightKind, sizes: &[FittingSize]) -> Option<(f64, DVec3)> {
+    let LightKind::Goniometric {
+        frame, photometry, ..
+    } = kind
+    else {
+        return None;
+    };
+    let along = installed(name, photometry, sizes)?.extents()[1];
+    (along > 0.0).then(|| (f64::from(along), frame.y_axis.as_dvec3()))
 }
 
 /// Whether outlines `f` at `p` and `g` at `q` overlap (see the module doc).
@@ -199,9 +218,8 @@ impl Binding {
                     return None;
                 };
                 (k < shape.lamps()).then(|| {
-                    let (s, t) = shape.place(k);
                     let outline = f.outline.turned(shape.orientation.unwrap_or(0.0));
-                    (lamps.rect.point(s, t) + offset, outline)
+                    (lamps.place(shape, k) + offset, outline)
                 })
             }
             _ => None,

@@ -6,6 +6,7 @@
 //! array is what a DIALux user draws and an installer sets out, so the answer says
 //! which it is instead of leaving six coordinates to be read.
 
+use super::array::EDGES;
 use super::{Binding, Target, VariableValue};
 use crate::problem::VariableKind;
 use crate::space::{Configuration, Domain};
@@ -67,6 +68,11 @@ pub struct ArrayLayout {
     /// fittings have an outline longer one way than the other.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lengthwise: Option<usize>,
+    /// The edge continuous rows (`continuous="true"`, the fittings end to end) run
+    /// along, 0 the first, 1 the other: along it the spacing is the fittings' length
+    /// and nothing is between them; absent where the fittings are spaced.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub continuous: Option<usize>,
 }
 
 /// The regular array `points` (in a plane's coordinates, m) form, each of its distinct
@@ -184,6 +190,7 @@ impl Binding {
                     }),
                     orientation: None,
                     lengthwise: None,
+                    continuous: None,
                 }
             });
             let lights: Vec<String> = group.iter().map(|m| variables[m[0]].id.clone()).collect();
@@ -223,10 +230,7 @@ impl Binding {
             let lights: Vec<String> = lamps.lamps[..on].iter().map(name).collect();
             let off: Vec<String> = lamps.lamps[on..].iter().map(name).collect();
             let places: Vec<DVec3> = (0..on as u32)
-                .map(|k| {
-                    let (s, t) = shape.place(k);
-                    rect.point(s, t) + lamps.lamps[k as usize].1
-                })
+                .map(|k| lamps.place(shape, k) + lamps.lamps[k as usize].1)
                 .collect();
             let spacing = |n: u32, f: f64, edge: DVec3| match n {
                 1 => 0.0,
@@ -236,16 +240,29 @@ impl Binding {
                 rect.e1.normalize(),
                 rect.e1.cross(rect.e2).cross(rect.e1).normalize(),
             );
-            let spacing = [
+            let mut spacing = [
                 spacing(shape.columns, shape.walls[0], rect.e1),
                 spacing(shape.rows, shape.walls[1], rect.e2),
             ];
             let turn = shape.orientation.unwrap_or(0.0);
+            let continuous = lamps.rows.map(|r| r.axis(shape.orientation));
+            let mut between = None;
+            if let (Some(axis), Some(r)) = (continuous, lamps.rows) {
+                spacing[axis] = r.pitch[axis] * [rect.e1, rect.e2][axis].length();
+            }
+            if let Some(mut g) = self.gaps(variable, spacing, [u, v], turn) {
+                // End to end: nothing between, not the rounding of a length less itself.
+                if let Some(axis) = continuous {
+                    g[axis] = 0.0;
+                }
+                between = Some(g);
+            }
             let array = ArrayLayout {
                 columns: shape.columns,
                 rows: shape.rows,
                 spacing,
-                between: self.gaps(variable, spacing, [u, v], turn),
+                between,
+                continuous,
                 orientation: shape.orientation,
                 lengthwise: shape
                     .orientation
@@ -322,7 +339,8 @@ fn wall_distance(bounds: &super::Bounds, points: &[DVec3], axis: DVec3) -> Optio
 /// "Lamp1 … Lamp6 on LampZone: a 2 × 3 array (2 rows of 3), 2.40 m × 2.40 m apart,
 /// 0.60 m × 0.60 m from the walls; all at 72 %", with the fittings' orientation after
 /// the shape where the search chose it ("fittings turned 90°, lengthwise along the
-/// first edge").
+/// first edge") and, before it, fittings laid end to end ("continuous rows along the
+/// other edge", 0 m between them along the rows).
 fn describe(
     lights: &[String],
     surface: &str,
@@ -342,13 +360,17 @@ fn describe(
                 "a {} × {} array ({} rows of {}), ",
                 a.rows, a.columns, a.rows, a.columns,
             );
+            if let Some(e) = a.continuous {
+                s += &format!("continuous rows along the {} edge, ", EDGES[e]);
+            }
             if let Some(o) = a.orientation {
                 s += &if o == 0.0 {
                     "fittings as authored (0°)".to_string()
                 } else {
                     format!("fittings turned {o}°")
                 };
-                if let Some(e) = a.lengthwise {
+                // Continuous rows lie lengthwise by what they are: said once, above.
+                if let Some(e) = a.lengthwise.filter(|_| a.continuous.is_none()) {
                     s += [
                         ", lengthwise along the first edge",
                         ", lengthwise along the other edge",
@@ -478,6 +500,7 @@ mod tests {
             between: None,
             orientation: None,
             lengthwise: None,
+            continuous: None,
         };
         assert_eq!(
             describe(&lights, "LampZone", Some(&array), &[0.72; 6], &[]),
@@ -511,6 +534,22 @@ mod tests {
         assert!(
             describe(&lights, "LampZone", Some(&authored), &[0.72; 6], &[])
                 .contains("fittings as authored (0°), lengthwise along the other edge, 2.40 m")
+        );
+        // End to end along the other edge: the fittings' length apart, none between.
+        let rows = ArrayLayout {
+            spacing: [2.4, 1.52],
+            between: Some([2.32, 0.0]),
+            orientation: Some(90.0),
+            lengthwise: Some(1),
+            continuous: Some(1),
+            ..fitted.clone()
+        };
+        assert!(
+            describe(&lights, "LampZone", Some(&rows), &[0.72; 6], &[]).contains(
+                "(2 rows of 3), continuous rows along the other edge, fittings turned 90°, 2.40 m × 1.52 m apart (2.32 m × 0.00 m between fittings)"
+            ),
+            "{}",
+            describe(&lights, "LampZone", Some(&rows), &[0.72; 6], &[])
         );
         let one_row = ArrayLayout { rows: 1, ..fitted };
         assert!(

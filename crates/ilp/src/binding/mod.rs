@@ -684,7 +684,7 @@ fn bind(
                     spec.id, g.line
                 )));
             }
-            array::variable(scene, spec, a, err)
+            array::variable(scene, spec, a, &problem.scene.sizes, err)
         }
         VariableKind::Color {
             hue,

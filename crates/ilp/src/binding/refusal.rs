@@ -1,9 +1,28 @@
 //! Candidates not worth tracing: an object or light put outside the scene, more lamps
-//! than an array has, luminaires over each other (`fittings.rs`), two interchangeable
-//! lamps in one cell. Each is refused before any photon is traced, with its reason.
+//! than an array has, a continuous row longer than its rectangle, luminaires over each
+//! other (`fittings.rs`), two interchangeable lamps in one cell. Each is refused before
+//! any photon is traced, with its reason.
 
+use super::array::{EDGES, ROW_SLACK};
 use super::{Binding, Target, VariableValue};
-use crate::space::{Configuration, Domain};
+use crate::space::{ArrayDomain, ArrayShape, Configuration, Domain, Rows};
+
+/// Why `shape` of the array `id` is refused when its continuous `rows` are longer than
+/// the rectangle: fittings end to end past its edge cannot be installed.
+fn too_long(a: &ArrayDomain, shape: &ArrayShape, rows: &Rows, id: &str) -> Option<String> {
+    let fraction = shape.row_length(rows);
+    (fraction > 1.0 + ROW_SLACK).then(|| {
+        let axis = rows.axis(shape.orientation);
+        let edge = [a.rect.e1, a.rect.e2][axis].length();
+        format!(
+            "it lays {} fittings of '{id}' end to end, a row of {:.2} m along the {} edge, {:.2} m long",
+            shape.count(axis),
+            fraction * edge,
+            EDGES[axis],
+            edge
+        )
+    })
+}
 
 impl Binding {
     /// Why `config` is not worth tracing, if it is not: it puts an object or light
@@ -27,6 +46,9 @@ impl Binding {
                         v.id,
                         a.lamps
                     ));
+                }
+                if let Some(why) = a.continuous.and_then(|r| too_long(a, &shape, &r, &v.id)) {
+                    return Some(why);
                 }
             }
         }

@@ -1187,3 +1187,217 @@ fn a_size_as_installed_is_the_outline_kept_apart() {
     assert!((gap(&sized) + 0.2).abs() < 1e-6, "{}", gap(&sized));
     assert_eq!(s.lights, t.lights, "the same photometry and frames");
 }
+
+/// A `<lightArray continuous="true">` over L1 … L4 of `scene_with_six_lamps`, each a
+/// linear luminaire (linear.ldt, its length along C90: y as loaded) given `sizes` as
+/// `<luminaire>` attributes (`None`: no file, point lamps), the element on line 3.
+fn continuous_array(
+    array: &str,
+    sizes: [Option<&str>; 4],
+) -> Result<(Binding, Scene), invlight_scene::Diagnostic> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/photometry/linear.ldt");
+    let table = std::sync::Arc::new(invlight_scene::read_photometry(&path).unwrap());
+    let mut s = scene_with_six_lamps();
+    let mut luminaires = String::new();
+    for (k, size) in (1..=4).zip(sizes) {
+        let name = format!("L{k}");
+        if let Some(size) = size {
+            s.set_photometry(&name, table.clone(), 1.0).unwrap();
+            luminaires += &format!("<luminaire light=\"{name}\" file=\"linear.ldt\"{size}/>");
+        }
+    }
+    let p = Problem::parse(
+        Path::new("/p/x.xml"),
+        &format!(
+            "<input><scene path=\"s.gltf\">{luminaires}</scene>\n<conditions>\n<lightArray id=\"Grid\" lights=\"L1 L2 L3 L4\" surface=\"Floor__Geometry\" continuous=\"true\"{array}/>\n</conditions><objectives><maximizeRadiance surface=\"Floor\"/></objectives></input>"
+        ),
+    )
+    .unwrap();
+    Binding::new(&p, &mut s).map(|b| (b, s))
+}
+
+/// Fittings 0.4 m long (`<luminaire size>`).
+const SHORT: Option<&str> = Some(" size=\"0.4,0.08\"");
+
+/// The configuration of one array's `shape`.
+fn array_config(
+    b: &Binding,
+    (columns, rows): (u32, u32),
+    walls: [f64; 2],
+    orientation: Option<f64>,
+) -> Configuration {
+    b.configuration(&[VariableValue::Array(crate::space::ArrayShape {
+        columns,
+        rows,
+        walls,
+        orientation,
+    })])
+    .unwrap()
+}
+
+/// Continuous rows of 0.4 m fittings along y on the 2 m × 1 m rectangle (x 1–3,
+/// y 1–2): each row's lamps exactly one fitting's length apart, centre to centre,
+/// centred on the rectangle whatever the wall fraction along the rows; across them
+/// the columns keep theirs (half a spacing: x = 1.5, 2.5). Fittings that touch are
+/// not over each other, and the layout says the rows are continuous.
+#[test]
+fn continuous_rows_lie_end_to_end_centred_on_the_rectangle() {
+    let (b, mut s) = continuous_array(" columns=\"1..2\" rows=\"1..2\"", [SHORT; 4]).unwrap();
+    let at = |s: &Scene, name: &str| s.lights[s.light(name).unwrap()].kind.position().unwrap();
+    for wall in [0.0, 0.2, 1.0] {
+        let config = array_config(&b, (2, 2), [0.5, wall], None);
+        b.apply(&mut s, &config);
+        for (name, x, y) in [
+            ("L1", 1.5, 1.3),
+            ("L2", 2.5, 1.3),
+            ("L3", 1.5, 1.7),
+            ("L4", 2.5, 1.7),
+        ] {
+            assert!(
+                at(&s, name).distance(Vec3::new(x, y, 2.5)) < 1e-5,
+                "{name} at {} (wall {wall})",
+                at(&s, name)
+            );
+        }
+        let pitch = f64::from(at(&s, "L3").y - at(&s, "L1").y);
+        assert!((pitch - 0.4).abs() < 1e-6, "{pitch}");
+        assert_eq!(b.refusal(&config), None, "fittings that touch");
+    }
+    // One layout, one cell: the search evaluates it once. The columns' fraction counts.
+    let cell = |walls| b.space.cell(&array_config(&b, (2, 2), walls, None));
+    assert_eq!(cell([0.5, 0.0]), cell([0.5, 0.9]));
+    assert_ne!(cell([0.5, 0.0]), cell([0.3, 0.0]));
+    let layout = &b.layouts(&array_config(&b, (2, 2), [0.5, 0.2], None))[0];
+    let array = layout.array.as_ref().unwrap();
+    assert_eq!(array.continuous, Some(1));
+    assert!(
+        layout.description.contains(
+            "(2 rows of 2), continuous rows along the other edge, 1.00 m × 0.40 m apart (0.92 m × 0.00 m between fittings)"
+        ),
+        "{}",
+        layout.description
+    );
+}
+
+/// Turned a quarter turn, the fittings' length lies along x and so do the rows: a
+/// searched 90° lays three 0.4 m fittings end to end about x = 2 and keeps the rows
+/// at their wall fraction; 0° in the same configuration lays them along y. A fixed
+/// `orientation="90"` (the lamps loaded turned) lays them along x too. The fraction
+/// the rows ignore is the one along them, so which it is turns with them.
+#[test]
+fn turned_a_quarter_turn_the_rows_run_along_the_other_edge() {
+    let (b, mut s) = continuous_array(
+        " columns=\"1..3\" rows=\"1..2\" orientation=\"search\"",
+        [SHORT; 4],
+    )
+    .unwrap();
+    let at = |s: &Scene, name: &str| s.lights[s.light(name).unwrap()].kind.position().unwrap();
+    let turned = array_config(&b, (3, 1), [0.1, 0.5], Some(90.0));
+    b.apply(&mut s, &turned);
+    for (name, x) in [("L1", 1.6), ("L2", 2.0), ("L3", 2.4)] {
+        assert!(
+            at(&s, name).distance(Vec3::new(x, 1.5, 2.5)) < 1e-5,
+            "{name} at {}",
+            at(&s, name)
+        );
+    }
+    assert_eq!(b.refusal(&turned), None);
+    assert!(
+        b.layouts(&turned)[0]
+            .description
+            .contains("continuous rows along the first edge, fittings turned 90°, 0.40 m × 0.00 m apart (0.00 m × — between fittings)"),
+        "{}",
+        b.layouts(&turned)[0].description
+    );
+    let cell = |walls, o| b.space.cell(&array_config(&b, (1, 2), walls, Some(o)));
+    assert_eq!(cell([0.1, 0.5], 90.0), cell([0.8, 0.5], 90.0));
+    assert_ne!(cell([0.1, 0.5], 0.0), cell([0.8, 0.5], 0.0));
+    assert_eq!(cell([0.5, 0.1], 0.0), cell([0.5, 0.8], 0.0));
+    // As loaded, two end to end along y about y = 1.5, one column in the middle.
+    let along_y = array_config(&b, (1, 2), [0.1, 0.5], Some(0.0));
+    b.apply(&mut s, &along_y);
+    assert!(at(&s, "L1").distance(Vec3::new(2.0, 1.3, 2.5)) < 1e-5);
+    assert!(at(&s, "L2").distance(Vec3::new(2.0, 1.7, 2.5)) < 1e-5);
+    // A fixed 90°: the problem loads the scene turned, as here by hand.
+    let (b, mut s) = {
+        let mut s = scene_with_six_lamps();
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/photometry/linear.ldt");
+        let table = std::sync::Arc::new(invlight_scene::read_photometry(&path).unwrap());
+        for k in 1..=4 {
+            let name = format!("L{k}");
+            s.set_photometry(&name, table.clone(), 1.0).unwrap();
+            let l = s.light(&name).unwrap();
+            s.lights[l].kind.turn_about_aim(90.0);
+        }
+        let b = Binding::new(
+            &problem(
+                "<lightArray id=\"Grid\" lights=\"L1 L2 L3 L4\" surface=\"Floor__Geometry\" columns=\"1..2\" rows=\"1..2\" orientation=\"90\" continuous=\"true\"/>",
+            ),
+            &mut s,
+        )
+        .unwrap();
+        (b, s)
+    };
+    // linear.ldt's own 1.52 m: one fits the 2 m edge, two do not.
+    let one = array_config(&b, (1, 2), [0.0, 0.5], None);
+    b.apply(&mut s, &one);
+    assert!(at(&s, "L1").distance(Vec3::new(2.0, 1.25, 2.5)) < 1e-5);
+    assert!(at(&s, "L2").distance(Vec3::new(2.0, 1.75, 2.5)) < 1e-5);
+    assert!(
+        b.refusal(&array_config(&b, (2, 1), [0.5, 0.5], None))
+            .is_some()
+    );
+}
+
+/// A shape whose row is longer than its rectangle's edge is refused before it is
+/// traced, with the row's length and the edge's: three 0.4 m fittings along the 1 m
+/// edge; two fit.
+#[test]
+fn a_continuous_row_longer_than_its_rectangle_is_refused() {
+    let (b, _) = continuous_array(" columns=\"1\" rows=\"2..3\"", [SHORT; 4]).unwrap();
+    assert_eq!(b.refusal(&array_config(&b, (1, 2), [0.5, 0.5], None)), None);
+    let why = b
+        .refusal(&array_config(&b, (1, 3), [0.5, 0.5], None))
+        .expect("1.2 m of fittings on a 1 m edge");
+    assert_eq!(
+        why,
+        "it lays 3 fittings of 'Grid' end to end, a row of 1.20 m along the other edge, 1.00 m long"
+    );
+}
+
+/// What continuous rows need is checked at load, with the element's line (3) and a
+/// hint: a lamp with a length (no file here, so none), one length for every lamp, and
+/// a least row that fits.
+#[test]
+fn continuous_rows_of_lamps_without_one_length_are_refused_at_load() {
+    let refused = |array: &str, sizes| continuous_array(array, sizes).unwrap_err().to_string();
+    let counts = " columns=\"1..2\" rows=\"1..2\"";
+    let e = refused(counts, [SHORT, SHORT, None, SHORT]);
+    assert!(
+        e.starts_with("/p/x.xml:3: 'L3' has no length")
+            && e.contains("hint: give it <luminaire light=\"L3\" size=\"L,W\">"),
+        "{e}"
+    );
+    let e = refused(counts, [SHORT, Some(""), SHORT, SHORT]);
+    assert!(
+        e.starts_with("/p/x.xml:3: 'L1' is 0.400 m long and 'L2' 1.520 m")
+            && e.contains("hint: give them one <luminaire size>"),
+        "{e}"
+    );
+    let e = refused(" columns=\"1\" rows=\"3\"", [SHORT; 4]);
+    assert!(
+        e.starts_with("/p/x.xml:3: <lightArray id=\"Grid\" continuous=\"true\"> lays at least 3 fittings of 0.40 m end to end, a row of 1.20 m along the other edge of 'Floor__Geometry', 1.00 m long")
+            && e.contains("hint: lower the least 'rows'"),
+        "{e}"
+    );
+    // Searched, the least row need only fit one way: three along the 2 m edge do.
+    assert!(
+        continuous_array(
+            " columns=\"1\" rows=\"3\" orientation=\"search\"",
+            [SHORT; 4]
+        )
+        .is_ok()
+    );
+}

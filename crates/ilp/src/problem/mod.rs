@@ -147,7 +147,7 @@ pub enum VariableKind {
     LightArray(ArraySpec),
 }
 
-/// A `<lightArray id lights surface columns rows>`.
+/// A `<lightArray id lights surface columns rows orientation continuous>`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ArraySpec {
     /// The lamps, in the order they fill the array (row by row).
@@ -165,6 +165,9 @@ pub struct ArraySpec {
     /// the rectangle's first edge's as authored; `None` for `search`, where the search
     /// chooses between the two ([`crate::space::ArrayDomain::turns`]).
     pub orientation: Option<f32>,
+    /// `continuous="true"`: the fittings of each row laid end to end
+    /// ([`crate::space::Rows`]).
+    pub continuous: bool,
 }
 
 impl VariableKind {

@@ -862,6 +862,29 @@ fn a_luminaire_is_recorded_turned_and_sized_as_installed() {
     assert_eq!(p.size_as_installed("Lamp3"), Some([1.6, 0.35]));
 }
 
+/// `continuous` is true or false; anything else is refused with its line and a hint.
+#[test]
+fn an_arrays_continuous_is_true_or_false() {
+    let with = |c: &str| {
+        parse(&format!(
+            "<input><scene path=\"s.gltf\"/><conditions>\n<lightArray id=\"G\" lights=\"A B\" surface=\"Z\" columns=\"1\" rows=\"1\"{c}/></conditions><objectives><minimizePower/></objectives></input>"
+        ))
+    };
+    let continuous = |c: &str| match &with(c).unwrap().variables[0].kind {
+        VariableKind::LightArray(a) => a.continuous,
+        k => panic!("{k:?}"),
+    };
+    assert!(!continuous(""));
+    assert!(!continuous(" continuous=\"false\""));
+    assert!(continuous(" continuous=\" true \""));
+    let e = with(" continuous=\"yes\"").unwrap_err();
+    assert!(
+        e.to_string().contains(":2:") && e.message.contains("is 'yes', expected true"),
+        "{e}"
+    );
+    assert!(e.hint.is_some_and(|h| h.contains("end to end")));
+}
+
 /// `orientation="search"`: a configuration at 90° gives every lamp the frame
 /// `rotation="90"` on each `<luminaire>` gives it, and one at 0° the frame as loaded,
 /// set from the loaded frame each time: 90° twice is 90°, 90° then 0° is 0°.

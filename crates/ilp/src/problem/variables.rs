@@ -207,15 +207,24 @@ impl<'a, 'i> Reader<'a, 'i> {
         })
     }
 
-    /// `<lightArray id lights surface columns rows orientation vertex…Index>`: `lights`
-    /// the lamps' names (white space between; "Lamp1 … Lamp6" names the numbered lamps
-    /// between), `columns` and `rows` a count ("3") or a range ("2..4"), `orientation`
-    /// 0, 90 or search. The least array must fit
+    /// `<lightArray id lights surface columns rows orientation continuous
+    /// vertex…Index>`: `lights` the lamps' names (white space between; "Lamp1 … Lamp6"
+    /// names the numbered lamps between), `columns` and `rows` a count ("3") or a range
+    /// ("2..4"), `orientation` 0, 90 or search, `continuous` true or false. The least
+    /// array must fit
     /// the lamps named; a larger columns × rows than there are lamps is refused by the
     /// search, not here, so that "2..4" × "2..6" over six lamps means every array of
     /// six or fewer.
     fn light_array(&self, v: Node) -> Result<VariableKind, Diagnostic> {
-        let mut known = vec!["id", "lights", "surface", "columns", "rows", "orientation"];
+        let mut known = vec![
+            "id",
+            "lights",
+            "surface",
+            "columns",
+            "rows",
+            "orientation",
+            "continuous",
+        ];
         known.extend(VERTEX_ATTRS);
         self.check_attributes(v, &known);
         let id = self.required(v, "id")?;
@@ -257,6 +266,18 @@ impl<'a, 'i> Reader<'a, 'i> {
                     .with_hint("search lets the search choose between 0 and 90 with the layout"));
             }
         };
+        let continuous = match v.attribute("continuous").map(str::trim) {
+            None | Some("false") => false,
+            Some("true") => true,
+            Some(c) => {
+                return Err(self
+                    .error(
+                        v,
+                        format!("'continuous' of <lightArray> is '{c}', expected true (the fittings of each row end to end) or false"),
+                    )
+                    .with_hint("continuous=\"true\" lays linear fittings end to end in rows, as trunking; leave it out for spaced fittings"));
+            }
+        };
         Ok(VariableKind::LightArray(ArraySpec {
             lights,
             surface: self.required(v, "surface")?,
@@ -264,6 +285,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             columns,
             rows,
             orientation,
+            continuous,
         }))
     }
 

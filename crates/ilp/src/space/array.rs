@@ -13,6 +13,13 @@
 //! array a quarter turn about its aim or not: a linear fitting along or across the
 //! rectangle's first edge, the choice a designer makes with the layout, since glare
 //! and the light between the rows turn on it.
+//!
+//! With `continuous="true"` the fittings of each row touch end to end, as trunking
+//! rows are installed ([`Rows`]): along the edge their length lies on, the spacing is
+//! the fitting's length and the row is centred, so that edge's wall fraction means
+//! nothing. The coordinates stay as they are (a searched orientation still chooses
+//! which edge that is); [`ArrayDomain::canonical`] maps the meaningless fraction to
+//! one cell, so the search never evaluates one layout twice.
 
 use super::Parallelogram;
 
@@ -40,6 +47,29 @@ pub struct ArrayDomain {
     /// Whether the lamps' orientation is searched (a fifth coordinate, 0° or 90°);
     /// otherwise the problem file fixes it and the scene is loaded turned.
     pub turns: bool,
+    /// Where the fittings lie end to end in rows (`continuous="true"`), their length.
+    pub continuous: Option<Rows>,
+}
+
+/// Fittings laid end to end in rows (`<lightArray continuous="true">`): continuous
+/// trunking, a row of linear luminaires with no gap between them. Each row is centred
+/// on the rectangle along the edge the fittings' length lies on, its lamps one
+/// fitting's length apart centre to centre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rows {
+    /// The edge the fittings' length lies along as loaded (before a searched
+    /// orientation turns them): 0 the first (A→B), 1 the other.
+    pub along: usize,
+    /// The fittings' length as a fraction of each edge's.
+    pub pitch: [f64; 2],
+}
+
+impl Rows {
+    /// The edge the rows run along with the lamps turned `orientation` degrees (0 or
+    /// 90) from their frames as loaded: a quarter turn lays them along the other.
+    pub fn axis(&self, orientation: Option<f64>) -> usize {
+        self.along ^ usize::from(orientation == Some(90.0))
+    }
 }
 
 /// An array's columns, rows and wall fractions: a `<lightArray>`'s value.
@@ -63,9 +93,16 @@ impl ArrayShape {
         self.columns * self.rows
     }
 
+    /// The lamps along edge `axis`: the columns along the first, the rows along the
+    /// other.
+    pub fn count(&self, axis: usize) -> u32 {
+        [self.columns, self.rows][axis]
+    }
+
     /// The parallelogram coordinates (s, t) of lamp `k` (row by row: lamp k is in
-    /// column k mod columns, row k div columns).
-    pub fn place(&self, k: u32) -> (f64, f64) {
+    /// column k mod columns, row k div columns); in continuous `rows`, along their
+    /// edge one pitch apart and centred, whatever that edge's wall fraction.
+    pub fn place(&self, k: u32, rows: Option<&Rows>) -> (f64, f64) {
         let at = |i: u32, n: u32, f: f64| {
             let span = f64::from(n) - 1.0 + 2.0 * f;
             if span <= 0.0 {
@@ -74,10 +111,24 @@ impl ArrayShape {
                 (f64::from(i) + f) / span
             }
         };
-        (
+        let mut st = [
             at(k % self.columns, self.columns, self.walls[0]),
             at(k / self.columns, self.rows, self.walls[1]),
-        )
+        ];
+        if let Some(r) = rows {
+            let axis = r.axis(self.orientation);
+            let i = [k % self.columns, k / self.columns][axis];
+            let middle = 0.5 * (f64::from(self.count(axis)) - 1.0);
+            st[axis] = 0.5 + (f64::from(i) - middle) * r.pitch[axis];
+        }
+        (st[0], st[1])
+    }
+
+    /// How long its continuous `rows` are, as a fraction of their edge: more than 1 is
+    /// a row longer than the rectangle.
+    pub fn row_length(&self, rows: &Rows) -> f64 {
+        let axis = rows.axis(self.orientation);
+        f64::from(self.count(axis)) * rows.pitch[axis]
     }
 }
 
@@ -101,6 +152,17 @@ impl ArrayDomain {
             cells.push(TURNS.len() as u32);
         }
         cells
+    }
+
+    /// Maps `cell` (this array's cells) to the one cell of its layout: in continuous
+    /// rows, the wall fraction along the rows (which the rows, centred, ignore) to its
+    /// middle cell, ½. Configurations that differ in it alone are one layout, and the
+    /// search, which keys what it has seen by cell, then evaluates it once.
+    pub fn canonical(&self, cell: &mut [u32]) {
+        if let Some(rows) = &self.continuous {
+            let orientation = self.turns.then(|| TURNS[cell[4].min(1) as usize]);
+            cell[2 + rows.axis(orientation)] = WALL_CELLS / 2;
+        }
     }
 
     /// The shape at normalised coordinates `x` (columns, rows, the two wall fractions,
@@ -164,6 +226,7 @@ impl ArrayDomain {
     /// and the wall distance is what uniformity turns on, so the walk starts from a
     /// spread of them rather than one; an orientation can decide feasibility outright
     /// (fittings that only fit one way, glare across them), so both are started from.
+    /// Continuous rows ignore the fraction along them, so it is spread across only.
     pub fn starts(&self) -> Vec<ArrayShape> {
         let mut shapes: Vec<(u32, u32)> = (self.rows.0..=self.rows.1)
             .flat_map(|rows| (self.columns.0..=self.columns.1).map(move |c| (c, rows)))
@@ -188,10 +251,14 @@ impl ArrayDomain {
         let mut out: Vec<ArrayShape> = turned.iter().map(|&s| shape(s, [0.5, 0.5])).collect();
         const SPREAD: [f64; 3] = [0.3, 0.5, 0.7];
         for &s in &turned {
+            // Continuous rows ignore the wall fraction along them: spread the other.
+            let ignored = self.continuous.map(|r| r.axis(s.1));
             for a in SPREAD {
                 for b in SPREAD {
-                    if out.len() < MAX_STARTS && (a, b) != (0.5, 0.5) {
-                        out.push(shape(s, [a, b]));
+                    let walls = [a, b];
+                    let fresh = walls != [0.5, 0.5] && ignored.is_none_or(|i| walls[i] == 0.5);
+                    if out.len() < MAX_STARTS && fresh {
+                        out.push(shape(s, walls));
                     }
                 }
             }
@@ -220,6 +287,7 @@ mod tests {
             rows: (2, 4),
             lamps: 6,
             turns: false,
+            continuous: None,
         }
     }
 
@@ -231,14 +299,14 @@ mod tests {
             walls: [0.5, 0.0],
             orientation: None,
         };
-        let along: Vec<f64> = (0..3).map(|k| s.place(k).0).collect();
+        let along: Vec<f64> = (0..3).map(|k| s.place(k, None).0).collect();
         // Half a spacing from the edges: 1/6, 3/6, 5/6 of the length.
         for (a, b) in along.iter().zip([1.0 / 6.0, 0.5, 5.0 / 6.0]) {
             assert!((a - b).abs() < 1e-12, "{along:?}");
         }
         // On the edges, second row on the far edge.
-        assert_eq!(s.place(0).1, 0.0);
-        assert_eq!(s.place(3).1, 1.0);
+        assert_eq!(s.place(0, None).1, 0.0);
+        assert_eq!(s.place(3, None).1, 1.0);
         // One lamp alone stands in the middle whatever its fraction.
         let one = ArrayShape {
             columns: 1,
@@ -246,7 +314,7 @@ mod tests {
             walls: [0.0, 1.0],
             orientation: None,
         };
-        assert_eq!(one.place(0), (0.5, 0.5));
+        assert_eq!(one.place(0, None), (0.5, 0.5));
     }
 
     #[test]
@@ -357,5 +425,38 @@ mod tests {
         );
         assert!(starts[..6].iter().all(|s| s.walls == [0.5, 0.5]));
         assert_eq!(starts.len(), MAX_STARTS);
+    }
+
+    /// Continuous rows (here along the first edge as loaded) ignore the wall fraction
+    /// along them: the starts spread the other alone, and a cell's ignored fraction
+    /// goes to its middle, along the other edge where a searched 90° turns the rows.
+    #[test]
+    fn continuous_rows_start_and_keep_one_cell_per_layout() {
+        let mut d = domain();
+        d.continuous = Some(Rows {
+            along: 0,
+            pitch: [0.25, 0.375],
+        });
+        let starts = d.starts();
+        assert!(starts.iter().all(|s| s.walls[0] == 0.5), "{starts:?}");
+        assert_eq!(starts.len(), 3 + 3 * 2);
+        let mut cell = [0, 0, 2, 7];
+        d.canonical(&mut cell);
+        assert_eq!(cell, [0, 0, 5, 7]);
+        d.turns = true;
+        let mut turned = [0, 0, 2, 7, 1];
+        d.canonical(&mut turned);
+        assert_eq!(turned, [0, 0, 2, 5, 1]);
+        // Four along the first edge, a quarter of it each: the whole edge, centred.
+        let s = ArrayShape {
+            columns: 4,
+            rows: 1,
+            walls: [0.0, 0.5],
+            orientation: Some(0.0),
+        };
+        let rows = d.continuous.unwrap();
+        let along: Vec<f64> = (0..4).map(|k| s.place(k, Some(&rows)).0).collect();
+        assert_eq!(along, [0.125, 0.375, 0.625, 0.875]);
+        assert_eq!(s.row_length(&rows), 1.0);
     }
 }
