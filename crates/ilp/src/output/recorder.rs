@@ -55,7 +55,7 @@ impl<'b, F: FnMut(Progress<'_>)> Recorder<'b, F> {
         let mut lines = Vec::new();
         if self.refused > 0 {
             lines.push(format!(
-                "{} candidates were not traced: they put an object or light outside the scene, two identical lamps in one cell, two fittings over each other, or more lamps in an array than it has",
+                "{} candidates were not traced: they put an object or light outside the scene, two identical lamps in one cell, two fittings over each other, a continuous row longer than its rectangle, or more lamps in an array than it has",
                 self.refused
             ));
         }
