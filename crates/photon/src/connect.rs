@@ -574,4 +574,83 @@ mod tests {
             assert!((total - 1.0).abs() < 1e-3, "{lobe:?}: {total}");
         }
     }
+
+    /// The integral over the whole sphere of `f` along each unit direction, on a grid
+    /// of `n` bands in cos θ and `2n` in φ (midpoint rule).
+    fn over_sphere(n: usize, f: impl Fn(Vec3) -> f64) -> f64 {
+        let (mut total, cell) = (0.0, 2.0 / n as f64 * std::f64::consts::PI / n as f64);
+        for i in 0..n {
+            let c = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+            let s = (1.0 - c * c).sqrt();
+            for j in 0..2 * n {
+                let phi = std::f64::consts::PI * (j as f64 + 0.5) / n as f64;
+                let w = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, c as f32);
+                total += f(w) * cell;
+            }
+        }
+        total
+    }
+
+    /// Lobes that are not symmetric about Z: a cosine and a spot about a tilted axis, and
+    /// a linear luminaire's table (a batwing across its length, cosine-like along it)
+    /// turned in the world. Each density integrates to one over the sphere, the
+    /// table's intensity I = Φ·p·r to its flux, its density is the same read alone or
+    /// with its weight, and the turned table reads in the world what the unturned one
+    /// reads at the turned direction.
+    #[test]
+    fn asymmetric_and_turned_lobes_integrate_to_one() {
+        let tilted = Vec3::new(0.6, -0.3, 0.74).normalize();
+        for lobe in [
+            Lobe::Cosine { normal: tilted },
+            Lobe::Spot {
+                axis: tilted,
+                cos_inner: 0.9,
+                cos_outer: 0.7,
+                flat_share: 0.1 / (0.1 + 0.2 / 3.0),
+            },
+        ] {
+            let total = over_sphere(400, |w| f64::from(lobe.pdf(w)));
+            assert!((total - 1.0).abs() < 2e-3, "{lobe:?}: {total}");
+        }
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/photometry/linear.ldt");
+        let photometry = invlight_scene::read_photometry(&file).unwrap();
+        // A quarter turn about the aim and a tilt: C0 and C90 swap places in the world.
+        let frame = Mat3::from_rotation_x(0.4) * Mat3::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let lobe = Lobe::Goniometric {
+            to_local: frame.transpose(),
+            photometry: &photometry,
+        };
+        let density = over_sphere(400, |w| f64::from(lobe.pdf(w)));
+        assert!((density - 1.0).abs() < 2e-3, "density {density}");
+        let flux = photometry.flux();
+        let intensity = over_sphere(400, |w| {
+            let (p, r) = lobe.pdf_and_weight(w);
+            f64::from(p) * f64::from(r) * flux
+        });
+        assert!(
+            (intensity / flux - 1.0).abs() < 5e-3,
+            "{intensity} lm of {flux}"
+        );
+        let unturned = Lobe::Goniometric {
+            to_local: Mat3::IDENTITY,
+            photometry: &photometry,
+        };
+        for w in [Vec3::X, Vec3::Y, Vec3::new(0.5, 0.2, -0.84).normalize()] {
+            let turned = lobe.pdf_and_weight(frame * w);
+            assert_eq!(turned, unturned.pdf_and_weight(w));
+            assert_eq!(lobe.pdf(frame * w), turned.0);
+            assert_eq!(lobe.weight(frame * w), turned.1);
+        }
+        // The table is not symmetric: along C0 and C90 at 60° it differs.
+        let at = |c: f32| {
+            let g = 60f32.to_radians();
+            Vec3::new(g.sin() * c.cos(), g.sin() * c.sin(), -g.cos())
+        };
+        let (c0, c90) = (
+            unturned.pdf(at(0.0)),
+            unturned.pdf(at(std::f32::consts::FRAC_PI_2)),
+        );
+        assert!((c0 - c90).abs() > 0.2 * c0.max(c90), "C0 {c0}, C90 {c90}");
+    }
 }
