@@ -3174,7 +3174,8 @@ fn a_fixed_design_is_checked_as_it_is() {
 }
 
 /// `map --task` on a problem whose `<task>` built EN 12464-1's areas with its scene
-/// judges those areas, under their own names, instead of building a second set.
+/// judges those areas, under their own names, and its cylindrical illuminance,
+/// instead of building a second set.
 #[test]
 fn map_of_a_task_problem_judges_the_areas_it_built() {
     let dir = tempfile::tempdir().unwrap();
@@ -3210,4 +3211,14 @@ fn map_of_a_task_problem_judges_the_areas_it_built() {
             "ceiling"
         ]
     );
+    // The office's Ēz 150 lx, judged on the prisms the task built, with the others.
+    let ez = &mapped["cylindrical"];
+    assert_eq!(ez["surface"], "cylindrical illuminance");
+    assert_eq!(ez["required_ez"], 150.0);
+    let (low, high) = (f64_of(&ez["ez_bounds"][0]), f64_of(&ez["ez_bounds"][1]));
+    assert!(
+        low <= f64_of(&ez["ez"]) && f64_of(&ez["ez"]) <= high && low > 0.0,
+        "{ez}"
+    );
+    assert!(["meets", "fails", "cannot tell"].contains(&ez["verdict"].as_str().unwrap()));
 }

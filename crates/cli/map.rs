@@ -8,7 +8,8 @@ use crate::render::save_image;
 use clap::Args;
 use invlight_photon::{Estimator, GridValues, Side};
 use invlight_render::{
-    AreaVerdict, GridSpacing, MapPlan, MapSettings, MapTarget, illuminance_maps_across,
+    AreaVerdict, CylindricalReport, GridSpacing, MapPlan, MapSettings, MapTarget, MapsAndMeans,
+    illuminance_maps_and_means,
 };
 use invlight_report::{MapPage, Progress, areas_text, compliance_text, file_safe};
 use invlight_scene::AreaKind;
@@ -83,9 +84,11 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     scene.require_light(path)?;
     let mf = problem.as_ref().map_or(1.0, |p| p.maintenance_factor);
     let requirement = args.require.requirement(mf)?;
-    let areas = match requirement {
-        Some(_) if !args.no_areas => areas_to_judge(&args, problem.as_ref(), &mut scene, surface),
-        _ => Vec::new(),
+    let around = match &requirement {
+        Some(r) if !args.no_areas => {
+            areas_to_judge(&args, problem.as_ref(), r, &mut scene, surface)
+        }
+        _ => Around::default(),
     };
     let pool = args.trace.pool()?;
     let start = Instant::now();
@@ -107,16 +110,21 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
         side,
     };
     let targets: Vec<MapTarget> = std::iter::once(task)
-        .chain(areas.iter().map(area_target))
+        .chain(around.areas.iter().map(area_target))
         .collect();
     let bar = Progress::photons(trace.photons, "this map");
     let report = |done: u64| bar.set(done);
-    let mut maps = pool
+    let means: Vec<_> = around.cylindrical.iter().map(|(a, _)| a.surface).collect();
+    let what = MapsAndMeans {
+        targets: &targets,
+        means: &means,
+    };
+    let (mut maps, ez) = pool
         .install(|| {
-            illuminance_maps_across(
+            illuminance_maps_and_means(
                 &scene,
                 &accel,
-                &targets,
+                &what,
                 &settings,
                 Some(&report),
                 invlight_photon::cluster(),
@@ -132,17 +140,7 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
     let seconds = start.elapsed().as_secs_f64();
     let mut report = map.report(&args.surface, &settings, confidence, seconds);
     if let Some(r) = &requirement {
-        let measured = areas
-            .iter()
-            .zip(maps)
-            .map(|(a, m)| (a.kind, a.name.clone(), a.size, m))
-            .collect();
-        let judged = AreaVerdict::judge(measured, r, confidence);
-        report.areas = judged.iter().map(AreaVerdict::report).collect();
-        if !report.areas.is_empty() {
-            let task = map.compliance(r, confidence).verdict;
-            report.overall = Some(invlight_render::overall(task, &report.areas).0.into());
-        }
+        judge_around(&mut report, &map, (maps, ez), around, r, confidence);
     }
 
     let prefix = args
@@ -171,16 +169,20 @@ pub fn run(args: MapArgs) -> anyhow::Result<ExitCode> {
             let task = map.compliance(r, confidence);
             // With areas, the worst verdict comes first: the task area's alone would
             // say "meets" above an area that fails.
-            let overall = if report.areas.is_empty() {
+            let cylindrical = report.cylindrical.as_ref();
+            let overall = if report.areas.is_empty() && cylindrical.is_none() {
                 String::new()
             } else {
-                let (worst, deciding) = invlight_render::overall(task.verdict, &report.areas);
+                let (worst, deciding) =
+                    invlight_render::overall(task.verdict, &report.areas, cylindrical);
                 format!(
                     "EN 12464-1, the task area and every area around it: {worst} ({}: {worst})\n",
                     deciding.join(", ")
                 )
             };
-            overall + &compliance_text(&task) + &areas_text(&report.areas, report.confidence)
+            overall
+                + &compliance_text(&task)
+                + &areas_text(&report.areas, cylindrical, report.confidence)
         });
         crate::print(&(report.summary() + &verdict + &written))?;
     }
@@ -200,34 +202,95 @@ fn area_target(a: &invlight_scene::TaskArea) -> MapTarget {
     }
 }
 
+/// The verdicts on the areas around the task area (`around`, measured as `measured`:
+/// their maps and the cylindrical illuminance's mean) and the overall verdict, into
+/// `report`.
+fn judge_around(
+    report: &mut invlight_render::MapReport,
+    map: &invlight_render::IlluminanceMap,
+    measured: (
+        Vec<invlight_render::IlluminanceMap>,
+        Vec<invlight_ilp::Estimate>,
+    ),
+    around: Around,
+    r: &invlight_render::Requirement,
+    confidence: invlight_ilp::Confidence,
+) {
+    let (maps, ez) = measured;
+    let maps = around
+        .areas
+        .iter()
+        .zip(maps)
+        .map(|(a, m)| (a.kind, a.name.clone(), a.size, m))
+        .collect();
+    let (judged, share) = AreaVerdict::judge(maps, r, confidence, ez.len());
+    report.areas = judged.iter().map(AreaVerdict::report).collect();
+    report.cylindrical = around
+        .cylindrical
+        .zip(ez.first())
+        .map(|((a, required), e)| {
+            CylindricalReport::judge(&a.name, e, required, r.maintenance_factor, share)
+        });
+    if !report.areas.is_empty() || report.cylindrical.is_some() {
+        let task = map.compliance(r, confidence).verdict;
+        let overall = invlight_render::overall(task, &report.areas, report.cylindrical.as_ref());
+        report.overall = Some(overall.0.into());
+    }
+}
+
+/// EN 12464-1's areas around a task area, and its cylindrical illuminance with the
+/// maintained Ēz required of it.
+#[derive(Default)]
+struct Around {
+    areas: Vec<invlight_scene::TaskArea>,
+    cylindrical: Option<(invlight_scene::TaskArea, f64)>,
+}
+
 /// EN 12464-1's areas around the task area `surface`: those a problem's `<task>` on
-/// it built with the scene, else built now; none, with a warning, where the surface
-/// has no room around it to build them in.
+/// it built with the scene, else built now (the cylindrical illuminance where the
+/// `requirement`'s task has an Ēz, at a seated eye's height); none, with a warning,
+/// where the surface has no room around it to build them in.
 fn areas_to_judge(
     args: &MapArgs,
     problem: Option<&invlight_ilp::Problem>,
+    requirement: &invlight_render::Requirement,
     scene: &mut invlight_scene::Scene,
     surface: invlight_scene::SurfaceId,
-) -> Vec<invlight_scene::TaskArea> {
+) -> Around {
     let built = problem.and_then(|p| {
         p.tasks
             .iter()
             .find(|t| t.surface.name == args.surface && !t.built.is_empty())
     });
-    match built {
-        // Ēz is a mean over prisms, judged by the solve, not a planar map.
-        Some(t) => t
-            .built
-            .iter()
-            .filter(|a| a.kind != AreaKind::Cylindrical)
-            .cloned()
-            .collect(),
-        None => scene
-            .add_task_areas(&args.scene.scene, surface, &AreaKind::ALL)
-            .unwrap_or_else(|e| {
-                crate::warn(Some(format!("{e}; the areas around it are not judged")));
-                Vec::new()
-            }),
+    let warned = |e: invlight_scene::Diagnostic| {
+        crate::warn(Some(format!("{e}; the areas around it are not judged")));
+    };
+    let (all, ez) = match built {
+        Some(t) => (t.built.clone(), t.ez),
+        None => {
+            let mut all = scene
+                .add_task_areas(&args.scene.scene, surface, &AreaKind::ALL)
+                .unwrap_or_else(|e| {
+                    warned(e);
+                    Vec::new()
+                });
+            let ez = requirement.task.and_then(|t| t.ez);
+            if ez.is_some() && !all.is_empty() {
+                let seated = invlight_scene::SEATED;
+                match scene.add_cylindrical_area(&args.scene.scene, surface, seated) {
+                    Ok(a) => all.push(a),
+                    Err(e) => warned(e),
+                }
+            }
+            (all, ez)
+        }
+    };
+    let (cylindrical, areas): (Vec<_>, Vec<_>) = all
+        .into_iter()
+        .partition(|a| a.kind == AreaKind::Cylindrical);
+    Around {
+        areas,
+        cylindrical: cylindrical.into_iter().next().zip(ez),
     }
 }
 

@@ -9,10 +9,10 @@
 //! each is made at 1 − α/m (Bonferroni), so that all of them hold jointly at the run's
 //! confidence, as the criteria of one grid share its α.
 
-use crate::compliance::{Compliance, Requirement, Verdict};
+use crate::compliance::{Compliance, Requirement, Verdict, assess};
 use crate::map::IlluminanceMap;
 use invlight_scene::AreaKind;
-use invlight_stats::Confidence;
+use invlight_stats::{Confidence, Estimate};
 use serde::{Deserialize, Serialize};
 
 /// What the area `kind` must meet around a task area required to meet `task`: its
@@ -60,6 +60,62 @@ pub struct AreaReport {
     pub verdict: String,
 }
 
+/// The cylindrical illuminance's verdict in `invlight map --json` (`cylindrical`):
+/// the mean Ez over the task area and its surrounding at a person's eye height
+/// ([`invlight_scene::Scene::add_cylindrical_area`]), judged against the task's Ēz.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CylindricalReport {
+    /// The calculation surface measured.
+    pub surface: String,
+    /// Required maintained Ēz, lx.
+    pub required_ez: f64,
+    /// Maintained Ēz (the maintenance factor × the computed mean), lx.
+    pub ez: f64,
+    /// Its one-sided lower and upper bounds, lx.
+    pub ez_bounds: [f64; 2],
+    /// The confidence every bound holds at, 1 − α/(2m) for m areas judged.
+    pub level: f64,
+    /// `meets`, `fails` or `cannot tell`.
+    pub verdict: String,
+}
+
+impl CylindricalReport {
+    /// The mean `ez` measured on `surface` judged against `required` maintained lx
+    /// with the maintenance factor `mf`, at `share` (the areas' Bonferroni share of
+    /// the run's confidence, [`AreaVerdict::judge`]).
+    pub fn judge(
+        surface: &str,
+        ez: &Estimate,
+        required: f64,
+        mf: f64,
+        share: Confidence,
+    ) -> CylindricalReport {
+        let asked = Requirement {
+            task: None,
+            em: Some(required),
+            u0: None,
+            maintenance_factor: mf,
+        };
+        let c = &assess(&[], ez, &asked, share).criteria[0];
+        CylindricalReport {
+            surface: surface.into(),
+            required_ez: required,
+            ez: c.value,
+            ez_bounds: [c.bounds.0, c.bounds.1],
+            level: c.level,
+            verdict: verdict_word(c.verdict).into(),
+        }
+    }
+}
+
+fn verdict_word(v: Verdict) -> &'static str {
+    match v {
+        Verdict::Meets => "meets",
+        Verdict::Fails => "fails",
+        Verdict::CannotTell => "cannot tell",
+    }
+}
+
 /// One area measured and judged.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AreaVerdict {
@@ -77,22 +133,24 @@ pub struct AreaVerdict {
 
 impl AreaVerdict {
     /// The areas `maps` (with their kinds, surface names and sizes) judged around a
-    /// task area required to meet `task`, jointly at `confidence`; areas without a
-    /// requirement (the bands when no Ēm is asked) are left out.
+    /// task area required to meet `task`, jointly at `confidence` with `others` more
+    /// statements made beside them (the cylindrical illuminance's), each at the
+    /// returned share of it ([`AreaVerdict::share`]); areas without a requirement (the
+    /// bands when no Ēm is asked) are left out.
     pub fn judge(
         maps: Vec<(AreaKind, String, (f64, f64), IlluminanceMap)>,
         task: &Requirement,
         confidence: Confidence,
-    ) -> Vec<AreaVerdict> {
+        others: usize,
+    ) -> (Vec<AreaVerdict>, Confidence) {
         let judged: Vec<_> = maps
             .into_iter()
             .filter_map(|(kind, surface, size, map)| {
                 area_requirement(kind, task).map(|r| (kind, surface, size, map, r))
             })
             .collect();
-        let m = judged.len().max(1) as f64;
-        let share = Confidence::new(1.0 - (1.0 - confidence.level()) / m).unwrap_or(confidence);
-        judged
+        let share = AreaVerdict::share(judged.len() + others, confidence);
+        let verdicts = judged
             .into_iter()
             .map(|(kind, surface, size, map, r)| AreaVerdict {
                 kind,
@@ -101,7 +159,15 @@ impl AreaVerdict {
                 compliance: map.compliance(&r, share),
                 map,
             })
-            .collect()
+            .collect();
+        (verdicts, share)
+    }
+
+    /// The confidence each of `m` statements made together is made at so that all
+    /// hold jointly at `confidence` (Bonferroni: 1 − α/m).
+    pub fn share(m: usize, confidence: Confidence) -> Confidence {
+        let m = m.max(1) as f64;
+        Confidence::new(1.0 - (1.0 - confidence.level()) / m).unwrap_or(confidence)
     }
 
     /// The area's name as a report prints it: "wall x = 9.00 m", "immediate surrounding".
@@ -145,17 +211,18 @@ impl AreaVerdict {
 /// theirs — it fails if one fails, cannot be told if one cannot, and meets only when
 /// every one meets — with the names of the areas that decide it (the task area's as
 /// "task area"), so that a summary never says "meets" above an area that fails.
-pub fn overall(task: Verdict, areas: &[AreaReport]) -> (&'static str, Vec<String>) {
-    let name = |v: Verdict| match v {
-        Verdict::Meets => "meets",
-        Verdict::Fails => "fails",
-        Verdict::CannotTell => "cannot tell",
-    };
-    let verdicts = std::iter::once(("task area".to_string(), name(task))).chain(
-        areas
-            .iter()
-            .map(|a| (a.surface.clone(), a.verdict.as_str())),
-    );
+pub fn overall(
+    task: Verdict,
+    areas: &[AreaReport],
+    cylindrical: Option<&CylindricalReport>,
+) -> (&'static str, Vec<String>) {
+    let verdicts = std::iter::once(("task area".to_string(), verdict_word(task)))
+        .chain(
+            areas
+                .iter()
+                .map(|a| (a.surface.clone(), a.verdict.as_str())),
+        )
+        .chain(cylindrical.map(|c| (c.surface.clone(), c.verdict.as_str())));
     let all: Vec<(String, &str)> = verdicts.collect();
     let worst = ["fails", "cannot tell"]
         .into_iter()
@@ -195,16 +262,36 @@ mod tests {
         };
         let areas = [area("wall 1", "meets"), area("wall 2", "fails")];
         assert_eq!(
-            overall(Verdict::Meets, &areas),
+            overall(Verdict::Meets, &areas, None),
             ("fails", vec!["wall 2".to_string()])
         );
         let unsure = [area("wall 1", "cannot tell"), area("wall 2", "meets")];
-        assert_eq!(overall(Verdict::Meets, &unsure).0, "cannot tell");
+        assert_eq!(overall(Verdict::Meets, &unsure, None).0, "cannot tell");
         assert_eq!(
-            overall(Verdict::Fails, &unsure),
+            overall(Verdict::Fails, &unsure, None),
             ("fails", vec!["task area".to_string()])
         );
-        assert_eq!(overall(Verdict::Meets, &areas[..1]).0, "meets");
+        assert_eq!(overall(Verdict::Meets, &areas[..1], None).0, "meets");
+        // The cylindrical illuminance counts as an area does.
+        let dark = Estimate {
+            mean: 100.0,
+            std_error: 1.0,
+            samples: 100_000,
+        };
+        let share = Confidence::new(0.95).unwrap();
+        let ez = CylindricalReport::judge("cylindrical illuminance", &dark, 150.0, 0.8, share);
+        assert_eq!((ez.ez, ez.verdict.as_str()), (80.0, "fails"));
+        assert_eq!(
+            overall(Verdict::Meets, &areas[..1], Some(&ez)),
+            ("fails", vec!["cylindrical illuminance".to_string()])
+        );
+        let lit = Estimate {
+            mean: 250.0,
+            ..dark
+        };
+        let ez = CylindricalReport::judge("cylindrical illuminance", &lit, 150.0, 0.8, share);
+        assert_eq!(ez.verdict, "meets");
+        assert!(ez.ez_bounds[0] < 200.0 && ez.ez_bounds[1] > 200.0);
     }
 
     #[test]

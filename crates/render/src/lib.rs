@@ -37,7 +37,7 @@ mod plan;
 mod plot;
 mod tonemap;
 
-pub use areas::{AreaReport, AreaVerdict, area_requirement, overall};
+pub use areas::{AreaReport, AreaVerdict, CylindricalReport, area_requirement, overall};
 pub use camera::View;
 pub use chart::{ChartError, FONT, captioned, draw_on, to_image, to_svg};
 pub use colour_map::{ColourScale, nice_ticks, tick_label, viridis};
@@ -55,8 +55,8 @@ pub use integrator::{
 pub use invlight_scene::en12464::{ROOM_U0, SURROUNDING_U0, TASKS, Task, surrounding_em, task};
 pub use map::{
     GridSpacing, GridSpacingError, IlluminanceMap, MapCell, MapCsvRow, MapError, MapPoint,
-    MapReport, MapSettings, MapSummary, MapTarget, illuminance_map, illuminance_map_across,
-    illuminance_maps_across,
+    MapReport, MapSettings, MapSummary, MapTarget, MapsAndMeans, illuminance_map,
+    illuminance_map_across, illuminance_maps_across, illuminance_maps_and_means,
 };
 pub use photon_map::{Paths, PhotonMap, PhotonSettings, Store};
 pub use picture::{

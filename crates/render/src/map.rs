@@ -263,13 +263,45 @@ pub fn illuminance_maps_across(
     progress: Option<&(dyn Fn(u64) + Sync)>,
     cluster: &dyn Cluster,
 ) -> Result<Vec<IlluminanceMap>, MapError> {
+    let both = MapsAndMeans {
+        targets,
+        means: &[],
+    };
+    Ok(illuminance_maps_and_means(scene, accel, &both, settings, progress, cluster)?.0)
+}
+
+/// Surfaces one trace measures: some mapped on grids, some read as a whole.
+#[derive(Debug, Clone, Copy)]
+pub struct MapsAndMeans<'a> {
+    /// The surfaces mapped, each on its grid.
+    pub targets: &'a [MapTarget],
+    /// The surfaces whose mean illuminance on their front is read, not mapped (the
+    /// cylindrical illuminance's prisms, which no plane holds).
+    pub means: &'a [SurfaceId],
+}
+
+/// [`illuminance_maps_across`] of `what.targets`, and the mean illuminance on the
+/// front of each of `what.means`, from the same photons.
+pub fn illuminance_maps_and_means(
+    scene: &Scene,
+    accel: &Accel,
+    what: &MapsAndMeans,
+    settings: &MapSettings,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    cluster: &dyn Cluster,
+) -> Result<(Vec<IlluminanceMap>, Vec<Estimate>), MapError> {
+    let targets = what.targets;
     let grids = targets
         .iter()
         .map(|t| t.spacing.grid(scene, t.surface))
         .collect::<Result<Vec<_>, _>>()?;
     photons_traced(settings.trace.photons)
         .ok_or(MapError::TooManyPhotons(settings.trace.photons))?;
-    let surfaces: Vec<SurfaceId> = targets.iter().map(|t| t.surface).collect();
+    let surfaces: Vec<SurfaceId> = targets
+        .iter()
+        .map(|t| t.surface)
+        .chain(what.means.iter().copied())
+        .collect();
     let components = Components::one(scene);
     let request = Request {
         surfaces: &surfaces,
@@ -330,7 +362,10 @@ pub fn illuminance_maps_across(
             }
         })
         .collect();
-    Ok(maps)
+    let means = (0..what.means.len())
+        .map(|i| measured.estimate_of(targets.len() + i, Side::Front, &w))
+        .collect();
+    Ok((maps, means))
 }
 
 /// A cell of `invlight map --json`.
@@ -393,6 +428,10 @@ pub struct MapReport {
     /// immediate surrounding, the background, the walls and the ceiling.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<crate::AreaReport>,
+    /// EN 12464-1's cylindrical illuminance over the task area and its surrounding
+    /// (`--task` of a task with an Ēz), with its verdict.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cylindrical: Option<crate::CylindricalReport>,
     /// With areas, the verdict on the task area and every area around it together:
     /// the worst of theirs (`fails` if one fails, else `cannot tell` if one cannot be
     /// told, else `meets`).
@@ -550,6 +589,7 @@ impl IlluminanceMap {
             u0: summary.u0,
             u0_std_error: self.u0.std_error,
             areas: Vec::new(),
+            cylindrical: None,
             overall: None,
         }
     }

@@ -5,8 +5,8 @@
 use crate::html::{Page, escape, figure, table};
 use invlight_photon::Side;
 use invlight_render::{
-    AreaReport, Compliance, Criterion, IlluminanceMap, MapPlan, MapReport, Requirement, Verdict,
-    plain,
+    AreaReport, Compliance, Criterion, CylindricalReport, IlluminanceMap, MapPlan, MapReport,
+    Requirement, Verdict, plain,
 };
 use invlight_scene::Vec3;
 use invlight_stats::{Confidence, significant};
@@ -111,9 +111,32 @@ fn area_cells(a: &AreaReport) -> [String; 6] {
     ]
 }
 
-/// EN 12464-1's areas around a task area as the terminal prints them, a line each.
-pub fn areas_text(areas: &[AreaReport], confidence: f64) -> String {
-    if areas.is_empty() {
+/// The cells of the cylindrical illuminance's row, as [`area_cells`] gives an area's:
+/// Ēz in the Em column, no U0.
+fn cylindrical_cells(c: &CylindricalReport) -> [String; 6] {
+    [
+        "cylindrical illuminance".into(),
+        "task area and surrounding, at eye height".into(),
+        format!("Ēz ≥ {} lx", plain(c.required_ez)),
+        format!(
+            "Ēz {} lx [{}, {}]",
+            significant(c.ez),
+            significant(c.ez_bounds[0]),
+            significant(c.ez_bounds[1])
+        ),
+        "—".into(),
+        c.verdict.clone(),
+    ]
+}
+
+/// EN 12464-1's areas around a task area as the terminal prints them, a line each,
+/// the cylindrical illuminance last.
+pub fn areas_text(
+    areas: &[AreaReport],
+    cylindrical: Option<&CylindricalReport>,
+    confidence: f64,
+) -> String {
+    if areas.is_empty() && cylindrical.is_none() {
         return String::new();
     }
     let mut out = format!(
@@ -124,6 +147,10 @@ pub fn areas_text(areas: &[AreaReport], confidence: f64) -> String {
     for a in areas {
         let [name, size, asked, em, u0, verdict] = area_cells(a);
         out += &format!("  {name} ({size}): {asked}: Em {em}, U0 {u0}: {verdict}\n");
+    }
+    if let Some(c) = cylindrical {
+        let [name, size, asked, ez, _, verdict] = cylindrical_cells(c);
+        out += &format!("  {name} ({size}): {asked}: {ez}: {verdict}\n");
     }
     out
 }
@@ -380,12 +407,17 @@ impl<'a> MapPage<'a> {
                 self.requirement,
             )?,
         );
-        if !r.areas.is_empty() {
-            let rows: Vec<Vec<String>> = r.areas.iter().map(|a| area_cells(a).to_vec()).collect();
+        if !r.areas.is_empty() || r.cylindrical.is_some() {
+            let rows: Vec<Vec<String>> = r
+                .areas
+                .iter()
+                .map(|a| area_cells(a).to_vec())
+                .chain(r.cylindrical.iter().map(|c| cylindrical_cells(c).to_vec()))
+                .collect();
             page.section(
                 "EN 12464-1's areas around it",
                 &format!(
-                    "<p>The immediate surrounding (a band of 0.5 m around the task area, in its plane), the background (3 m around that, within the room), the walls and the ceiling (calculation rectangles 1 cm inside the room, facing into it), traced with the same photons, on EN 12464-1's grids. Values are maintained; the bounds are one-sided, and every verdict of the table holds together with the others at {} % confidence (Bonferroni).</p>{}",
+                    "<p>The immediate surrounding (a band of 0.5 m around the task area, in its plane), the background (3 m around that, within the room), the walls and the ceiling (calculation rectangles 1 cm inside the room, facing into it), and where the task asks an Ēz the cylindrical illuminance over the task area and its surrounding at a seated eye's 1.2 m (small vertical prisms at the grid's points), traced with the same photons, on EN 12464-1's grids. Values are maintained; the bounds are one-sided, and every verdict of the table holds together with the others at {} % confidence (Bonferroni).</p>{}",
                     plain(confidence.level() * 100.0),
                     table(
                         &["Area", "Size", "Required", "Em (maintained)", "U0", "Verdict"],
