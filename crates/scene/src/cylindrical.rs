@@ -1,6 +1,6 @@
 //! The cylindrical illuminance Ez of EN 12464-1 (2021 §5.6.2; 2011 §4.6.2), built as a
-//! calculation surface: the light faces are lit by (EN 12665: the flux falling on the
-//! curved surface of a very small vertical cylinder over that surface's area), averaged
+//! calculation surface: how well faces are lit (EN 12665: the flux falling on the
+//! curved surface of a very small vertical cylinder, over that surface's area), averaged
 //! over the area where people sit or stand — the task area and its immediate
 //! surrounding, at 1.2 m above the floor for seated people (Fagerhult, "Requirements for
 //! cylindrical illuminance", fagerhult.com: "calculated 1.2 m above floor level"; where
