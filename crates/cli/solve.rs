@@ -38,7 +38,8 @@ pub struct SolveArgs {
     #[arg(long, value_name = "K")]
     pub iterations: Option<u64>,
     /// The search's strategy, as the problem file's `strategy` names it
-    /// (docs/problem-file.md) [default: the problem's], to compare two on one problem.
+    /// (docs/problem-file.md) [default: the problem's, RACE_ISOC_ON_END where it names
+    /// none], to compare two on one problem.
     #[arg(long, value_name = "NAME")]
     pub strategy: Option<Strategy>,
     #[command(flatten)]

@@ -76,11 +76,18 @@ fn pngs(out: &Path) -> Vec<(String, (u32, u32))> {
 /// Solving writes a row per evaluation, result.json and a picture per ISOC member;
 /// --resume goes on from the rows without tracing a cell twice and leaves no picture
 /// of the earlier ISOC; a folder holding a run is refused without --resume or --force,
-/// and --force replaces it.
+/// and --force replaces it. It runs the thesis' `REFINE_ISOC_ON_INTERSECTION`, where a
+/// cell has a second row only as its refinement right after the first, so a cell
+/// traced twice shows; the default race writes more rows per cell (its screening,
+/// looks and race).
 #[test]
 fn solve_resume_refuse_and_replace() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
+    let args = |out: &Path| SolveArgs {
+        strategy: Some(Strategy::RefineOnIntersection),
+        ..args(out)
+    };
     let mut first_args = args(&out);
     first_args.no_images = false;
     first_args.no_report = false;

@@ -303,7 +303,8 @@ pub struct Problem {
     pub max_iterations: u64,
     /// `fastEvaluationQuality`, q of §4.7 (default 0.25, the thesis' value).
     pub fast_quality: f64,
-    /// `strategy` (default `REFINE_ISOC_ON_INTERSECTION`).
+    /// `strategy` (default `RACE_ISOC_ON_END`, which traced the fewest photons for an
+    /// answer in the region on every bundled example).
     pub strategy: Strategy,
     /// invlight: `photons`, N (default 100 000).
     pub photons: u64,

@@ -272,8 +272,26 @@ fn thesis_form_with_bare_attribute() {
     assert_eq!(p.cells_per_dimension, vec![20]);
     assert_eq!(p.warnings.len(), 1);
     assert_eq!(p.warnings[0].line, Some(6));
-    assert_eq!(p.strategy, Strategy::RefineOnIntersection);
+    assert_eq!(p.strategy, Strategy::RaceOnEnd);
     assert_eq!((p.photons, p.confidence), (100_000, Confidence::DEFAULT));
+}
+
+/// A file naming no strategy gets `RACE_ISOC_ON_END`, the fastest; a file naming one
+/// keeps it, the thesis' strategies included, whatever the default.
+#[test]
+fn the_race_is_the_default_and_a_named_strategy_is_kept() {
+    let with = |attribute: &str| {
+        parse(&format!("<input><scene path=\"s.obj\"/><conditions><directionalLight id=\"S\"/></conditions><objectives{attribute}><maximizeRadiance surface=\"F\"/></objectives></input>"))
+            .unwrap()
+            .strategy
+    };
+    assert_eq!(with(""), Strategy::RaceOnEnd);
+    for strategy in Strategy::ALL {
+        assert_eq!(
+            with(&format!(" strategy=\"{}\"", strategy.name())),
+            strategy
+        );
+    }
 }
 
 #[test]
