@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The thesis' search against PAIRED_ISOC and RACE_ISOC_ON_END on the bundled examples, one after the other
+"""The problem files' own strategies against PAIRED_ISOC and RACE_ISOC_ON_END on the bundled examples, one after the other
 in one run, with tools/check_examples.py's reduced budgets and its check of the answer.
 For each run: evaluations, photons traced (what `solve` reports), photons
 the rows ask for (the sum of solutions.csv's photons column: what re-tracing every
@@ -44,7 +44,7 @@ def main():
     ap.add_argument("--only", nargs="*", choices=sorted(check.EXAMPLES))
     ap.add_argument("-j", default="2")
     ap.add_argument("--strategies", nargs="*", default=[None, "PAIRED_ISOC", "RACE_ISOC_ON_END"],
-                    help="the strategies to run, one after the other; 'default' is the problem file's (default: default PAIRED_ISOC RACE_ISOC_ON_END)")
+                    help="the strategies to run, one after the other; 'default' is the problem file's, RACE_ISOC_ON_END where it names none, so name the thesis' REFINE_ISOC_ON_INTERSECTION to compare with it (default: default PAIRED_ISOC RACE_ISOC_ON_END)")
     ap.add_argument("--full", action="store_true",
                     help="the problem files' own budgets instead of check_examples' reduced ones")
     args = ap.parse_args()
