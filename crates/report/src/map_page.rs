@@ -457,4 +457,95 @@ mod tests {
             "{w}"
         );
     }
+
+    fn wall(verdict: &str) -> AreaReport {
+        AreaReport {
+            area: "wall".into(),
+            surface: "wall x = 9.00 m".into(),
+            size: [7.18, 2.98],
+            cells: [8, 4],
+            cell_size: [0.9, 0.75],
+            required_em: 75.0,
+            required_u0: 0.1,
+            em: 469.1,
+            em_bounds: [468.6, 469.7],
+            u0: 0.44,
+            u0_bounds: [Some(0.43), None],
+            level: 0.99,
+            verdict: verdict.into(),
+        }
+    }
+
+    /// Each area's line says what it must meet, its maintained values with their
+    /// bounds (an unbounded U0 as ∞) and its verdict, a wall by its own name and a band
+    /// by its width; the cylindrical illuminance comes last with Ēz alone.
+    #[test]
+    fn the_areas_lines_say_what_each_must_meet_and_whether_it_does() {
+        let mut band = wall("cannot tell");
+        band.area = "immediate surrounding".into();
+        band.surface = "immediate surrounding".into();
+        band.size = [0.5, 0.5];
+        let ez = CylindricalReport {
+            surface: "cylindrical illuminance".into(),
+            required_ez: 150.0,
+            ez: 265.4,
+            ez_bounds: [264.3, 266.6],
+            level: 0.99,
+            verdict: "meets".into(),
+        };
+        let text = areas_text(&[wall("fails"), band], Some(&ez), 0.95);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 4, "{text}");
+        assert!(lines[0].contains("95 % confidence"), "{text}");
+        assert_eq!(
+            lines[1],
+            "  wall x = 9.00 m (7.18 m × 2.98 m): Em ≥ 75 lx, U0 ≥ 0.10: Em 469.1 lx [468.6, 469.7], U0 0.44 [0.43, ∞]: fails"
+        );
+        assert!(
+            lines[2].starts_with("  immediate surrounding (0.5 m band)")
+                && lines[2].ends_with(": cannot tell"),
+            "{text}"
+        );
+        assert!(
+            lines[3].contains("Ēz ≥ 150 lx: Ēz 265.4 lx [264.3, 266.6]: meets"),
+            "{text}"
+        );
+        assert_eq!(areas_text(&[], None, 0.95), "");
+        assert_eq!(areas_text(&[], Some(&ez), 0.95).lines().count(), 2);
+    }
+
+    /// The grid's sentence follows its verdict: "cannot tell" asks for more photons
+    /// rather than saying meets or fails, and each criterion prints its bounds.
+    #[test]
+    fn the_compliance_sentence_follows_the_verdict() {
+        let office = Requirement::of_task(invlight_render::task("office").unwrap(), 1.0);
+        let cell = |mean: f64, std_error: f64| invlight_stats::Estimate {
+            mean,
+            std_error,
+            samples: 100_000,
+        };
+        let confidence = Confidence::new(0.95).unwrap();
+        let judge = |cells: &[invlight_stats::Estimate], mean| {
+            compliance_text(&invlight_render::assess(cells, &mean, &office, confidence))
+        };
+        let lit = [cell(520.0, 1.0), cell(560.0, 1.0), cell(600.0, 1.0)];
+        let meets = judge(&lit, cell(560.0, 1.0));
+        assert!(
+            meets.starts_with("the grid meets EN 12464-1:2021"),
+            "{meets}"
+        );
+        assert!(
+            meets.contains("  Em 560.0 lx [558.0, 562.0] lx: meets Em ≥ 500 lx"),
+            "{meets}"
+        );
+        let dark = [cell(200.0, 1.0), cell(400.0, 1.0), cell(420.0, 1.0)];
+        let fails = judge(&dark, cell(340.0, 1.0));
+        assert!(fails.starts_with("the grid fails"), "{fails}");
+        let near = judge(&lit, cell(500.0, 20.0));
+        assert!(
+            near.starts_with("cannot tell at this photon count"),
+            "{near}"
+        );
+        assert!(near.contains("trace more photons"), "{near}");
+    }
 }
