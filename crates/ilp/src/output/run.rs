@@ -157,18 +157,29 @@ impl RunFile {
             }
         }
         if differ.is_empty() {
-            Ok(())
-        } else {
-            Err(Diagnostic::new(
-                &dir.join("run.json"),
-                format!(
-                    "cannot resume {}: its rows were traced with other settings: {}",
-                    dir.display(),
-                    differ.join(", ")
-                ),
-            )
-            .with_hint("resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, --luminaire, the problem file's quality, strategy and <luminaire> elements) or choose a new --output; a folder of another estimator's version was traced by another invlight and can only be continued by it"))
+            return Ok(());
         }
+        let general = "resume with the folder's settings (--seed, --photons, --confidence, --max-bounces, --luminaire, the problem file's quality, strategy and <luminaire> elements) or choose a new --output; a folder of another estimator's version was traced by another invlight and can only be continued by it";
+        // Only the strategy differing has a one-flag answer: a folder made before a
+        // file naming none ran RACE_ISOC_ON_END continues under the strategy it was.
+        let hint = if self.strategy != old.strategy {
+            format!(
+                "give --strategy {} to continue the folder's search (a problem file naming no strategy runs {}); else {general}",
+                old.strategy,
+                Strategy::DEFAULT.name()
+            )
+        } else {
+            general.to_string()
+        };
+        Err(Diagnostic::new(
+            &dir.join("run.json"),
+            format!(
+                "cannot resume {}: its rows were traced with other settings: {}",
+                dir.display(),
+                differ.join(", ")
+            ),
+        )
+        .with_hint(hint))
     }
 
     /// Reads `dir/run.json`; `Ok(None)` when there is none.

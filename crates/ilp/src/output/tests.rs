@@ -267,6 +267,44 @@ fn resume_checks_the_luminaires_path_multiplier_and_flux() {
     assert!(other.check_resume(&names_only, dir).is_ok());
 }
 
+/// A folder made with another strategy (one solved before a file naming none ran the
+/// race) is refused with the one flag that continues it.
+#[test]
+fn resume_under_another_strategy_names_the_flag_that_continues_it() {
+    let dir = Path::new("/out");
+    let old = RunFile::new(&settings(), 7, &[]);
+    let race = Settings {
+        strategy: Strategy::DEFAULT,
+        ..settings()
+    };
+    let e = RunFile::new(&race, 7, &[])
+        .check_resume(&old, dir)
+        .unwrap_err();
+    assert!(
+        e.message
+            .contains("strategy RACE_ISOC_ON_END (the folder has REFINE_ISOC_ON_INTERSECTION)"),
+        "{e}"
+    );
+    let hint = e.hint.unwrap();
+    assert!(
+        hint.starts_with("give --strategy REFINE_ISOC_ON_INTERSECTION to continue"),
+        "{hint}"
+    );
+    // Another setting differing keeps the general hint.
+    let seed = Settings {
+        seed: 5,
+        ..settings()
+    };
+    let e = RunFile::new(&seed, 7, &[])
+        .check_resume(&old, dir)
+        .unwrap_err();
+    assert!(
+        e.hint
+            .unwrap()
+            .starts_with("resume with the folder's settings")
+    );
+}
+
 /// A folder traced by an invlight whose estimator gave other numbers for the same seed
 /// (one written before the version was recorded counts as version 1) is refused, naming
 /// both versions: its rows and new ones would not pair.

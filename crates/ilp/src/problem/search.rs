@@ -49,11 +49,8 @@ impl Reader<'_, '_> {
                 }
                 q => q.unwrap_or(0.25),
             };
-        // A file naming none gets the strategy that traced the fewest photons for an
-        // answer in its region on every bundled example (BENCHMARKS.md, "The default
-        // strategy"), so no user has to pick the faster search by hand.
         let strategy = match objectives.attribute("strategy") {
-            None => Strategy::RaceOnEnd,
+            None => Strategy::DEFAULT,
             Some(s) => Strategy::parse(s.trim()).ok_or_else(|| {
                 self.error(
                     objectives,
