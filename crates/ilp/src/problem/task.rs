@@ -242,9 +242,10 @@ impl Problem {
                 Some(ez) => {
                     let area = scene
                         .add_cylindrical_area(&self.scene.path, surface, spec.ez_height)
-                        .map_err(|e| Diagnostic {
-                            hint: e.hint.clone(),
-                            ..at(format!("<task>: {}", e.message))
+                        .map_err(|e| {
+                            at(format!("<task>: {}", e.message)).with_hint(
+                                "give ezHeight, the eye's height above the floor (1.2 m seated, 1.6 m standing), or leave 'cylindrical' out of areas (areas=\"surrounding background walls ceiling\")",
+                            )
                         })?;
                     let surface = SurfaceRef {
                         name: area.name.clone(),
@@ -439,7 +440,10 @@ mod tests {
             text.contains(":8:") && text.contains("not inside the room"),
             "{text}"
         );
-        assert!(text.contains("1.2 m"), "{text}");
+        assert!(
+            text.contains("1.2 m") && text.contains("leave 'cylindrical' out"),
+            "{text}"
+        );
         let e = problem(dir.path(), "<task name=\"office\" ezHeight=\"-1\"/>").unwrap_err();
         assert!(e.to_string().contains("'ezHeight'"), "{e}");
     }
