@@ -12,6 +12,7 @@
 mod aim;
 mod array;
 mod colour;
+mod conflicts;
 mod exchangeable;
 mod fittings;
 mod hole;
@@ -210,6 +211,7 @@ impl Binding {
             })?;
         }
         problem.build_eyes(scene)?;
+        conflicts::framed_once(&problem.variables, path)?;
         let mut variables = Vec::new();
         let mut targets = Vec::new();
         let mut initial = Vec::new();
@@ -246,7 +248,7 @@ impl Binding {
             });
             targets.push(target);
         }
-        placed_once(&targets, &problem.variables, scene, path)?;
+        conflicts::placed_once(&targets, &problem.variables, scene, path)?;
         let reading = Reading::new(problem, scene)?;
         let bounds = reachable_bounds(scene, &targets);
         let cheap: Vec<usize> = targets
@@ -732,43 +734,6 @@ fn surface_materials(scene: &Scene, s: SurfaceId) -> Vec<MaterialId> {
         }
     }
     out
-}
-
-/// Refuses a light that two variables place (a `<lightInSurface>` and a
-/// `<lightArray>`, or two arrays): each would undo the other.
-fn placed_once(
-    targets: &[Target],
-    specs: &[VariableSpec],
-    scene: &Scene,
-    path: &std::path::Path,
-) -> Result<(), Diagnostic> {
-    let mut by: Vec<Option<usize>> = vec![None; scene.lights.len()];
-    for (i, t) in targets.iter().enumerate() {
-        let lights: Vec<LightId> = match t {
-            Target::Move(m) => m.lights.iter().map(|&(l, _)| l).collect(),
-            Target::Array(a) => a.lamps.iter().map(|&(l, _, _)| l).collect(),
-            _ => continue,
-        };
-        for l in lights {
-            if let Some(first) = by[l.index()].replace(i) {
-                let (a, b) = (&specs[first], &specs[i]);
-                return Err(Diagnostic::at_line(
-                    path,
-                    b.line,
-                    format!(
-                        "'{}' is placed by <{} id=\"{}\"> (line {}) and by <{} id=\"{}\">, expected one placement per lamp",
-                        scene.lights[l].name,
-                        a.kind.name(),
-                        a.id,
-                        a.line,
-                        b.kind.name(),
-                        b.id
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The box everything may occupy: the scene's instances no variable moves, the lights

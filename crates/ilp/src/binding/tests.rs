@@ -954,6 +954,36 @@ fn a_lamp_placed_twice_is_refused_at_the_second_placement() {
     );
 }
 
+/// A lamp's frame set by two variables is refused at the second: a rotation of a lamp
+/// whose array searches its orientation, and an aim of a continuous row.
+#[test]
+fn a_lamp_turned_by_its_array_and_another_variable_is_refused() {
+    let refused = |variables: &str| {
+        let mut s = scene_with_six_lamps();
+        Binding::new(&problem(variables), &mut s)
+            .unwrap_err()
+            .to_string()
+    };
+    let err = refused(
+        "<lightArray id=\"Grid\" lights=\"L1 … L4\" surface=\"Floor__Geometry\" columns=\"2\" rows=\"2\" orientation=\"search\"/>\n<objectRotation id=\"L2\"/>",
+    );
+    assert!(
+        err.contains("x.xml:4")
+            && err.contains(
+                "<objectRotation id=\"L2\"> turns a lamp of <lightArray id=\"Grid\"> (line 3)"
+            )
+            && err.contains("orientation=\"search\""),
+        "{err}"
+    );
+    let err = refused(
+        "<lightArray id=\"Grid\" lights=\"L1 … L4\" surface=\"Floor__Geometry\" columns=\"2\" rows=\"2\" continuous=\"true\"/>\n<lightAim id=\"Grid\" maxTilt=\"20\"/>",
+    );
+    assert!(
+        err.contains("x.xml:4") && err.contains("continuous=\"true\""),
+        "{err}"
+    );
+}
+
 /// A CIE clear sky is drawn about the sun: under a `<sunTime>` variable it follows each
 /// time's sun, and with the sun below the horizon (the clear sky undefined, the beam 0)
 /// the scene has no sky.
