@@ -341,6 +341,18 @@ impl Constraint {
         Some(format!("{} {quantity}", task.words()))
     }
 
+    /// The constraint on a new installation under the maintenance factor `factor`: an
+    /// illuminance limit, stated maintained, divided by it ([`Bound::for_new`], which
+    /// leaves ratios and ratings alone), and the factor kept where it applied.
+    pub fn maintained(mut self, factor: f64) -> Constraint {
+        let new = self.bound.for_new(factor);
+        if new != self.bound {
+            self.bound = new;
+            self.maintenance_factor = factor;
+        }
+        self
+    }
+
     /// The limit as the file states it: maintained illuminance (EN 12464-1's Em is
     /// maintained, the value the installation must keep at the end of its
     /// maintenance cycle), the bound's new-installation limit × the maintenance factor.

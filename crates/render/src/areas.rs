@@ -103,16 +103,8 @@ impl CylindricalReport {
             ez: c.value,
             ez_bounds: [c.bounds.0, c.bounds.1],
             level: c.level,
-            verdict: verdict_word(c.verdict).into(),
+            verdict: c.verdict.word().into(),
         }
-    }
-}
-
-fn verdict_word(v: Verdict) -> &'static str {
-    match v {
-        Verdict::Meets => "meets",
-        Verdict::Fails => "fails",
-        Verdict::CannotTell => "cannot tell",
     }
 }
 
@@ -197,12 +189,7 @@ impl AreaVerdict {
             u0: u0.value,
             u0_bounds: [finite(u0.bounds.0), finite(u0.bounds.1)],
             level: u0.level.min(em.level),
-            verdict: match c.verdict {
-                Verdict::Meets => "meets",
-                Verdict::Fails => "fails",
-                Verdict::CannotTell => "cannot tell",
-            }
-            .into(),
+            verdict: c.verdict.word().into(),
         }
     }
 }
@@ -216,7 +203,7 @@ pub fn overall(
     areas: &[AreaReport],
     cylindrical: Option<&CylindricalReport>,
 ) -> (&'static str, Vec<String>) {
-    let verdicts = std::iter::once(("task area".to_string(), verdict_word(task)))
+    let verdicts = std::iter::once(("task area".to_string(), task.word()))
         .chain(
             areas
                 .iter()

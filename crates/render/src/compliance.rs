@@ -137,6 +137,18 @@ pub enum Verdict {
     CannotTell,
 }
 
+impl Verdict {
+    /// The verdict in one word as tables and `--json` give it: `meets`, `fails`,
+    /// `cannot tell`.
+    pub fn word(self) -> &'static str {
+        match self {
+            Verdict::Meets => "meets",
+            Verdict::Fails => "fails",
+            Verdict::CannotTell => "cannot tell",
+        }
+    }
+}
+
 impl fmt::Display for Verdict {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {

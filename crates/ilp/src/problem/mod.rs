@@ -701,17 +701,14 @@ impl<'a, 'i> Reader<'a, 'i> {
         let Intentions {
             goal,
             goal_line,
-            mut constraints,
+            constraints,
             tasks,
             observers,
         } = self.intentions(objectives, &workplanes)?;
-        for c in &mut constraints {
-            let new = c.bound.for_new(search.maintenance_factor);
-            if new != c.bound {
-                c.bound = new;
-                c.maintenance_factor = search.maintenance_factor;
-            }
-        }
+        let constraints: Vec<Constraint> = constraints
+            .into_iter()
+            .map(|c| c.maintained(search.maintenance_factor))
+            .collect();
 
         let df = matches!(goal, Goal::MaximizeDaylightFactor { .. })
             || constraints

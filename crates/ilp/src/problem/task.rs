@@ -251,11 +251,9 @@ impl Problem {
                         name: area.name.clone(),
                         side: Side::Front,
                     };
-                    let mut lux = spec.constraint(surface, Bound::MinLux(ez), Some(area.kind));
-                    lux.bound = lux.bound.for_new(self.maintenance_factor);
-                    lux.maintenance_factor = self.maintenance_factor;
+                    let lux = spec.constraint(surface, Bound::MinLux(ez), Some(area.kind));
                     areas.push(area);
-                    Some(lux)
+                    Some(lux.maintained(self.maintenance_factor))
                 }
                 None => None,
             };
@@ -271,8 +269,7 @@ impl Problem {
                 let grid = a.kind.spacing().map_or(Grid::AUTO, Grid::metres);
                 let mut lux = spec.constraint(surface.clone(), Bound::MinLux(em), Some(a.kind));
                 lux.average_over = Some(grid);
-                lux.bound = lux.bound.for_new(self.maintenance_factor);
-                lux.maintenance_factor = self.maintenance_factor;
+                let lux = lux.maintained(self.maintenance_factor);
                 let even = spec.constraint(surface, Bound::MinUniformity(u0, grid), Some(a.kind));
                 self.constraints.extend([lux, even]);
             }
